@@ -1,0 +1,140 @@
+//! Elementary functions: `sqrt`, `abs`, `min`, `max`, `sin`, `cos`, `tan`.
+//!
+//! `sin`, `cos` and `tan` find the extrema (or poles) inside the argument with a conservative test:
+//! the index `k` of each critical point `c + k*period` is enclosed by interval arithmetic with an
+//! enclosure of pi, and a critical point is assumed present whenever the enclosure admits an integer.
+//! Otherwise the function is monotone on the argument and the bounds come from the end points,
+//! widened by two ulps (see the module documentation of [`crate::interval`]).
+
+use super::round::{down, up};
+use super::Interval;
+
+/// Beyond this magnitude the critical-point test is not attempted and `[-1, 1]` is returned.
+const LARGE_ARGUMENT: f64 = 1.0e15;
+
+fn down2(x: f64) -> f64 {
+    down(down(x))
+}
+
+fn up2(x: f64) -> f64 {
+    up(up(x))
+}
+
+impl Interval {
+    /// The square root `{sqrt(x) : x >= 0}`; the negative part of the argument is outside the
+    /// domain and dropped, so `[-4, 4].sqrt() = [0, 2]` and `[-2, -1].sqrt()` is empty.
+    #[inline]
+    pub fn sqrt(self) -> Interval {
+        if self.is_empty() || self.hi < 0.0 {
+            return Interval::EMPTY;
+        }
+        let lo = self.lo.max(0.0);
+        let slo = if lo == 0.0 {
+            0.0
+        } else {
+            down(lo.sqrt()).max(0.0)
+        };
+        let shi = if self.hi == 0.0 {
+            0.0
+        } else {
+            up(self.hi.sqrt())
+        };
+        Interval::from_bounds_unchecked(slo, shi)
+    }
+
+    /// The absolute value `{|x|}` (exact).
+    #[inline]
+    pub fn abs(self) -> Interval {
+        if self.is_empty() {
+            Interval::EMPTY
+        } else if self.lo >= 0.0 {
+            self
+        } else if self.hi <= 0.0 {
+            -self
+        } else {
+            Interval::from_bounds_unchecked(0.0, (-self.lo).max(self.hi))
+        }
+    }
+
+    /// The pointwise minimum `{min(x, y)}` (exact).
+    #[inline]
+    pub fn min(self, other: Interval) -> Interval {
+        if self.is_empty() || other.is_empty() {
+            return Interval::EMPTY;
+        }
+        Interval::from_bounds_unchecked(self.lo.min(other.lo), self.hi.min(other.hi))
+    }
+
+    /// The pointwise maximum `{max(x, y)}` (exact).
+    #[inline]
+    pub fn max(self, other: Interval) -> Interval {
+        if self.is_empty() || other.is_empty() {
+            return Interval::EMPTY;
+        }
+        Interval::from_bounds_unchecked(self.lo.max(other.lo), self.hi.max(other.hi))
+    }
+
+    /// The sine `{sin(x)}`.
+    pub fn sin(self) -> Interval {
+        // Maxima at pi/2 + 2k pi, minima at -pi/2 + 2k pi.
+        self.periodic_unit_range(0.5, -0.5, f64::sin)
+    }
+
+    /// The cosine `{cos(x)}`.
+    pub fn cos(self) -> Interval {
+        // Maxima at 2k pi, minima at pi + 2k pi.
+        self.periodic_unit_range(0.0, 1.0, f64::cos)
+    }
+
+    /// The tangent `{tan(x) : x != pi/2 + k pi}`; `ENTIRE` when the argument may contain a pole.
+    pub fn tan(self) -> Interval {
+        if self.is_empty() {
+            return Interval::EMPTY;
+        }
+        if !self.is_bounded() || self.mag() > LARGE_ARGUMENT {
+            return Interval::ENTIRE;
+        }
+        // Poles at pi/2 + k pi.
+        if may_contain_point(self, 0.5, 1.0) {
+            return Interval::ENTIRE;
+        }
+        let lo = down2(self.lo.tan());
+        let hi = up2(self.hi.tan());
+        if lo > hi {
+            // The libm results straddle a pole that the conservative test could not see (impossible
+            // with a sound test, kept as a guard against a wrong libm): give up soundly.
+            return Interval::ENTIRE;
+        }
+        Interval::from_bounds_unchecked(lo, hi)
+    }
+
+    /// Range of a 2pi-periodic function with values in [-1, 1], maxima at `max_at * pi + 2k pi`
+    /// and minima at `min_at * pi + 2k pi`, monotone between them.
+    fn periodic_unit_range(self, max_at: f64, min_at: f64, f: fn(f64) -> f64) -> Interval {
+        if self.is_empty() {
+            return Interval::EMPTY;
+        }
+        let unit = Interval::from_bounds_unchecked(-1.0, 1.0);
+        if !self.is_bounded() || self.mag() > LARGE_ARGUMENT {
+            return unit;
+        }
+        let (fa, fb) = (f(self.lo), f(self.hi));
+        let mut lo = down2(fa.min(fb)).max(-1.0);
+        let mut hi = up2(fa.max(fb)).min(1.0);
+        if may_contain_point(self, max_at, 2.0) {
+            hi = 1.0;
+        }
+        if may_contain_point(self, min_at, 2.0) {
+            lo = -1.0;
+        }
+        Interval::from_bounds_unchecked(lo, hi)
+    }
+}
+
+/// Whether `x` may contain a point `(offset + k * period) * pi` for an integer `k` (conservative:
+/// `true` whenever it cannot be excluded).
+fn may_contain_point(x: Interval, offset: f64, period: f64) -> bool {
+    // k in (x / pi - offset) / period, enclosed with outward rounding.
+    let k = (x / Interval::PI - Interval::point(offset)) / Interval::point(period);
+    k.sup().floor() >= k.inf().ceil()
+}

@@ -1,0 +1,94 @@
+//! The [`Model`] trait: a residual `f(x, M)` with its point, interval and Jacobian evaluators.
+
+use crate::Interval;
+
+/// Value and both Jacobians of a residual at one point or over one box, computed together so that
+/// shared subexpressions are evaluated once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Evaluation<S, const NX: usize, const NM: usize> {
+    /// `f(x, M)`.
+    pub value: S,
+    /// `df/dx`.
+    pub dx: [S; NX],
+    /// `df/dM`.
+    pub dm: [S; NM],
+}
+
+/// A scalar residual `f(x, M)` of `NX` unknown parameters `x` and `NM` measured quantities `M`
+/// (paper eq. 4: the calibration equations are `f(x, M_k) = 0` for every measurement `k`).
+///
+/// `#[interval_model]` implements it for a unit struct generated from a generic function; a model with
+/// runtime data can implement it by hand. The interval methods must enclose: for every `x` in the box
+/// `x` and `M` in the box `m`, the point value (and each Jacobian entry) lies in the interval result.
+pub trait Model<const NX: usize, const NM: usize> {
+    /// `f(x, M)` in floating point.
+    fn residual(&self, x: &[f64; NX], m: &[f64; NM]) -> f64;
+
+    /// An enclosure of `{f(x, M) : x in x, M in m}`.
+    fn residual_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> Interval;
+
+    /// `df/dx (x, M)` in floating point.
+    fn jacobian_x(&self, x: &[f64; NX], m: &[f64; NM]) -> [f64; NX];
+
+    /// `df/dM (x, M)` in floating point.
+    fn jacobian_m(&self, x: &[f64; NX], m: &[f64; NM]) -> [f64; NM];
+
+    /// An enclosure of `{df/dx (x, M)}` over the boxes (the matrix rows `A` of paper eq. 6).
+    fn jacobian_x_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [Interval; NX];
+
+    /// An enclosure of `{df/dM (x, M)}` over the boxes (the matrix rows `B` of paper eq. 6).
+    fn jacobian_m_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [Interval; NM];
+
+    /// Value and both Jacobians in floating point, sharing common subexpressions.
+    fn evaluate(&self, x: &[f64; NX], m: &[f64; NM]) -> Evaluation<f64, NX, NM> {
+        Evaluation {
+            value: self.residual(x, m),
+            dx: self.jacobian_x(x, m),
+            dm: self.jacobian_m(x, m),
+        }
+    }
+
+    /// Enclosures of value and both Jacobians over the boxes, sharing common subexpressions.
+    fn evaluate_interval(
+        &self,
+        x: &[Interval; NX],
+        m: &[Interval; NM],
+    ) -> Evaluation<Interval, NX, NM> {
+        Evaluation {
+            value: self.residual_interval(x, m),
+            dx: self.jacobian_x_interval(x, m),
+            dm: self.jacobian_m_interval(x, m),
+        }
+    }
+}
+
+impl<T: Model<NX, NM> + ?Sized, const NX: usize, const NM: usize> Model<NX, NM> for &T {
+    fn residual(&self, x: &[f64; NX], m: &[f64; NM]) -> f64 {
+        (**self).residual(x, m)
+    }
+    fn residual_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> Interval {
+        (**self).residual_interval(x, m)
+    }
+    fn jacobian_x(&self, x: &[f64; NX], m: &[f64; NM]) -> [f64; NX] {
+        (**self).jacobian_x(x, m)
+    }
+    fn jacobian_m(&self, x: &[f64; NX], m: &[f64; NM]) -> [f64; NM] {
+        (**self).jacobian_m(x, m)
+    }
+    fn jacobian_x_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [Interval; NX] {
+        (**self).jacobian_x_interval(x, m)
+    }
+    fn jacobian_m_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [Interval; NM] {
+        (**self).jacobian_m_interval(x, m)
+    }
+    fn evaluate(&self, x: &[f64; NX], m: &[f64; NM]) -> Evaluation<f64, NX, NM> {
+        (**self).evaluate(x, m)
+    }
+    fn evaluate_interval(
+        &self,
+        x: &[Interval; NX],
+        m: &[Interval; NM],
+    ) -> Evaluation<Interval, NX, NM> {
+        (**self).evaluate_interval(x, m)
+    }
+}

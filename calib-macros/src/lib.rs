@@ -1,0 +1,59 @@
+//! # calib-macros
+//!
+//! The `#[interval_model]` attribute (use it through `calib_core::interval_model`).
+//!
+//! Applied to `fn name<S: Scalar>(x: &[S; NX], m: &[S; NM]) -> S`, it keeps the function and emits a
+//! unit struct `Name` implementing `calib_core::Model<NX, NM>` with point, interval and Jacobian
+//! evaluators, all straight-line code generated at compile time. The stages, one file each:
+//! [`parse`] (signature), [`lower`] (body to an expression graph, rejecting unsupported syntax with
+//! spanned errors), [`diff`] (symbolic reverse-mode differentiation on the graph, sharing common
+//! subexpressions), [`rewrite`] (enclosing the literals of the kept function) and [`expand`]
+//! (code generation). Literals are enclosed exactly by [`literal`].
+#![deny(unsafe_code)]
+
+mod diff;
+mod expand;
+mod graph;
+mod literal;
+mod lower;
+mod parse;
+mod rewrite;
+
+use proc_macro::TokenStream;
+use quote::quote;
+
+/// Generates point, interval and Jacobian evaluators for a residual written over a generic scalar.
+///
+/// See the `calib_core` crate documentation for the supported body language and an example.
+#[proc_macro_attribute]
+pub fn interval_model(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let attr = proc_macro2::TokenStream::from(attr);
+    let mut item = syn::parse_macro_input!(item as syn::ItemFn);
+    if !attr.is_empty() {
+        let err = syn::Error::new_spanned(attr, "#[interval_model] takes no arguments");
+        return error_with_stub(&item, err);
+    }
+    let result = parse::signature(&item).and_then(|sig| {
+        let (mut graph, out) = lower::lower(&sig, &item.block)?;
+        let grad = diff::gradient(&mut graph, out, sig.x.1, sig.m.1);
+        Ok((sig, graph, out, grad))
+    });
+    match result {
+        Ok((sig, graph, out, grad)) => {
+            let generated = expand::model(&item, &sig, &graph, out, &grad);
+            rewrite::enclose_literals(&mut item.block, &sig.scalar);
+            quote!(#item #generated).into()
+        }
+        Err(err) => error_with_stub(&item, err),
+    }
+}
+
+/// The error plus the function's signature (with a body that cannot fail to type-check) and a stub
+/// struct, so that the user sees one clear error instead of a cascade.
+fn error_with_stub(item: &syn::ItemFn, err: syn::Error) -> TokenStream {
+    let error = err.to_compile_error();
+    let stub = expand::stub(item);
+    let mut item = item.clone();
+    item.block = syn::parse_quote!({ ::core::panic!("#[interval_model] rejected this function") });
+    quote!(#error #item #stub).into()
+}
