@@ -54,6 +54,8 @@ fn error_with_stub(item: &syn::ItemFn, err: syn::Error) -> TokenStream {
     let error = err.to_compile_error();
     let stub = expand::stub(item);
     let mut item = item.clone();
+    item.attrs
+        .push(syn::parse_quote!(#[allow(unused_variables)]));
     item.block = syn::parse_quote!({ ::core::panic!("#[interval_model] rejected this function") });
     quote!(#error #item #stub).into()
 }

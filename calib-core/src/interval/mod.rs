@@ -275,27 +275,26 @@ pub(crate) mod round {
         x.next_up()
     }
 
-    /// Lower bound of `a + b` (exact when an operand is zero).
+    /// Lower bound of `a + b`. Exact when an operand is zero, and when the rounded sum is zero (a
+    /// floating-point sum is zero only if `a = -b` exactly).
     #[inline(always)]
     pub fn add_down(a: f64, b: f64) -> f64 {
-        if a == 0.0 {
-            b
-        } else if b == 0.0 {
-            a
+        let s = a + b;
+        if a == 0.0 || b == 0.0 || s == 0.0 {
+            s
         } else {
-            down(a + b)
+            down(s)
         }
     }
 
-    /// Upper bound of `a + b` (exact when an operand is zero).
+    /// Upper bound of `a + b` (exact in the same cases as [`add_down`]).
     #[inline(always)]
     pub fn add_up(a: f64, b: f64) -> f64 {
-        if a == 0.0 {
-            b
-        } else if b == 0.0 {
-            a
+        let s = a + b;
+        if a == 0.0 || b == 0.0 || s == 0.0 {
+            s
         } else {
-            up(a + b)
+            up(s)
         }
     }
 

@@ -1,0 +1,191 @@
+//! Checks shared by the model tests (included with `#[path]` by the tests of other crates too):
+//! point values inside interval values over random boxes, Jacobians against central finite
+//! differences and against forward-mode dual numbers.
+#![allow(dead_code)]
+
+use calib_core::{Dual, Interval, Model};
+use rand::rngs::StdRng;
+use rand::Rng;
+
+/// A random box around `centre` with per-coordinate radii uniform in `[0, rad]` (and sometimes a
+/// point interval), shifted by up to `rad` so that the centre is not always the midpoint.
+pub fn random_box<const N: usize>(
+    rng: &mut StdRng,
+    centre: &[f64; N],
+    rad: &[f64; N],
+) -> [Interval; N] {
+    core::array::from_fn(|i| {
+        let shift = rng.random_range(-1.0..=1.0) * rad[i];
+        let r = if rng.random_range(0..8) == 0 {
+            0.0
+        } else {
+            rng.random_range(0.0..=1.0) * rad[i]
+        };
+        Interval::mid_rad(centre[i] + shift, r)
+    })
+}
+
+/// A random member of the box; one in four draws is a corner.
+pub fn random_point<const N: usize>(rng: &mut StdRng, b: &[Interval; N]) -> [f64; N] {
+    let corner = rng.random_range(0..4) == 0;
+    core::array::from_fn(|i| {
+        let (lo, hi) = (b[i].inf(), b[i].sup());
+        if corner {
+            if rng.random::<bool>() {
+                lo
+            } else {
+                hi
+            }
+        } else {
+            (lo + rng.random::<f64>() * (hi - lo)).clamp(lo, hi)
+        }
+    })
+}
+
+/// Over `boxes` random boxes and 20 random points in each: the point residual and both point
+/// Jacobians lie inside the interval ones, and the combined evaluators agree with the separate ones.
+pub fn assert_encloses<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    rng: &mut StdRng,
+    x_centre: &[f64; NX],
+    x_rad: &[f64; NX],
+    m_centre: &[f64; NM],
+    m_rad: &[f64; NM],
+    boxes: usize,
+) {
+    for _ in 0..boxes {
+        let xb = random_box(rng, x_centre, x_rad);
+        let mb = random_box(rng, m_centre, m_rad);
+        let f = model.residual_interval(&xb, &mb);
+        let jx = model.jacobian_x_interval(&xb, &mb);
+        let jm = model.jacobian_m_interval(&xb, &mb);
+        let all = model.evaluate_interval(&xb, &mb);
+        assert_eq!(
+            (all.value, all.dx, all.dm),
+            (f, jx, jm),
+            "combined and separate evaluators differ"
+        );
+        for _ in 0..20 {
+            let x = random_point(rng, &xb);
+            let m = random_point(rng, &mb);
+            let v = model.residual(&x, &m);
+            assert!(
+                f.contains(v),
+                "f{x:?},{m:?} = {v} outside {f} over {xb:?} {mb:?}"
+            );
+            let (dx, dm) = (model.jacobian_x(&x, &m), model.jacobian_m(&x, &m));
+            for i in 0..NX {
+                assert!(
+                    jx[i].contains(dx[i]),
+                    "df/dx{i} = {} outside {}",
+                    dx[i],
+                    jx[i]
+                );
+            }
+            for i in 0..NM {
+                assert!(
+                    jm[i].contains(dm[i]),
+                    "df/dm{i} = {} outside {}",
+                    dm[i],
+                    jm[i]
+                );
+            }
+            let p = model.evaluate(&x, &m);
+            assert_eq!((p.value, p.dx, p.dm), (v, dx, dm));
+        }
+    }
+}
+
+/// Central finite differences agree with the generated point Jacobians.
+pub fn assert_jacobians_match_finite_differences<
+    M: Model<NX, NM>,
+    const NX: usize,
+    const NM: usize,
+>(
+    model: &M,
+    x: &[f64; NX],
+    m: &[f64; NM],
+) {
+    let f = model.residual(x, m);
+    let central = |g: &dyn Fn(f64) -> f64, v: f64| {
+        let h = 1e-6 * v.abs().max(1.0);
+        ((g(v + h) - g(v - h)) / (2.0 * h), h)
+    };
+    let jx = model.jacobian_x(x, m);
+    for i in 0..NX {
+        let (fd, h) = central(
+            &|v| {
+                let mut y = *x;
+                y[i] = v;
+                model.residual(&y, m)
+            },
+            x[i],
+        );
+        let tol = 1e-6 * (1.0 + jx[i].abs()) + 8.0 * f64::EPSILON * f.abs().max(1.0) / h;
+        assert!(
+            (fd - jx[i]).abs() <= tol,
+            "df/dx{i}: generated {} vs finite difference {fd}",
+            jx[i]
+        );
+    }
+    let jm = model.jacobian_m(x, m);
+    for i in 0..NM {
+        let (fd, h) = central(
+            &|v| {
+                let mut y = *m;
+                y[i] = v;
+                model.residual(x, &y)
+            },
+            m[i],
+        );
+        let tol = 1e-6 * (1.0 + jm[i].abs()) + 8.0 * f64::EPSILON * f.abs().max(1.0) / h;
+        assert!(
+            (fd - jm[i]).abs() <= tol,
+            "df/dm{i}: generated {} vs finite difference {fd}",
+            jm[i]
+        );
+    }
+}
+
+/// The generated Jacobians agree with forward-mode dual numbers run through the same generic
+/// function (`N = NX + NM` seeds: first the parameters, then the measurements).
+pub fn assert_jacobians_match_dual<
+    M: Model<NX, NM>,
+    const NX: usize,
+    const NM: usize,
+    const N: usize,
+>(
+    model: &M,
+    generic: impl Fn(&[Dual<N>; NX], &[Dual<N>; NM]) -> Dual<N>,
+    x: &[f64; NX],
+    m: &[f64; NM],
+) {
+    assert_eq!(N, NX + NM, "N must be NX + NM");
+    let xd: [Dual<N>; NX] = core::array::from_fn(|i| Dual::variable(x[i], i));
+    let md: [Dual<N>; NM] = core::array::from_fn(|i| Dual::variable(m[i], NX + i));
+    let d = generic(&xd, &md);
+    let p = model.evaluate(x, m);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + a.abs().max(b.abs())) * 64.0;
+    assert!(
+        close(d.value, p.value),
+        "value: dual {} vs generated {}",
+        d.value,
+        p.value
+    );
+    for i in 0..NX {
+        assert!(
+            close(d.grad[i], p.dx[i]),
+            "df/dx{i}: dual {} vs generated {}",
+            d.grad[i],
+            p.dx[i]
+        );
+    }
+    for i in 0..NM {
+        assert!(
+            close(d.grad[NX + i], p.dm[i]),
+            "df/dm{i}: dual {} vs generated {}",
+            d.grad[NX + i],
+            p.dm[i]
+        );
+    }
+}

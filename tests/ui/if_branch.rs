@@ -1,0 +1,8 @@
+use calib_core::{interval_model, Scalar};
+
+#[interval_model]
+fn branchy<S: Scalar>(x: &[S; 1], m: &[S; 1]) -> S {
+    if true { x[0] } else { m[0] }
+}
+
+fn main() {}

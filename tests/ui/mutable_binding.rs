@@ -1,0 +1,10 @@
+use calib_core::{interval_model, Scalar};
+
+#[interval_model]
+fn mutate<S: Scalar>(x: &[S; 1], m: &[S; 1]) -> S {
+    let mut s = x[0];
+    s = s + m[0];
+    s
+}
+
+fn main() {}
