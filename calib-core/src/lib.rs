@@ -1,11 +1,13 @@
 //! # calib-core
 //!
 //! Rigorous interval arithmetic ([`Interval`]), the [`Scalar`] abstraction residuals are written
-//! over, the [`Model`] trait, and the `#[interval_model]` code generator that turns one generic
-//! residual into specialized point, interval and Jacobian evaluators at compile time.
+//! over, the [`Model`] trait, the `#[interval_model]` code generator that turns one generic
+//! residual into specialized point, interval and Jacobian evaluators at compile time, and the
+//! certified kernel: [`certify`] (interval Newton / Krawczyk–LP contraction to a fixed point, with
+//! certificates), [`sweep`] (the paper's bisection sweep) and [`pave`] (branch and prune).
 //!
 //! ```
-//! use calib_core::{interval_model, Interval, Model, Scalar};
+//! use calib_core::{certify, interval_model, Interval, Model, Scalar, Settings, Status};
 //!
 //! /// Distance of a point `m` from a circle of centre `(x0, x1)` and radius `x2`.
 //! #[interval_model]
@@ -18,17 +20,42 @@
 //! let mb = [Interval::new(0.99, 1.01), Interval::new(-0.01, 0.01)];
 //! let f = Circle.residual_interval(&xb, &mb);
 //! assert!(f.contains(Circle.residual(&[0.0, 0.0, 1.0], &[1.0, 0.0])));
+//!
+//! // Points measured (± 1e-3) on the unit circle: certify the centre and radius.
+//! let measurements: Vec<[Interval; 2]> = (0..12)
+//!     .map(|k| {
+//!         let t = k as f64 * 0.5;
+//!         [Interval::mid_rad(t.cos(), 1e-3), Interval::mid_rad(t.sin(), 1e-3)]
+//!     })
+//!     .collect();
+//! let r = certify(&Circle, &xb, &measurements, &Settings::default());
+//! assert_eq!(r.status, Status::Consistent);
+//! assert!(r.outer[2].contains(1.0) && r.outer[2].rad() < 0.01);
 //! ```
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
+// Index loops mirror the matrix notation of the paper (rows k, parameters j) in the numeric code.
+#![allow(clippy::needless_range_loop)]
 
+pub mod certificate;
+mod certify;
+pub mod contract;
 mod dual;
 pub mod interval;
+mod linalg;
+pub mod lp;
 mod model;
 mod scalar;
+mod settings;
+pub mod sweep;
 
 pub use calib_macros::interval_model;
+pub use certificate::{is_certified_consistent, is_consistent_point};
+pub use certify::{certify, certify_with, Certification, Status};
+pub use contract::{contract, Contraction, EmptinessProof, Workspace};
 pub use dual::Dual;
 pub use interval::Interval;
 pub use model::{Evaluation, Model};
 pub use scalar::Scalar;
+pub use settings::{Relaxation, Settings};
+pub use sweep::{pave, sweep, Paving, SweepResult};

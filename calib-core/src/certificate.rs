@@ -1,0 +1,209 @@
+//! Certificates: proofs that parameter vectors are consistent with the data, and inner bounds.
+//!
+//! A point `x*` is *certified consistent* when, for every measurement `k`, two measurement vectors
+//! `M⁻, M⁺ ∈ M_k` are found with rigorously evaluated `f(x*, M⁻) <= 0 <= f(x*, M⁺)`: `M_k` is a box
+//! (connected) and `f` is continuous, so `f(x*, M) = 0` for some `M ∈ M_k` — `x*` belongs to the
+//! solution set `S(M)` of paper eq. (5). Interior contraction alone is not used as a proof: the
+//! paper's square-system argument does not carry over to over-determined systems.
+//!
+//! The same test with an interval `x` instead of a point proves that a whole box lies in `S(M)`
+//! (used by the paver for inner volume). Inner bounds come from certified points near the extremes
+//! of each parameter: the hull of `S(M)` lies between the hull of certified points and the outer
+//! box.
+
+use crate::linalg::gauss_jordan_inverse;
+use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
+use crate::{Interval, Model};
+
+/// Whether every `x` in the box `x` (a point when the box is degenerate) is consistent with every
+/// measurement box, by the sign test described in the module documentation.
+pub fn is_certified_consistent<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+) -> bool {
+    let xm = x.map(|v| v.mid());
+    measurements.iter().all(|m| {
+        // The linearisation in M at the centre picks the corners most likely to change the sign.
+        let mm = m.map(|v| v.mid());
+        let g = model.jacobian_m(&xm, &mm);
+        let corner = |up: bool| -> [Interval; NM] {
+            core::array::from_fn(|i| {
+                let (lo, hi) = (m[i].inf(), m[i].sup());
+                Interval::point(if (g[i] > 0.0) == up { hi } else { lo })
+            })
+        };
+        let below = model.residual_interval(x, &corner(false));
+        let above = model.residual_interval(x, &corner(true));
+        below.sup() <= 0.0 && above.inf() >= 0.0
+    })
+}
+
+/// Whether the point `x` is certified consistent.
+pub fn is_consistent_point<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    x: &[f64; NX],
+    measurements: &[[Interval; NM]],
+) -> bool {
+    x.iter().all(|v| v.is_finite())
+        && is_certified_consistent(model, &x.map(Interval::point), measurements)
+}
+
+/// A Gauss–Newton (Levenberg-damped) least-squares point of `Σ_k f(x, mid M_k)²` started at the
+/// box centre and kept inside the box: a good candidate for a witness.
+pub(crate) fn least_squares_point<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+) -> [f64; NX] {
+    let mut p = x.map(|v| v.mid());
+    let mut normal = vec![0.0; NX * NX];
+    let mut inv = vec![0.0; NX * NX];
+    for _ in 0..20 {
+        let mut rhs = [0.0; NX];
+        normal.iter_mut().for_each(|v| *v = 0.0);
+        for m in measurements {
+            let mm = m.map(|v| v.mid());
+            let e = model.evaluate(&p, &mm);
+            for i in 0..NX {
+                rhs[i] -= e.dx[i] * e.value;
+                for j in 0..NX {
+                    normal[i * NX + j] += e.dx[i] * e.dx[j];
+                }
+            }
+        }
+        let scale = (0..NX).map(|i| normal[i * NX + i]).fold(0.0, f64::max);
+        for i in 0..NX {
+            normal[i * NX + i] += 1e-12 * scale + f64::MIN_POSITIVE;
+        }
+        if !gauss_jordan_inverse(NX, &mut normal, &mut inv) {
+            break;
+        }
+        let mut step = 0.0;
+        for i in 0..NX {
+            let d: f64 = (0..NX).map(|j| inv[i * NX + j] * rhs[j]).sum();
+            let next = (p[i] + d).clamp(x[i].inf(), x[i].sup());
+            step += (next - p[i]).abs();
+            p[i] = next;
+        }
+        if !step.is_finite() || step < 1e-15 {
+            break;
+        }
+    }
+    p
+}
+
+/// A point of the box that minimises the largest normalised residual
+/// `max_k |f(p, mid M_k)| / w_k`, where `w_k` is the first-order half-range of `f(p, ·)` over `M_k`
+/// (a Chebyshev fit, by successive linearisation and an LP in `(δ, t)`): the point most likely to
+/// pass the sign test, since the sign test needs `|f(p, mid M_k)| <= ~w_k` for every `k`.
+pub(crate) fn chebyshev_point<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    start: [f64; NX],
+) -> [f64; NX] {
+    let mut p = start;
+    let mut poly = Polyhedron::default();
+    let mut lp = DenseSimplex::default();
+    let mut dual = vec![0.0; 2 * measurements.len()];
+    let mut primal = vec![0.0; NX + 1];
+    let mut objective = vec![0.0; NX + 1];
+    objective[NX] = 1.0;
+    let mut row = vec![0.0; NX + 1];
+    for _ in 0..6 {
+        if is_consistent_point(model, &p, measurements) {
+            break;
+        }
+        let lo: Vec<f64> = (0..NX).map(|j| x[j].inf() - p[j]).chain([0.0]).collect();
+        let hi: Vec<f64> = (0..NX).map(|j| x[j].sup() - p[j]).chain([1e6]).collect();
+        if lo
+            .iter()
+            .zip(&hi)
+            .any(|(l, h)| l > h || !l.is_finite() || !h.is_finite())
+        {
+            break;
+        }
+        poly.reset(&lo, &hi);
+        for m in measurements {
+            let mm = m.map(|v| v.mid());
+            let e = model.evaluate(&p, &mm);
+            let w: f64 = (0..NM)
+                .map(|i| e.dm[i].abs() * m[i].rad())
+                .sum::<f64>()
+                .max(1e-300);
+            // f + J δ <= w t  and  -(f + J δ) <= w t
+            row[..NX].copy_from_slice(&e.dx);
+            row[NX] = -w;
+            poly.push_row(&row, -e.value);
+            row[..NX].iter_mut().for_each(|v| *v = -*v);
+            poly.push_row(&row, e.value);
+        }
+        dual.resize(poly.rows(), 0.0);
+        if lp.minimize(&poly, &objective, &mut dual, &mut primal) != LpStatus::Optimal {
+            break;
+        }
+        for j in 0..NX {
+            p[j] = (p[j] + primal[j]).clamp(x[j].inf(), x[j].sup());
+        }
+    }
+    p
+}
+
+/// A certified consistent point of the box, if one of the candidates passes: the least-squares
+/// point, its Chebyshev refinement, the centre, and the given extra candidates.
+pub(crate) fn find_witness<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    extra: &[[f64; NX]],
+) -> Option<[f64; NX]> {
+    let lsq = least_squares_point(model, x, measurements);
+    let centre = x.map(|v| v.mid());
+    let chebyshev = chebyshev_point(model, x, measurements, lsq);
+    [lsq, chebyshev, centre]
+        .iter()
+        .chain(extra)
+        .find(|p| is_consistent_point(model, p, measurements))
+        .copied()
+}
+
+/// Inner bounds: starting from a certified `witness`, walks towards each `target` (the LP extreme
+/// points) by bisection on the segment, keeping the farthest certified point, and returns the hull
+/// of all certified points found.
+pub(crate) fn inner_box<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    witness: &[f64; NX],
+    targets: &[[f64; NX]],
+    measurements: &[[Interval; NM]],
+    bisections: usize,
+) -> [Interval; NX] {
+    let mut inner = witness.map(Interval::point);
+    for target in targets {
+        let at = |t: f64| -> [f64; NX] {
+            core::array::from_fn(|i| witness[i] + t * (target[i] - witness[i]))
+        };
+        let mut best = None;
+        if is_consistent_point(model, target, measurements) {
+            best = Some(*target);
+        } else {
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..bisections {
+                let t = 0.5 * (lo + hi);
+                let p = at(t);
+                if is_consistent_point(model, &p, measurements) {
+                    lo = t;
+                    best = Some(p);
+                } else {
+                    hi = t;
+                }
+            }
+        }
+        if let Some(p) = best {
+            for i in 0..NX {
+                inner[i] = inner[i].hull(Interval::point(p[i]));
+            }
+        }
+    }
+    inner
+}

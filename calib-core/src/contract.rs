@@ -1,0 +1,333 @@
+//! The interval Newton / Krawczyk–LP contraction and its fixed-point iteration (paper Section IV).
+//!
+//! One step, for a box `x` and measurement boxes `M_1..M_p`, with `y = x - xm`, `xm = mid(x)`:
+//!
+//! 1. Cheap rejection: if `0 ∉ f(x, M_k)` (natural interval evaluation) for some `k`, no parameter
+//!    vector in `x` fits measurement `k`: the box is empty.
+//! 2. Rows of a polyhedron containing every solution in `x` ([`Relaxation`]):
+//!    * Krawczyk (paper eqs. 6–7 and Section IV-B): with `A_k = ∂f/∂x (x, M_k)`,
+//!      `b_k ⊇ -f(xm, M)` over `M_k` (the centred form `f(xm, mid M_k) + B_k (M_k - mid M_k)`,
+//!      `B_k = ∂f/∂M (xm, M_k)`, intersected with the natural evaluation) and `Am = mid(A_k)`:
+//!      `inf(c_k) <= Am·y <= sup(c_k)` with `c_k = b_k - (A_k - Am)·(x - xm)`.
+//!    * Corners: for the corner `v = inf(x)` and every solution `x`,
+//!      `0 = f(v, M) + A'(x - v)` with `A' ∈ A_k` and `x - v >= 0`, hence
+//!      `Σ inf(A_kj)(x_j - v_j) <= -inf f(v, M_k)` and `-Σ sup(A_kj)(x_j - v_j) <= sup f(v, M_k)`;
+//!      symmetrically at `v = sup(x)`.
+//!
+//!    Right-hand sides are rounded outward, so every row holds exactly for every solution.
+//! 3. 2n linear programs: min and max of each `y_j` over the polyhedron; each LP answer is turned
+//!    into a rigorous bound by [`crate::lp::safe_lower_bound`], and the box is intersected with it
+//!    at once (eq. 8). An empty intersection, or a checked Farkas certificate, proves emptiness.
+//!
+//! The step is repeated until `‖rad(x_j)‖₁ - ‖rad(x_{j+1})‖₁ < Δ` or the iteration cap. Nothing is
+//! lost: every step keeps all solutions of the box it started from (paper Section IV-A).
+
+use crate::lp::{proves_infeasible, safe_lower_bound, LpBackend, LpStatus, Polyhedron};
+use crate::{Interval, Model, Relaxation, Settings};
+
+/// Which test proved a box empty.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EmptinessProof {
+    /// `0 ∉ f(x, M_k)`: measurement `k` (0-based) fits no parameter vector of the box.
+    CheapRejection {
+        /// The measurement.
+        measurement: usize,
+    },
+    /// A Farkas certificate of the LP polyhedron, checked in interval arithmetic.
+    LpInfeasible,
+    /// The rigorous LP bounds of a parameter crossed (its new interval is empty).
+    EmptyIntersection {
+        /// The parameter (0-based).
+        parameter: usize,
+    },
+}
+
+/// Reusable buffers for contractions: after the first contraction of a given problem size, a
+/// contraction performs no heap allocation.
+pub struct Workspace<const NX: usize> {
+    pub(crate) poly: Polyhedron,
+    lp: Box<dyn LpBackend>,
+    dual: Vec<f64>,
+    objective: [f64; NX],
+    zeros: [f64; NX],
+    primal: [f64; NX],
+    /// Primal LP points (in `x` coordinates) at the minimum and maximum of each parameter from the
+    /// last step: `extreme_points[2j]` for the minimum of `x_j`, `[2j + 1]` for the maximum.
+    pub(crate) extreme_points: Vec<[f64; NX]>,
+    /// LP solves and LP failures since creation (for reports).
+    pub lp_solves: usize,
+    /// LP solves that failed or whose Farkas ray did not check (the bound stayed where it was or
+    /// came from the partial multipliers).
+    pub lp_failures: usize,
+}
+
+impl<const NX: usize> Workspace<NX> {
+    /// A workspace using the LP engine of `settings`.
+    pub fn new(settings: &Settings) -> Self {
+        Workspace {
+            poly: Polyhedron::default(),
+            lp: settings.lp.backend(),
+            dual: Vec::new(),
+            objective: [0.0; NX],
+            zeros: [0.0; NX],
+            primal: [0.0; NX],
+            extreme_points: vec![[0.0; NX]; 2 * NX],
+            lp_solves: 0,
+            lp_failures: 0,
+        }
+    }
+
+    /// The LP engine's name.
+    pub fn lp_name(&self) -> &'static str {
+        self.lp.name()
+    }
+}
+
+/// The result of contracting one box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contraction<const NX: usize> {
+    /// The contracted box, or the proof that it holds no solution.
+    pub result: Result<[Interval; NX], EmptinessProof>,
+    /// Newton/LP steps performed.
+    pub iterations: usize,
+}
+
+/// `‖rad(x)‖₁`.
+pub(crate) fn radius_sum<const NX: usize>(x: &[Interval; NX]) -> f64 {
+    x.iter().map(|v| v.rad()).sum()
+}
+
+/// Contracts `x` to a fixed point (see the module documentation). The result contains every
+/// solution in `x`; an `Err` is a proof that there is none.
+pub fn contract<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    settings: &Settings,
+    ws: &mut Workspace<NX>,
+) -> Contraction<NX> {
+    let mut current = *x;
+    let mut iterations = 0;
+    if current.iter().any(|v| v.is_empty()) {
+        return Contraction {
+            result: Err(EmptinessProof::EmptyIntersection {
+                parameter: current.iter().position(|v| v.is_empty()).unwrap_or(0),
+            }),
+            iterations,
+        };
+    }
+    if !current.iter().all(|v| v.is_bounded()) {
+        // The centred forms need a bounded box; an unbounded one is returned unchanged.
+        return Contraction {
+            result: Ok(current),
+            iterations,
+        };
+    }
+    while iterations < settings.max_iterations {
+        iterations += 1;
+        let before = radius_sum(&current);
+        match newton_step(
+            model,
+            &current,
+            measurements,
+            settings.relaxation,
+            iterations,
+            ws,
+        ) {
+            Err(proof) => {
+                return Contraction {
+                    result: Err(proof),
+                    iterations,
+                }
+            }
+            Ok(next) => current = next,
+        }
+        if before - radius_sum(&current) < settings.delta {
+            break;
+        }
+    }
+    Contraction {
+        result: Ok(current),
+        iterations,
+    }
+}
+
+/// An enclosure of `{f(v, M) : M ∈ m}` for a point `v`: the centred form in `M` intersected with
+/// the natural evaluation.
+fn value_over_measurement<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    v: &[Interval; NX],
+    m: &[Interval; NM],
+) -> Interval {
+    let e = model.evaluate_interval(v, m);
+    let mid: [Interval; NM] = core::array::from_fn(|i| Interval::point(m[i].mid()));
+    let mut centred = model.residual_interval(v, &mid);
+    for i in 0..NM {
+        centred += e.dm[i] * (m[i] - mid[i]);
+    }
+    let both = centred.intersection(e.value);
+    if both.is_empty() {
+        // Both enclose f(v, mid M); an empty intersection can only come from a model whose
+        // evaluators disagree. Keep the wider, valid-by-contract natural value.
+        e.value
+    } else {
+        both
+    }
+}
+
+/// The corner pair of iteration `i`: first the lowest/highest corners, then a fixed pseudo-random
+/// sequence of opposite pairs, so that directions along which the parameters trade off against
+/// each other are linearised too.
+fn corner_mask(i: usize) -> u64 {
+    if i <= 1 {
+        return 0;
+    }
+    let mut z = (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z ^ (z >> 27)
+}
+
+/// One Newton/LP step. `Ok` holds a sub-box of `x` containing every solution in `x`.
+pub(crate) fn newton_step<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    relaxation: Relaxation,
+    iteration: usize,
+    ws: &mut Workspace<NX>,
+) -> Result<[Interval; NX], EmptinessProof> {
+    let xm: [f64; NX] = core::array::from_fn(|j| x[j].mid());
+    let xm_iv = xm.map(Interval::point);
+    // y = x - xm, enclosed by a float box.
+    let y_box: [Interval; NX] = core::array::from_fn(|j| x[j] - xm_iv[j]);
+    let ylo = y_box.map(|v| v.inf());
+    let yhi = y_box.map(|v| v.sup());
+    ws.poly.reset(&ylo, &yhi);
+    // Two opposite corners: bit j of `mask` puts the first corner at sup(x_j).
+    let mask = corner_mask(iteration);
+    let first: [bool; NX] = core::array::from_fn(|j| (mask >> (j % 64)) & 1 == 1);
+    let sides = [first, first.map(|b| !b)];
+    let corner_iv: [[Interval; NX]; 2] = core::array::from_fn(|c| {
+        core::array::from_fn(|j| Interval::point(if sides[c][j] { x[j].sup() } else { x[j].inf() }))
+    });
+    // delta_j = v_j - xm_j for each corner, enclosed.
+    let delta: [[Interval; NX]; 2] =
+        core::array::from_fn(|c| core::array::from_fn(|j| corner_iv[c][j] - xm_iv[j]));
+    let mut row = [0.0; NX];
+    for (k, m) in measurements.iter().enumerate() {
+        let e = model.evaluate_interval(x, m);
+        if !e.value.contains(0.0) {
+            return Err(EmptinessProof::CheapRejection { measurement: k });
+        }
+        let a = e.dx;
+        if matches!(relaxation, Relaxation::Krawczyk | Relaxation::Both) {
+            let b = -value_over_measurement(model, &xm_iv, m);
+            let mut c = b;
+            for j in 0..NX {
+                row[j] = a[j].mid();
+                c -= (a[j] - Interval::point(row[j])) * y_box[j];
+            }
+            ws.poly.push_row(&row, c.sup());
+            row.iter_mut().for_each(|v| *v = -*v);
+            ws.poly.push_row(&row, -c.inf());
+        }
+        if matches!(relaxation, Relaxation::Corners | Relaxation::Both) {
+            for corner in 0..2 {
+                let fv = value_over_measurement(model, &corner_iv[corner], m);
+                // d_j = x_j - v_j is >= 0 where the corner is at inf(x_j), <= 0 where at sup(x_j).
+                // The coefficient bounding A'_j d_j from below is then inf(A_j), resp. sup(A_j).
+                let up = &sides[corner];
+                let low = |j: usize| if up[j] { a[j].sup() } else { a[j].inf() };
+                let high = |j: usize| if up[j] { a[j].inf() } else { a[j].sup() };
+                // 0 >= inf f(v, M) + Σ low_j d_j
+                push_shifted_row(&mut ws.poly, &mut row, low, -fv.inf(), &delta[corner]);
+                // 0 <= sup f(v, M) + Σ high_j d_j
+                push_shifted_row(
+                    &mut ws.poly,
+                    &mut row,
+                    |j| -high(j),
+                    fv.sup(),
+                    &delta[corner],
+                );
+            }
+        }
+    }
+    bound_by_linear_programs(x, &xm_iv, ws)
+}
+
+/// Adds `Σ a_j (y_j - delta_j) <= r`, i.e. `Σ a_j y_j <= r + Σ a_j delta_j` rounded up.
+fn push_shifted_row<const NX: usize>(
+    poly: &mut Polyhedron,
+    row: &mut [f64; NX],
+    coef: impl Fn(usize) -> f64,
+    r: f64,
+    delta: &[Interval; NX],
+) {
+    if !r.is_finite() {
+        return;
+    }
+    let mut rhs = Interval::point(r);
+    for j in 0..NX {
+        row[j] = coef(j);
+        if !row[j].is_finite() {
+            return;
+        }
+        rhs += Interval::point(row[j]) * delta[j];
+    }
+    poly.push_row(row, rhs.sup());
+}
+
+/// Min and max of every `y_j` over the polyhedron, made rigorous; returns the new box in `x`.
+fn bound_by_linear_programs<const NX: usize>(
+    x: &[Interval; NX],
+    xm: &[Interval; NX],
+    ws: &mut Workspace<NX>,
+) -> Result<[Interval; NX], EmptinessProof> {
+    let rows = ws.poly.rows();
+    ws.dual.resize(rows, 0.0);
+    let mut out = *x;
+    for j in 0..NX {
+        for sense in [1.0, -1.0] {
+            ws.objective = [0.0; NX];
+            ws.objective[j] = sense;
+            ws.lp_solves += 1;
+            let status = ws
+                .lp
+                .minimize(&ws.poly, &ws.objective, &mut ws.dual, &mut ws.primal);
+            if status == LpStatus::Infeasible {
+                if proves_infeasible(&ws.poly, &ws.dual, &ws.zeros) {
+                    return Err(EmptinessProof::LpInfeasible);
+                }
+                ws.lp_failures += 1;
+                continue;
+            }
+            if status == LpStatus::Failed {
+                ws.lp_failures += 1;
+            }
+            let bound = safe_lower_bound(&ws.poly, &ws.objective, &ws.dual);
+            let (lo, hi) = (ws.poly.lo()[j], ws.poly.hi()[j]);
+            let (new_lo, new_hi) = if sense > 0.0 {
+                (lo.max(bound), hi)
+            } else {
+                (lo, hi.min(-bound))
+            };
+            if new_lo > new_hi {
+                return Err(EmptinessProof::EmptyIntersection { parameter: j });
+            }
+            ws.poly.set_bounds(j, new_lo, new_hi);
+            let slot = 2 * j + usize::from(sense < 0.0);
+            for (i, p) in ws.primal.iter().enumerate() {
+                ws.extreme_points[slot][i] = xm[i].mid() + p;
+            }
+        }
+    }
+    for j in 0..NX {
+        let y = Interval::new(ws.poly.lo()[j], ws.poly.hi()[j]);
+        let shifted = xm[j] + y;
+        out[j] = x[j].intersection(shifted);
+        if out[j].is_empty() {
+            return Err(EmptinessProof::EmptyIntersection { parameter: j });
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,130 @@
+//! The LP feasible set `{y : G y <= g, lo <= y <= hi}`, stored densely in reusable buffers.
+
+/// `{y in R^n : G y <= g, lo <= y <= hi}` with finite `lo <= hi`.
+///
+/// Rows are scaled by exact powers of two on insertion (the set is unchanged) so that every row's
+/// largest coefficient lies in `[0.5, 1)`; rows with non-finite data are dropped (a weaker but valid
+/// relaxation). Buffers keep their capacity across [`Polyhedron::reset`], so rebuilding allocates
+/// nothing after warm-up.
+#[derive(Clone, Debug, Default)]
+pub struct Polyhedron {
+    n: usize,
+    g_rows: Vec<f64>,
+    g_rhs: Vec<f64>,
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+    generation: u64,
+}
+
+impl Polyhedron {
+    /// Starts a new polyhedron over the box `[lo, hi]` with no rows.
+    ///
+    /// # Panics
+    /// If the slices differ in length or a bound is not finite or `lo > hi`.
+    pub fn reset(&mut self, lo: &[f64], hi: &[f64]) {
+        assert_eq!(lo.len(), hi.len());
+        assert!(lo
+            .iter()
+            .zip(hi)
+            .all(|(l, h)| l.is_finite() && h.is_finite() && l <= h));
+        self.n = lo.len();
+        self.lo.clear();
+        self.lo.extend_from_slice(lo);
+        self.hi.clear();
+        self.hi.extend_from_slice(hi);
+        self.g_rows.clear();
+        self.g_rhs.clear();
+        self.generation = self.generation.wrapping_add(1);
+    }
+
+    /// Adds the row `a·y <= b` (dropped if any number is not finite or `a = 0` with `b >= 0`).
+    /// Returns whether the row was kept.
+    pub fn push_row(&mut self, a: &[f64], b: f64) -> bool {
+        debug_assert_eq!(a.len(), self.n);
+        if !b.is_finite() || a.iter().any(|v| !v.is_finite()) {
+            return false;
+        }
+        let max = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if max == 0.0 {
+            // 0 <= b: always true, carries no information. (0 <= b with b < 0 would be an
+            // infeasible row; keep it so that the LP sees it.)
+            if b >= 0.0 {
+                return false;
+            }
+        }
+        let scale = if max == 0.0 {
+            1.0
+        } else {
+            power_of_two_scale(max)
+        };
+        self.g_rows.extend(a.iter().map(|v| v * scale));
+        self.g_rhs.push(b * scale);
+        true
+    }
+
+    /// Tightens the box of variable `j` (the caller guarantees `lo <= hi`).
+    pub fn set_bounds(&mut self, j: usize, lo: f64, hi: f64) {
+        debug_assert!(lo <= hi);
+        self.lo[j] = lo;
+        self.hi[j] = hi;
+    }
+
+    /// Number of variables.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// Number of rows of `G`.
+    pub fn rows(&self) -> usize {
+        self.g_rhs.len()
+    }
+
+    /// Row `i` of `G`.
+    pub fn row(&self, i: usize) -> &[f64] {
+        &self.g_rows[i * self.n..(i + 1) * self.n]
+    }
+
+    /// `g[i]`.
+    pub fn rhs(&self, i: usize) -> f64 {
+        self.g_rhs[i]
+    }
+
+    /// Lower bounds of the box.
+    pub fn lo(&self) -> &[f64] {
+        &self.lo
+    }
+
+    /// Upper bounds of the box.
+    pub fn hi(&self) -> &[f64] {
+        &self.hi
+    }
+
+    /// Changes whenever the rows are rebuilt (lets engines cache a factorisation per polyhedron).
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+}
+
+/// `2^-e` such that `max * 2^-e` lies in `[0.5, 1)`: an exact scaling.
+fn power_of_two_scale(max: f64) -> f64 {
+    let e = max.log2().floor() as i32 + 1;
+    2f64.powi(-e.clamp(-1000, 1000))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_are_scaled_exactly_and_bad_rows_dropped() {
+        let mut p = Polyhedron::default();
+        p.reset(&[0.0, 0.0], &[1.0, 1.0]);
+        assert!(p.push_row(&[3.0, -6.0], 12.0));
+        assert_eq!(p.row(0), &[0.375, -0.75]);
+        assert_eq!(p.rhs(0), 1.5);
+        assert!(!p.push_row(&[f64::NAN, 1.0], 0.0));
+        assert!(!p.push_row(&[0.0, 0.0], 1.0));
+        assert!(p.push_row(&[0.0, 0.0], -1.0));
+        assert_eq!(p.rows(), 2);
+    }
+}

@@ -1,0 +1,114 @@
+//! Rigorous bounds from LP multipliers (Neumaier & Shcherbina, "Safe bounds in linear and
+//! mixed-integer programming", Math. Programming 2004).
+//!
+//! For `y` in the box `Y = [lo, hi]` with `G y <= g` and any `λ >= 0`:
+//! `c·y >= c·y + λ·(G y - g) = (c + Gᵀλ)·y - λ·g >= inf((c + Gᵀλ)·Y) - sup(λ·g)`.
+//! Both terms are evaluated in interval arithmetic, so the bound holds whatever `λ` is: the LP
+//! solver's multipliers only decide how good it is. With `c = 0`, a bound `> 0` contradicts
+//! `0 >= ...`: the polyhedron is empty (a checked Farkas certificate).
+
+use super::Polyhedron;
+use crate::Interval;
+
+/// A lower bound of `c·y` over the polyhedron, valid for any multipliers (negative or NaN entries
+/// of `dual` are treated as zero). `+inf` means the polyhedron is proved empty.
+pub fn safe_lower_bound(p: &Polyhedron, c: &[f64], dual: &[f64]) -> f64 {
+    let n = p.dim();
+    let mut total = Interval::ZERO;
+    for j in 0..n {
+        // r_j = c_j + sum_i λ_i G_ij, enclosed.
+        let mut r = Interval::point(c[j]);
+        for (i, &l) in dual.iter().enumerate() {
+            if l > 0.0 && l.is_finite() {
+                r += Interval::point(l) * Interval::point(p.row(i)[j]);
+            }
+        }
+        total += r * Interval::new(p.lo()[j], p.hi()[j]);
+    }
+    let mut lg = Interval::ZERO;
+    for (i, &l) in dual.iter().enumerate() {
+        if l > 0.0 && l.is_finite() {
+            lg += Interval::point(l) * Interval::point(p.rhs(i));
+        }
+    }
+    let bound = (total - lg).inf();
+    if bound.is_nan() {
+        f64::NEG_INFINITY
+    } else {
+        bound
+    }
+}
+
+/// Whether the multipliers `ray` prove that the polyhedron is empty: the safe lower bound of the
+/// zero objective is positive.
+pub fn proves_infeasible(p: &Polyhedron, ray: &[f64], zeros: &[f64]) -> bool {
+    safe_lower_bound(p, zeros, ray) > 0.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> Polyhedron {
+        // y in [-1, 1]^2, y0 + y1 <= 1, -y0 + y1 <= 0.5
+        let mut p = Polyhedron::default();
+        p.reset(&[-1.0, -1.0], &[1.0, 1.0]);
+        p.push_row(&[1.0, 1.0], 1.0);
+        p.push_row(&[-1.0, 1.0], 0.5);
+        p
+    }
+
+    #[test]
+    fn exact_multipliers_give_the_optimum() {
+        // max y1 = -min(-y1): optimum y1 = 0.75 at y0 = 0.25 with λ = (1, 1) for the rows as
+        // stored (scaled by 1/2).
+        let p = square();
+        let b = safe_lower_bound(&p, &[0.0, -1.0], &[1.0, 1.0]);
+        assert!(b <= -0.75 && b > -0.75 - 1e-12, "{b}");
+    }
+
+    #[test]
+    fn wrong_multipliers_never_cut_a_feasible_point() {
+        let p = square();
+        let feasible = [
+            [0.25, 0.75],
+            [-1.0, -1.0],
+            [1.0, -1.0],
+            [0.0, 0.5],
+            [-1.0, -0.5],
+        ];
+        let mut seed = 1u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 4.0 - 1.0
+        };
+        for _ in 0..2000 {
+            let c = [rnd(), rnd()];
+            let dual = [rnd() * 10.0, rnd() * 10.0];
+            let b = safe_lower_bound(&p, &c, &dual);
+            for y in feasible {
+                assert!(
+                    c[0] * y[0] + c[1] * y[1] >= b,
+                    "bound {b} cuts {y:?} for c {c:?} λ {dual:?}"
+                );
+            }
+        }
+        // NaN and infinite multipliers are ignored rather than poisoning the bound.
+        assert!(safe_lower_bound(&p, &[1.0, 0.0], &[f64::NAN, f64::INFINITY]) <= -1.0);
+    }
+
+    #[test]
+    fn farkas_certificates_are_checked() {
+        // y0 <= -0.5 and -y0 <= -0.5 (y0 >= 0.5): empty, ray (1, 1).
+        let mut p = Polyhedron::default();
+        p.reset(&[-1.0], &[1.0]);
+        p.push_row(&[1.0], -0.5);
+        p.push_row(&[-1.0], -0.5);
+        assert!(proves_infeasible(&p, &[1.0, 1.0], &[0.0]));
+        // A wrong ray proves nothing, and neither does a feasible polyhedron.
+        assert!(!proves_infeasible(&p, &[1.0, 0.0], &[0.0]));
+        assert!(!proves_infeasible(&square(), &[1.0, 1.0], &[0.0, 0.0]));
+    }
+}
