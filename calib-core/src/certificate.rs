@@ -164,24 +164,31 @@ pub(crate) fn find_witness<M: Model<NX, NM>, const NX: usize, const NM: usize>(
     [lsq, chebyshev, centre]
         .iter()
         .chain(extra)
+        .filter(|p| (0..NX).all(|j| x[j].contains(p[j])))
         .find(|p| is_consistent_point(model, p, measurements))
         .copied()
 }
 
-/// Inner bounds: starting from a certified `witness`, walks towards each `target` (the LP extreme
-/// points) by bisection on the segment, keeping the farthest certified point, and returns the hull
-/// of all certified points found.
+/// Inner bounds: starting from a certified `witness` in the box `outer`, walks towards each `target`
+/// (the LP extreme points, clamped into `outer`) by bisection on the segment, keeping the farthest
+/// certified point, and returns the hull of all certified points found. Every point tried lies in
+/// `outer` (a convex box containing the witness), so the inner box lies in the outer one.
 pub(crate) fn inner_box<M: Model<NX, NM>, const NX: usize, const NM: usize>(
     model: &M,
     witness: &[f64; NX],
+    outer: &[Interval; NX],
     targets: &[[f64; NX]],
     measurements: &[[Interval; NM]],
     bisections: usize,
 ) -> [Interval; NX] {
     let mut inner = witness.map(Interval::point);
     for target in targets {
+        let target: &[f64; NX] =
+            &core::array::from_fn(|i| target[i].clamp(outer[i].inf(), outer[i].sup()));
         let at = |t: f64| -> [f64; NX] {
-            core::array::from_fn(|i| witness[i] + t * (target[i] - witness[i]))
+            core::array::from_fn(|i| {
+                (witness[i] + t * (target[i] - witness[i])).clamp(outer[i].inf(), outer[i].sup())
+            })
         };
         let mut best = None;
         if is_consistent_point(model, target, measurements) {

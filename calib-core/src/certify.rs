@@ -106,6 +106,7 @@ pub fn certify_with<M: Model<NX, NM>, const NX: usize, const NM: usize>(
                     out.inner = Some(inner_box(
                         model,
                         &w,
+                        &outer,
                         &extremes,
                         measurements,
                         settings.inner_bisections,

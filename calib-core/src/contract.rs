@@ -315,9 +315,11 @@ fn bound_by_linear_programs<const NX: usize>(
                 return Err(EmptinessProof::EmptyIntersection { parameter: j });
             }
             ws.poly.set_bounds(j, new_lo, new_hi);
-            let slot = 2 * j + usize::from(sense < 0.0);
-            for (i, p) in ws.primal.iter().enumerate() {
-                ws.extreme_points[slot][i] = xm[i].mid() + p;
+            if status == LpStatus::Optimal {
+                let slot = 2 * j + usize::from(sense < 0.0);
+                for (i, p) in ws.primal.iter().enumerate() {
+                    ws.extreme_points[slot][i] = xm[i].mid() + p;
+                }
             }
         }
     }
