@@ -1,6 +1,7 @@
 //! Soundness of the certified kernel over many simulated Gough-leg problems: the truth is inside
 //! every result box and the verdict is never `Empty` when the data are consistent; inconsistent data
 //! are proved `Empty`; `Consistent` witnesses are re-checked independently; exact data converge.
+#![allow(clippy::needless_range_loop)] // indices follow the paper (legs, parameters)
 
 use calib_core::lp::LpEngine;
 use calib_core::{certify, pave, sweep, Interval, Model, Relaxation, Settings, Status};
@@ -293,7 +294,7 @@ fn sweep_and_paver_keep_the_truth() {
     assert!(p.inner_volume <= p.outer_volume);
     // Inconsistent data: every sweep box is proved empty.
     let mut bad = boxes.clone();
-    bad[3][6] = bad[3][6] + Interval::point(0.3);
+    bad[3][6] += Interval::point(0.3);
     let s = sweep(&GoughLeg, &x0_of(&sim, 0, 0.1), &bad, &settings);
     assert!(s.hull.is_none() && s.boxes.is_empty());
 }
