@@ -105,10 +105,16 @@ impl Polyhedron {
     }
 }
 
-/// `2^-e` such that `max * 2^-e` lies in `[0.5, 1)`: an exact scaling.
+/// `2^-e` such that `max * 2^-e` lies in `[0.5, 1)`: an exact scaling, computed from the exponent
+/// bits (no libm call). Subnormal or huge `max` is left unscaled.
 fn power_of_two_scale(max: f64) -> f64 {
-    let e = max.log2().floor() as i32 + 1;
-    2f64.powi(-e.clamp(-1000, 1000))
+    let biased = ((max.to_bits() >> 52) & 0x7ff) as i64;
+    // max = 1.f * 2^(biased - 1023), so e = biased - 1022 puts it in [0.5, 1).
+    let e = biased - 1022;
+    if biased == 0 || !(-1000..=1000).contains(&e) {
+        return 1.0;
+    }
+    f64::from_bits(((1023 - e) as u64) << 52)
 }
 
 #[cfg(test)]
@@ -122,6 +128,10 @@ mod tests {
         assert!(p.push_row(&[3.0, -6.0], 12.0));
         assert_eq!(p.row(0), &[0.375, -0.75]);
         assert_eq!(p.rhs(0), 1.5);
+        assert_eq!(power_of_two_scale(0.5), 1.0);
+        assert_eq!(power_of_two_scale(1.0), 0.5);
+        assert_eq!(power_of_two_scale(1000.0), 1.0 / 1024.0);
+        assert_eq!(power_of_two_scale(0.001), 512.0);
         assert!(!p.push_row(&[f64::NAN, 1.0], 0.0));
         assert!(!p.push_row(&[0.0, 0.0], 1.0));
         assert!(p.push_row(&[0.0, 0.0], -1.0));
