@@ -10,12 +10,7 @@ use std::time::Instant;
 
 fn main() {
     let truth = builtin_hexapod();
-    let exact = Uncertainty {
-        pos: 1e-9,
-        len: 1e-9,
-        axis: 1e-9,
-        angle_deg: 1e-9,
-    };
+    let exact = Uncertainty::uniform(1e-9);
     for (label, u, scale) in [
         ("exact (half-widths 1e-9)", exact, 0.0),
         ("noisy (paper bounds)", Uncertainty::PAPER, 1.0),

@@ -34,6 +34,7 @@ fn random_problem(seed: u64) -> Simulation {
         len: Uncertainty::PAPER.len * f(),
         axis: Uncertainty::PAPER.axis * f(),
         angle_deg: Uncertainty::PAPER.angle_deg * f(),
+        q: 0.0,
     };
     let configs = rng.random_range(9..=25);
     let noise = rng.random_range(0.0..=1.0);
@@ -134,21 +135,22 @@ fn zero_width_and_ill_conditioned_measurements_stay_sound() {
     let sim = simulate(&truth, 12, 7, Uncertainty::PAPER, 0.0, 0.1);
     for leg in 0..6 {
         let boxes: Vec<[Interval; 7]> = sim
-            .exact
+            .poses
             .iter()
-            .map(|c| {
-                let q = c.pose.rodrigues();
+            .zip(&sim.exact_lengths)
+            .map(|(pose, lengths)| {
+                let q = pose.rodrigues();
                 let mut m = [
-                    c.pose.p[0],
-                    c.pose.p[1],
-                    c.pose.p[2],
+                    pose.p[0],
+                    pose.p[1],
+                    pose.p[2],
                     q[0],
                     q[1],
                     q[2],
-                    c.lengths[leg],
+                    lengths[leg],
                 ]
                 .map(Interval::point);
-                m[6] = Interval::mid_rad(c.lengths[leg], 1e-9);
+                m[6] = Interval::mid_rad(lengths[leg], 1e-9);
                 m
             })
             .collect();
@@ -231,12 +233,7 @@ fn inconsistent_data_are_proved_empty() {
 #[test]
 fn exact_data_converge_to_the_truth() {
     let truth = builtin_hexapod();
-    let exact = Uncertainty {
-        pos: 1e-9,
-        len: 1e-9,
-        axis: 1e-9,
-        angle_deg: 1e-9,
-    };
+    let exact = Uncertainty::uniform(1e-9);
     for seed in [1, 2, 3] {
         let sim = simulate(&truth, 21, seed, exact, 0.0, 0.1);
         for leg in 0..6 {

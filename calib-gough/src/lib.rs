@@ -5,13 +5,18 @@
 //! measurement boxes.
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
+// Index loops mirror the paper's notation (legs i, parameters j, configurations k).
+#![allow(clippy::needless_range_loop)]
 
+pub mod files;
 pub mod geometry;
+pub mod lsq;
 pub mod measurement;
 pub mod model;
+pub mod report;
 pub mod simulate;
 
 pub use geometry::{leg_reading, Leg, Pose};
-pub use measurement::leg_boxes;
+pub use measurement::{leg_boxes, Configuration, Orientation, Uncertainty};
 pub use model::{gough_leg, GoughLeg, PARAMETER_NAMES};
-pub use simulate::{builtin_hexapod, simulate, Configuration, Simulation, Uncertainty};
+pub use simulate::{builtin_hexapod, simulate, Simulation};

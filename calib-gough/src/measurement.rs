@@ -1,18 +1,92 @@
-//! From measured configurations and error bounds to the measurement boxes `M_k` of one leg.
+//! Measured configurations, their error bounds, and the measurement boxes `M_k` of one leg.
 
 use crate::geometry::rodrigues_box;
-use crate::simulate::{Configuration, Uncertainty};
 use calib_core::Interval;
 
-/// The box `M_k = (P, q, L)` of leg `leg` (0-based) in every configuration: position ± `pos`,
-/// Rodrigues box of (axis ± `axis`) × (angle ± `angle_deg`), reading ± `len`; all outward rounded.
+/// How a configuration's orientation was measured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Orientation {
+    /// A unit axis (not renormalised after measurement) and an angle in degrees.
+    AxisAngle {
+        /// The measured axis.
+        axis: [f64; 3],
+        /// The measured angle, degrees.
+        angle_deg: f64,
+    },
+    /// The Rodrigues vector `q = axis * tan(angle / 2)` directly.
+    Rodrigues([f64; 3]),
+}
+
+/// One measured configuration: platform position, orientation and the leg readings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Configuration {
+    /// Platform position (cm).
+    pub p: [f64; 3],
+    /// Platform orientation.
+    pub orientation: Orientation,
+    /// Leg readings (cm), one per leg.
+    pub lengths: Vec<f64>,
+}
+
+/// Half-widths of the measurement errors (cm, unitless, degrees).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Uncertainty {
+    /// Each position coordinate.
+    pub pos: f64,
+    /// Each leg reading.
+    pub len: f64,
+    /// Each component of the rotation axis (axis-angle data).
+    pub axis: f64,
+    /// The rotation angle in degrees (axis-angle data).
+    pub angle_deg: f64,
+    /// Each Rodrigues component (Rodrigues data).
+    pub q: f64,
+}
+
+impl Uncertainty {
+    /// The paper's Section V error bounds: 5 µm on positions, leg readings and axis components,
+    /// 1e-3 degree on the angle.
+    pub const PAPER: Uncertainty = Uncertainty {
+        pos: 5e-4,
+        len: 5e-4,
+        axis: 5e-6,
+        angle_deg: 1e-3,
+        q: 0.0,
+    };
+
+    /// Every half-width set to `h` (for exact-data experiments).
+    pub fn uniform(h: f64) -> Uncertainty {
+        Uncertainty {
+            pos: h,
+            len: h,
+            axis: h,
+            angle_deg: h,
+            q: h,
+        }
+    }
+}
+
+/// An enclosure of `[v - h, v + h]` for a measured value `v` read from decimal text and a
+/// half-width `h`: `v` is widened by one ulp on each side first (the decimal may differ from the
+/// parsed double by half an ulp), then the sum is rounded outward.
+pub fn measured(v: f64, h: f64) -> Interval {
+    Interval::new(v.next_down(), v.next_up()) + Interval::new(-h.next_up(), h.next_up())
+}
+
+/// The boxes `M_k = (P, q, L)` of leg `leg` (0-based): position ± `pos`, the Rodrigues box of
+/// (axis ± `axis`) × (angle ± `angle_deg`) or q ± `q`, reading ± `len`; all outward rounded.
 pub fn leg_boxes(configs: &[Configuration], u: &Uncertainty, leg: usize) -> Vec<[Interval; 7]> {
     configs
         .iter()
         .map(|c| {
-            let axis = c.pose.axis.map(|v| Interval::mid_rad(v, u.axis));
-            let q = rodrigues_box(&axis, Interval::mid_rad(c.pose.angle_deg, u.angle_deg));
-            let p = c.pose.p.map(|v| Interval::mid_rad(v, u.pos));
+            let q = match c.orientation {
+                Orientation::AxisAngle { axis, angle_deg } => rodrigues_box(
+                    &axis.map(|v| measured(v, u.axis)),
+                    measured(angle_deg, u.angle_deg),
+                ),
+                Orientation::Rodrigues(q) => q.map(|v| measured(v, u.q)),
+            };
+            let p = c.p.map(|v| measured(v, u.pos));
             [
                 p[0],
                 p[1],
@@ -20,7 +94,7 @@ pub fn leg_boxes(configs: &[Configuration], u: &Uncertainty, leg: usize) -> Vec<
                 q[0],
                 q[1],
                 q[2],
-                Interval::mid_rad(c.lengths[leg], u.len),
+                measured(c.lengths[leg], u.len),
             ]
         })
         .collect()

@@ -1,41 +1,9 @@
 //! Simulated calibration data for a built-in hexapod (paper Section V).
 
 use crate::geometry::{leg_reading, Leg, Pose};
+use crate::measurement::{Configuration, Orientation, Uncertainty};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-
-/// Half-widths of the measurement errors (cm, unitless axis components, degrees).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Uncertainty {
-    /// Each position coordinate.
-    pub pos: f64,
-    /// Each leg reading.
-    pub len: f64,
-    /// Each component of the rotation axis.
-    pub axis: f64,
-    /// The rotation angle, degrees.
-    pub angle_deg: f64,
-}
-
-impl Uncertainty {
-    /// The paper's Section V error bounds: 5 µm on positions, leg readings and axis components,
-    /// 1e-3 degree on the angle.
-    pub const PAPER: Uncertainty = Uncertainty {
-        pos: 5e-4,
-        len: 5e-4,
-        axis: 5e-6,
-        angle_deg: 1e-3,
-    };
-}
-
-/// One measured configuration: the measured pose and the six (or fewer) leg readings.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Configuration {
-    /// The measured pose (the axis is not renormalised).
-    pub pose: Pose,
-    /// The measured leg readings, one per leg.
-    pub lengths: Vec<f64>,
-}
 
 /// The built-in hexapod: leg 1 is the paper's Table I, the other legs those of `sample21`.
 pub fn builtin_hexapod() -> Vec<Leg> {
@@ -73,15 +41,17 @@ pub fn builtin_hexapod() -> Vec<Leg> {
     ]
 }
 
-/// A simulated data set: truth, nominal geometry, exact and measured configurations.
+/// A simulated data set: truth, nominal geometry, exact poses and readings, measurements.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Simulation {
     /// The true legs.
     pub truth: Vec<Leg>,
     /// The nominal legs: truth perturbed uniformly within ± `perturbation`.
     pub nominal: Vec<Leg>,
-    /// The exact poses and leg readings.
-    pub exact: Vec<Configuration>,
+    /// The exact poses.
+    pub poses: Vec<Pose>,
+    /// The exact leg readings, per configuration and leg.
+    pub exact_lengths: Vec<Vec<f64>>,
     /// The measurements: exact values plus uniform noise within `noise_scale` × the half-widths.
     pub measured: Vec<Configuration>,
     /// The half-widths the measurements are declared with.
@@ -130,7 +100,8 @@ pub fn simulate(
             Leg::from_params(&x)
         })
         .collect();
-    let mut exact = Vec::with_capacity(configs);
+    let mut poses = Vec::with_capacity(configs);
+    let mut exact_lengths = Vec::with_capacity(configs);
     let mut measured = Vec::with_capacity(configs);
     let mut noise = |h: f64| rng.random_range(-1.0..=1.0) * h * noise_scale;
     let mut pose_rng = StdRng::seed_from_u64(seed.wrapping_add(0x5eed));
@@ -138,20 +109,22 @@ pub fn simulate(
         let pose = random_pose(&mut pose_rng);
         let lengths: Vec<f64> = truth.iter().map(|leg| leg_reading(leg, &pose)).collect();
         let noisy = Configuration {
-            pose: Pose {
-                p: pose.p.map(|v| v + noise(uncertainty.pos)),
+            p: pose.p.map(|v| v + noise(uncertainty.pos)),
+            orientation: Orientation::AxisAngle {
                 axis: pose.axis.map(|v| v + noise(uncertainty.axis)),
                 angle_deg: pose.angle_deg + noise(uncertainty.angle_deg),
             },
             lengths: lengths.iter().map(|v| v + noise(uncertainty.len)).collect(),
         };
-        exact.push(Configuration { pose, lengths });
+        poses.push(pose);
+        exact_lengths.push(lengths);
         measured.push(noisy);
     }
     Simulation {
         truth: truth.to_vec(),
         nominal,
-        exact,
+        poses,
+        exact_lengths,
         measured,
         uncertainty,
     }

@@ -1,0 +1,181 @@
+//! `gough certify`.
+
+use super::DataFiles;
+use calib_core::{certify, pave, sweep, Certification, Interval, Settings, Status};
+use calib_gough::files::{check_uncertainty, read_measurements, read_robot, read_uncertainty};
+use calib_gough::report::{bounds, table, write_atomically, LegReport, Report};
+use calib_gough::{leg_boxes, GoughLeg, PARAMETER_NAMES};
+use rayon::prelude::*;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    files: DataFiles,
+    /// Half-widths of the measurement errors: pos, len, axis and angle_deg (or q).
+    #[arg(long, value_name = "FILE")]
+    uncertainty: PathBuf,
+    /// Only these legs (1-based, comma-separated), e.g. --legs 1,3.
+    #[arg(long, value_delimiter = ',', value_name = "LIST")]
+    legs: Option<Vec<usize>>,
+    /// Also run the paper's 128-box bisection sweep and report its hull x2.
+    #[arg(long)]
+    sweep: bool,
+    /// Also pave the solution set with boxes down to this relative width (e.g. 0.1).
+    #[arg(long, value_name = "TOL")]
+    pave: Option<f64>,
+    /// Write the JSON report (schema version 1) to this file.
+    #[arg(long, value_name = "FILE")]
+    json: Option<PathBuf>,
+}
+
+struct LegResult {
+    leg: usize,
+    x0: [Interval; 7],
+    cert: Certification<7>,
+    x2: Option<Option<[Interval; 7]>>,
+    paving: Option<(usize, f64, f64)>,
+    boxes: usize,
+    seconds: f64,
+}
+
+pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    let robot = read_robot(&a.files.robot)?;
+    let data = read_measurements(&a.files.measurements, robot.len())?;
+    let u = read_uncertainty(&a.uncertainty)?;
+    check_uncertainty(&a.uncertainty, &u, data.rodrigues)?;
+    let legs: Vec<usize> = match &a.legs {
+        Some(list) => {
+            for &l in list {
+                if l == 0 || l > robot.len() {
+                    return Err(format!(
+                        "--legs: leg {l} does not exist (robot.toml has {} legs)",
+                        robot.len()
+                    )
+                    .into());
+                }
+            }
+            list.iter().map(|l| l - 1).collect()
+        }
+        None => (0..robot.len()).collect(),
+    };
+    if let Some(tol) = a.pave {
+        if !(tol > 0.0 && tol < 1.0) {
+            return Err(format!("--pave: expected a relative width in (0, 1), found {tol}").into());
+        }
+    }
+    let settings = Settings::default();
+    let start = Instant::now();
+    let results: Vec<LegResult> = legs
+        .par_iter()
+        .map(|&leg| {
+            let t = Instant::now();
+            let spec = &robot[leg];
+            let nominal = spec.nominal.params();
+            let x0: [Interval; 7] =
+                core::array::from_fn(|j| Interval::mid_rad(nominal[j], spec.radius[j]));
+            let boxes = leg_boxes(&data.configs, &u, leg);
+            let cert = certify(&GoughLeg, &x0, &boxes, &settings);
+            let mut contracted = 1;
+            let x2 = a.sweep.then(|| {
+                let s = sweep(&GoughLeg, &x0, &boxes, &settings);
+                contracted += s.boxes_contracted;
+                s.hull
+            });
+            let paving = a.pave.map(|tol| {
+                let p = pave(&GoughLeg, &x0, &boxes, &settings, tol, 20_000);
+                contracted += p.boxes_contracted;
+                (p.boxes.len(), p.inner_volume, p.outer_volume)
+            });
+            LegResult {
+                leg,
+                x0,
+                cert,
+                x2,
+                paving,
+                boxes: contracted,
+                seconds: t.elapsed().as_secs_f64(),
+            }
+        })
+        .collect();
+    let total = start.elapsed().as_secs_f64();
+    let mut any_empty = false;
+    let mut reports = Vec::new();
+    for r in &results {
+        any_empty |= r.cert.status == Status::Empty;
+        print_leg(r);
+        reports.push(LegReport {
+            leg: r.leg + 1,
+            status: format!("{:?}", r.cert.status).to_lowercase(),
+            names: PARAMETER_NAMES.iter().map(|s| s.to_string()).collect(),
+            x0: bounds(&r.x0),
+            x1: (r.cert.status != Status::Empty).then(|| bounds(&r.cert.outer)),
+            x2: r.x2.flatten().map(|b| bounds(&b)),
+            inner: r.cert.inner.map(|b| bounds(&b)),
+            witness: r.cert.witness.map(|w| w.to_vec()),
+            iterations: r.cert.iterations,
+            boxes: r.boxes,
+            seconds: r.seconds,
+        });
+    }
+    println!("total: {} legs in {total:.3} s", results.len());
+    if let Some(path) = &a.json {
+        let report = Report {
+            version: 1,
+            legs: reports,
+            seconds: total,
+        };
+        let text = serde_json::to_string_pretty(&report)?;
+        write_atomically(path, &text)
+            .map_err(|e| format!("{}: cannot write the report: {e}", path.display()))?;
+        println!("report written to {}", path.display());
+    }
+    Ok(if any_empty { 2 } else { 0 })
+}
+
+fn print_leg(r: &LegResult) {
+    let c = &r.cert;
+    println!(
+        "== leg {} — {:?} ({} iterations, {:.3} s)",
+        r.leg + 1,
+        c.status,
+        c.iterations,
+        r.seconds
+    );
+    let x1 = (c.status != Status::Empty).then_some(c.outer);
+    let mut rows = vec![("x0", Some(r.x0)), ("x1", x1)];
+    if let Some(x2) = r.x2 {
+        rows.push(("x2", x2));
+    }
+    if let Some(inner) = c.inner {
+        rows.push(("inner", Some(inner)));
+    }
+    print!("{}", table(&rows));
+    match c.status {
+        Status::Empty => println!(
+            "verdict: no parameter vector in x0 fits the measurements within their error bounds \
+             (proof: {:?})",
+            c.emptiness.expect("empty has a proof")
+        ),
+        Status::Consistent => {
+            println!("verdict: consistent (a certified witness satisfies every measurement box)");
+            if let Some(ratio) = c.overestimation() {
+                let cells: Vec<String> = PARAMETER_NAMES
+                    .iter()
+                    .zip(ratio)
+                    .map(|(n, q)| format!("{n} {q:.2}"))
+                    .collect();
+                println!(
+                    "outer/inner width (worst-case overestimation): {}",
+                    cells.join("  ")
+                );
+            }
+        }
+        Status::Undecided => println!("verdict: undecided (x1 is still a certified enclosure)"),
+    }
+    if let Some((n, inner, outer)) = r.paving {
+        println!("paving: {n} boxes, inner volume {inner:.3e}, outer volume {outer:.3e}");
+    }
+    println!();
+}

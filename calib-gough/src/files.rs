@@ -1,0 +1,340 @@
+//! Reading the data files: `robot.toml`, `uncertainty.toml`, `measurements.csv` (units: cm and
+//! degrees). Every malformed input is a [`DataError`] naming the file, the line and the field.
+
+use crate::geometry::Leg;
+use crate::measurement::{Configuration, Orientation, Uncertainty};
+use serde::Deserialize;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// A malformed input file: where and what was expected.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DataError {
+    /// The file.
+    pub file: PathBuf,
+    /// The 1-based line, when known.
+    pub line: Option<usize>,
+    /// The field (column or key), when known.
+    pub field: Option<String>,
+    /// What is wrong and what was expected.
+    pub message: String,
+}
+
+impl fmt::Display for DataError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.file.display())?;
+        if let Some(l) = self.line {
+            write!(f, ", line {l}")?;
+        }
+        if let Some(field) = &self.field {
+            write!(f, ", field `{field}`")?;
+        }
+        write!(f, ": {}", self.message)
+    }
+}
+
+impl std::error::Error for DataError {}
+
+fn error(
+    file: &Path,
+    line: Option<usize>,
+    field: Option<&str>,
+    message: impl Into<String>,
+) -> DataError {
+    DataError {
+        file: file.to_path_buf(),
+        line,
+        field: field.map(str::to_string),
+        message: message.into(),
+    }
+}
+
+fn read(file: &Path) -> Result<String, DataError> {
+    std::fs::read_to_string(file)
+        .map_err(|e| error(file, None, None, format!("cannot read the file: {e}")))
+}
+
+/// One leg of `robot.toml`: nominal geometry and the radius of the initial box per parameter.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LegSpec {
+    /// The nominal geometry.
+    pub nominal: Leg,
+    /// The initial box is `nominal ± radius` (order `ax, ay, az, bx, by, bz, l`).
+    pub radius: [f64; 7],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RobotFile {
+    leg: Vec<LegEntry>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LegEntry {
+    a: [f64; 3],
+    b: [f64; 3],
+    l: f64,
+    radius: Radius,
+}
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum Radius {
+    One(f64),
+    Each([f64; 7]),
+}
+
+/// Reads `robot.toml`: one `[[leg]]` table per leg with `a = [x, y, z]`, `b = [x, y, z]`,
+/// `l = offset` and `radius = r` or `radius = [7 values]`.
+pub fn read_robot(file: &Path) -> Result<Vec<LegSpec>, DataError> {
+    let text = read(file)?;
+    let parsed: RobotFile = toml::from_str(&text).map_err(|e| {
+        let line = e.span().map(|s| text[..s.start].lines().count().max(1));
+        error(file, line, None, format!("{}; expected [[leg]] tables with a = [x, y, z], b = [x, y, z], l = offset, radius = r", e.message()))
+    })?;
+    if parsed.leg.is_empty() {
+        return Err(error(
+            file,
+            None,
+            Some("leg"),
+            "no [[leg]] table; expected one per leg",
+        ));
+    }
+    parsed
+        .leg
+        .iter()
+        .enumerate()
+        .map(|(i, e)| {
+            let field = |name: &str| format!("leg[{}].{name}", i + 1);
+            let nominal = Leg { a: e.a, b: e.b, l: e.l };
+            if let Some(bad) = nominal.params().iter().position(|v| !v.is_finite()) {
+                let name = crate::PARAMETER_NAMES[bad];
+                return Err(error(file, None, Some(&field(name)), "expected a finite number"));
+            }
+            let radius = match e.radius {
+                Radius::One(r) => [r; 7],
+                Radius::Each(r) => r,
+            };
+            if radius.iter().any(|r| !r.is_finite() || *r < 0.0) {
+                return Err(error(
+                    file,
+                    None,
+                    Some(&field("radius")),
+                    "the initial box nominal ± radius must contain the nominal value: expected finite radii >= 0",
+                ));
+            }
+            Ok(LegSpec { nominal, radius })
+        })
+        .collect()
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct UncertaintyFile {
+    pos: f64,
+    len: f64,
+    axis: Option<f64>,
+    angle_deg: Option<f64>,
+    q: Option<f64>,
+}
+
+/// Reads `uncertainty.toml`: half-widths `pos`, `len`, and `axis` + `angle_deg` (axis-angle data) or
+/// `q` (Rodrigues data). Missing values are NaN here and rejected by [`check_uncertainty`].
+pub fn read_uncertainty(file: &Path) -> Result<Uncertainty, DataError> {
+    let text = read(file)?;
+    let u: UncertaintyFile = toml::from_str(&text).map_err(|e| {
+        let line = e.span().map(|s| text[..s.start].lines().count().max(1));
+        error(
+            file,
+            line,
+            None,
+            format!(
+                "{}; expected pos, len and axis + angle_deg (or q) half-widths",
+                e.message()
+            ),
+        )
+    })?;
+    let out = Uncertainty {
+        pos: u.pos,
+        len: u.len,
+        axis: u.axis.unwrap_or(f64::NAN),
+        angle_deg: u.angle_deg.unwrap_or(f64::NAN),
+        q: u.q.unwrap_or(f64::NAN),
+    };
+    for (name, v) in [("pos", u.pos), ("len", u.len)].into_iter().chain(
+        [("axis", u.axis), ("angle_deg", u.angle_deg), ("q", u.q)]
+            .into_iter()
+            .filter_map(|(n, v)| v.map(|v| (n, v))),
+    ) {
+        if !v.is_finite() || v < 0.0 {
+            return Err(error(
+                file,
+                None,
+                Some(name),
+                format!("expected a finite half-width >= 0, found {v}"),
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// Checks that the half-widths needed by the orientation format of the measurements are present.
+pub fn check_uncertainty(file: &Path, u: &Uncertainty, rodrigues: bool) -> Result<(), DataError> {
+    let needed: &[(&str, f64)] = if rodrigues {
+        &[("q", u.q)]
+    } else {
+        &[("axis", u.axis), ("angle_deg", u.angle_deg)]
+    };
+    for (name, v) in needed {
+        if v.is_nan() {
+            let what = if rodrigues {
+                "the measurements give q1,q2,q3"
+            } else {
+                "the measurements give an axis and an angle"
+            };
+            return Err(error(
+                file,
+                None,
+                Some(name),
+                format!("missing: {what}, so `{name}` is required"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The measurements: configurations and whether they give the orientation as a Rodrigues vector.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measurements {
+    /// The configurations, in file order.
+    pub configs: Vec<Configuration>,
+    /// Whether the file had `q1,q2,q3` columns (else `ax,ay,az,angle_deg`).
+    pub rodrigues: bool,
+}
+
+/// Reads `measurements.csv` with header `px,py,pz,ax,ay,az,angle_deg,L1..Lk` or
+/// `px,py,pz,q1,q2,q3,L1..Lk`, where `k` must equal `legs`; at least 7 rows (one per unknown of a
+/// leg); axes within 1e-3 of unit length.
+pub fn read_measurements(file: &Path, legs: usize) -> Result<Measurements, DataError> {
+    let text = read(file)?;
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let header: Vec<String> = reader
+        .headers()
+        .map_err(|e| error(file, Some(1), None, format!("cannot read the header: {e}")))?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    let axis_angle = ["px", "py", "pz", "ax", "ay", "az", "angle_deg"];
+    let rodrigues_cols = ["px", "py", "pz", "q1", "q2", "q3"];
+    let rodrigues = header.get(3).map(String::as_str) == Some("q1");
+    let fixed: &[&str] = if rodrigues {
+        &rodrigues_cols
+    } else {
+        &axis_angle
+    };
+    let lengths: Vec<String> = (1..=legs).map(|i| format!("L{i}")).collect();
+    let expected: Vec<&str> = fixed
+        .iter()
+        .copied()
+        .chain(lengths.iter().map(String::as_str))
+        .collect();
+    if header != expected {
+        let found_legs = header.iter().filter(|h| h.starts_with('L')).count();
+        let hint = if found_legs != legs && header.len() > fixed.len() {
+            format!(" (the file has {found_legs} leg columns, robot.toml has {legs} legs)")
+        } else {
+            String::new()
+        };
+        return Err(error(
+            file,
+            Some(1),
+            None,
+            format!(
+                "unexpected header `{}`; expected `{}`{hint}",
+                header.join(","),
+                expected.join(",")
+            ),
+        ));
+    }
+    let mut configs = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| {
+            let line = e.position().map(|p| p.line() as usize);
+            let message = match e.kind() {
+                csv::ErrorKind::UnequalLengths {
+                    expected_len, len, ..
+                } => {
+                    format!("expected {expected_len} columns, found {len}")
+                }
+                _ => e.to_string(),
+            };
+            error(file, line, None, message)
+        })?;
+        let line = record.position().map(|p| p.line() as usize);
+        let mut values = Vec::with_capacity(expected.len());
+        for (field, raw) in expected.iter().zip(record.iter()) {
+            let v: f64 = raw.parse().map_err(|_| {
+                error(
+                    file,
+                    line,
+                    Some(field),
+                    format!("expected a number, found `{raw}`"),
+                )
+            })?;
+            if !v.is_finite() {
+                return Err(error(
+                    file,
+                    line,
+                    Some(field),
+                    format!("expected a finite number, found `{raw}`"),
+                ));
+            }
+            values.push(v);
+        }
+        let p = [values[0], values[1], values[2]];
+        let (orientation, rest) = if rodrigues {
+            (
+                Orientation::Rodrigues([values[3], values[4], values[5]]),
+                &values[6..],
+            )
+        } else {
+            let axis = [values[3], values[4], values[5]];
+            let norm = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+            if (norm - 1.0).abs() > 1e-3 {
+                return Err(error(
+                    file,
+                    line,
+                    Some("ax,ay,az"),
+                    format!("the rotation axis has length {norm}; expected a unit vector"),
+                ));
+            }
+            (
+                Orientation::AxisAngle {
+                    axis,
+                    angle_deg: values[6],
+                },
+                &values[7..],
+            )
+        };
+        configs.push(Configuration {
+            p,
+            orientation,
+            lengths: rest.to_vec(),
+        });
+    }
+    if configs.len() < 7 {
+        return Err(error(
+            file,
+            None,
+            None,
+            format!(
+                "{} configurations; at least 7 are needed (one per unknown parameter of a leg)",
+                configs.len()
+            ),
+        ));
+    }
+    Ok(Measurements { configs, rodrigues })
+}

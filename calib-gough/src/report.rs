@@ -1,0 +1,135 @@
+//! The JSON report of `gough certify` (schema version 1) and the paper-style tables.
+//!
+//! ```json
+//! { "version": 1,
+//!   "legs": [ { "leg": 1, "status": "consistent" | "empty" | "undecided",
+//!               "names": ["ax","ay","az","bx","by","bz","l"],
+//!               "x0": [[lo, hi], ...], "x1": [[lo, hi], ...], "x2": [[lo, hi], ...] or null,
+//!               "inner": [[lo, hi], ...] or null, "witness": [..7] or null,
+//!               "iterations": n, "boxes": n, "seconds": s } ],
+//!   "seconds": total }
+//! ```
+//! Bounds are written with Rust's shortest round-trip formatting (serde_json), so reading them back
+//! gives the same `f64`s: no bound is moved inward by printing. An empty box is written as `null`
+//! bounds.
+
+use calib_core::Interval;
+use serde::{Deserialize, Serialize};
+
+/// One leg's result.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LegReport {
+    /// 1-based leg number.
+    pub leg: usize,
+    /// `consistent`, `empty` or `undecided`.
+    pub status: String,
+    /// Parameter names, in order.
+    pub names: Vec<String>,
+    /// The initial box.
+    pub x0: Vec<[f64; 2]>,
+    /// The certified box (`null` when empty).
+    pub x1: Option<Vec<[f64; 2]>>,
+    /// The hull of the sweep (`null` without `--sweep` or when empty).
+    pub x2: Option<Vec<[f64; 2]>>,
+    /// Certified inner bounds (`null` without a witness).
+    pub inner: Option<Vec<[f64; 2]>>,
+    /// A certified consistent parameter vector.
+    pub witness: Option<Vec<f64>>,
+    /// Newton/LP iterations of the certification.
+    pub iterations: usize,
+    /// Boxes contracted (1 without sweep or paving).
+    pub boxes: usize,
+    /// Wall-clock seconds for this leg.
+    pub seconds: f64,
+}
+
+/// The whole report.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Report {
+    /// Schema version (1).
+    pub version: u32,
+    /// One entry per certified leg.
+    pub legs: Vec<LegReport>,
+    /// Total wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// `[[lo, hi], ...]` of a box.
+pub fn bounds(b: &[Interval; 7]) -> Vec<[f64; 2]> {
+    b.iter().map(|v| [v.inf(), v.sup()]).collect()
+}
+
+/// A paper-style table (Tables II–IV): per parameter the mid and rad of each named box.
+pub fn table(rows: &[(&str, Option<[Interval; 7]>)]) -> String {
+    let mut out = String::new();
+    out.push_str(&format!("{:<6}", ""));
+    for name in crate::PARAMETER_NAMES {
+        out.push_str(&format!(" {:>21}", format!("{name}: mid       rad")));
+    }
+    out.push('\n');
+    for (label, b) in rows {
+        out.push_str(&format!("{label:<6}"));
+        match b {
+            Some(b) => {
+                for v in b {
+                    out.push_str(&format!(" {:>11.4} {:>9.2e}", v.mid(), v.rad()));
+                }
+            }
+            None => out.push_str("  (empty)"),
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// Writes `text` to `path` atomically: to a temporary file beside it, then renamed.
+pub fn write_atomically(path: &std::path::Path, text: &str) -> std::io::Result<()> {
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(std::path::Path::new("."));
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
+    std::fs::write(&tmp, text)?;
+    std::fs::rename(&tmp, path).inspect_err(|_| {
+        let _ = std::fs::remove_file(&tmp);
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_json_schema_round_trips_exactly() {
+        let b: [Interval; 7] = core::array::from_fn(|j| {
+            Interval::new(0.1 * j as f64 - 1e-17, 0.1 * j as f64 + 1.0 / 3.0)
+        });
+        let r = Report {
+            version: 1,
+            legs: vec![LegReport {
+                leg: 1,
+                status: "consistent".into(),
+                names: crate::PARAMETER_NAMES
+                    .iter()
+                    .map(|s| s.to_string())
+                    .collect(),
+                x0: bounds(&b),
+                x1: Some(bounds(&b)),
+                x2: None,
+                inner: Some(bounds(&b)),
+                witness: Some(vec![0.1; 7]),
+                iterations: 3,
+                boxes: 1,
+                seconds: 0.25,
+            }],
+            seconds: 0.5,
+        };
+        let text = serde_json::to_string_pretty(&r).unwrap();
+        let back: Report = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, r, "bounds must read back bit-identical");
+    }
+}
