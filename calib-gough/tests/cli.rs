@@ -1,0 +1,183 @@
+//! End-to-end tests of the `gough` binary on simulated data: truth containment, outliers proved
+//! inconsistent (exit 2), every malformed input rejected with file/line/field (exit 1), reproduce.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn gough(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_gough")).args(args).output().expect("the gough binary runs")
+}
+
+fn tempdir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("gough-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn simulate(dir: &Path, seed: u64, extra: &[&str]) {
+    let seed = seed.to_string();
+    let mut args = vec!["simulate", "--configs", "21", "--seed", &seed, "--out", dir.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    let out = gough(&args);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+fn certify(dir: &Path, extra: &[&str]) -> Output {
+    let f = |n: &str| dir.join(n).to_str().unwrap().to_string();
+    let (r, m, u, j) = (f("robot.toml"), f("measurements.csv"), f("uncertainty.toml"), f("report.json"));
+    let mut args = vec!["certify", "--robot", &r, "--measurements", &m, "--uncertainty", &u, "--json", &j];
+    args.extend_from_slice(extra);
+    gough(&args)
+}
+
+fn report(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn truth_is_inside_every_leg_for_many_seeds() {
+    for seed in [1, 2, 3, 4] {
+        let dir = tempdir(&format!("truth{seed}"));
+        simulate(&dir, seed, &[]);
+        let out = certify(&dir, &[]);
+        assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+        let truth: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("truth.json")).unwrap()).unwrap();
+        let rep = report(&dir);
+        assert_eq!(rep["version"], 1);
+        for (i, leg) in rep["legs"].as_array().unwrap().iter().enumerate() {
+            assert_ne!(leg["status"], "empty");
+            let t = &truth["legs"][i];
+            let values: Vec<f64> = t["a"].as_array().unwrap().iter().chain(t["b"].as_array().unwrap())
+                .map(|v| v.as_f64().unwrap()).chain([t["l"].as_f64().unwrap()]).collect();
+            for (j, b) in leg["x1"].as_array().unwrap().iter().enumerate() {
+                let (lo, hi) = (b[0].as_f64().unwrap(), b[1].as_f64().unwrap());
+                assert!(lo <= values[j] && values[j] <= hi, "seed {seed} leg {} param {j}", i + 1);
+            }
+        }
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(stdout.contains("== leg 6") && stdout.contains("x1"));
+    }
+}
+
+#[test]
+fn an_outlier_makes_its_leg_empty_and_exits_2() {
+    let dir = tempdir("outlier");
+    simulate(&dir, 5, &["--outlier", "4:3:0.2"]);
+    let out = certify(&dir, &["--legs", "2,3"]);
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stdout));
+    let rep = report(&dir);
+    let legs = rep["legs"].as_array().unwrap();
+    assert_eq!(legs.len(), 2);
+    assert_eq!(legs[0]["leg"], 2);
+    assert_ne!(legs[0]["status"], "empty");
+    assert_eq!(legs[1]["leg"], 3);
+    assert_eq!(legs[1]["status"], "empty");
+    assert!(legs[1]["x1"].is_null());
+}
+
+#[test]
+fn sweep_reports_x2_inside_x1() {
+    let dir = tempdir("sweep");
+    simulate(&dir, 6, &[]);
+    let out = certify(&dir, &["--legs", "1", "--sweep"]);
+    assert_eq!(out.status.code(), Some(0));
+    let rep = report(&dir);
+    let leg = &rep["legs"][0];
+    for j in 0..7 {
+        let (x1, x2) = (&leg["x1"][j], &leg["x2"][j]);
+        assert!(x1[0].as_f64() <= x2[0].as_f64() && x2[1].as_f64() <= x1[1].as_f64());
+    }
+    assert!(leg["boxes"].as_u64().unwrap() > 128);
+}
+
+/// Writes a fresh simulated data set, lets `edit` break one file, and checks the error.
+fn rejects(name: &str, edit: impl Fn(&Path), expect: &[&str]) {
+    let dir = tempdir(name);
+    simulate(&dir, 9, &[]);
+    edit(&dir);
+    let out = certify(&dir, &[]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{name}: {err}");
+    for e in expect {
+        assert!(err.contains(e), "{name}: `{e}` not in: {err}");
+    }
+    assert!(!dir.join("report.json").exists(), "{name}: a report was written");
+}
+
+fn rewrite(path: &Path, f: impl Fn(String) -> String) {
+    let text = std::fs::read_to_string(path).unwrap();
+    std::fs::write(path, f(text)).unwrap();
+}
+
+fn edit_line(dir: &Path, line: usize, f: impl Fn(&str) -> String) {
+    rewrite(&dir.join("measurements.csv"), |t| {
+        t.lines().enumerate().map(|(i, l)| if i + 1 == line { f(l) } else { l.to_string() } + "\n").collect()
+    });
+}
+
+#[test]
+fn malformed_inputs_are_clear_errors() {
+    rejects("missing-column", |d| edit_line(d, 3, |l| l.rsplit_once(',').unwrap().0.to_string()), &["measurements.csv", "line 3", "columns"]);
+    rejects("extra-column", |d| edit_line(d, 4, |l| format!("{l},1.0")), &["measurements.csv", "line 4", "columns"]);
+    rejects("not-a-number", |d| edit_line(d, 5, |l| l.replacen(',', ",abc,", 1).replacen(",abc,", ",x", 1)), &["measurements.csv", "line 5", "py", "expected a number"]);
+    rejects("nan", |d| edit_line(d, 2, |l| format!("NaN{}", &l[l.find(',').unwrap()..])), &["line 2", "px", "finite"]);
+    rejects("inf", |d| edit_line(d, 2, |l| format!("inf{}", &l[l.find(',').unwrap()..])), &["line 2", "px", "finite"]);
+    rejects("axis", |d| edit_line(d, 6, |l| {
+        let mut f: Vec<String> = l.split(',').map(str::to_string).collect();
+        f[3] = "0.9".into();
+        f.join(",")
+    }), &["line 6", "ax,ay,az", "unit"]);
+    rejects("negative-halfwidth", |d| rewrite(&d.join("uncertainty.toml"), |t| t.replace("pos = 0.0005", "pos = -0.0005")), &["uncertainty.toml", "pos", ">= 0"]);
+    rejects("missing-halfwidth", |d| rewrite(&d.join("uncertainty.toml"), |t| t.lines().filter(|l| !l.starts_with("angle_deg")).map(|l| format!("{l}\n")).collect()), &["uncertainty.toml", "angle_deg"]);
+    rejects("few-configs", |d| rewrite(&d.join("measurements.csv"), |t| t.lines().take(5).map(|l| format!("{l}\n")).collect()), &["measurements.csv", "at least 7"]);
+    rejects("leg-count", |d| rewrite(&d.join("robot.toml"), |t| {
+        let cut = t.rfind("[[leg]]").unwrap();
+        t[..cut].to_string()
+    }), &["measurements.csv", "5 legs"]);
+    rejects("negative-radius", |d| rewrite(&d.join("robot.toml"), |t| t.replacen("radius = 0.1", "radius = -0.1", 1)), &["robot.toml", "leg[1].radius", "contain the nominal"]);
+    rejects("bad-toml", |d| rewrite(&d.join("robot.toml"), |t| t.replacen("l = ", "l = [", 1)), &["robot.toml", "line"]);
+    rejects("unknown-key", |d| rewrite(&d.join("uncertainty.toml"), |t| format!("{t}speed = 1\n")), &["uncertainty.toml", "speed"]);
+    rejects("missing-file", |d| std::fs::remove_file(d.join("robot.toml")).unwrap(), &["robot.toml", "cannot read"]);
+}
+
+#[test]
+fn rodrigues_measurements_are_accepted() {
+    let dir = tempdir("rodrigues");
+    simulate(&dir, 10, &[]);
+    // Convert the axis-angle columns to q = axis * tan(angle / 2) and give a q half-width.
+    rewrite(&dir.join("measurements.csv"), |t| {
+        let mut out = String::from("px,py,pz,q1,q2,q3,L1,L2,L3,L4,L5,L6\n");
+        for l in t.lines().skip(1) {
+            let f: Vec<f64> = l.split(',').map(|v| v.parse().unwrap()).collect();
+            let tan = (f[6].to_radians() / 2.0).tan();
+            let mut row: Vec<String> = f[..3].iter().map(|v| format!("{v:?}")).collect();
+            row.extend((3..6).map(|i| format!("{:?}", f[i] * tan)));
+            row.extend(f[7..].iter().map(|v| format!("{v:?}")));
+            out.push_str(&(row.join(",") + "\n"));
+        }
+        out
+    });
+    rewrite(&dir.join("uncertainty.toml"), |_| "pos = 0.0005\nlen = 0.0005\nq = 2e-5\n".into());
+    let out = certify(&dir, &["--legs", "1"]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+#[test]
+fn lsq_and_reproduce_run_end_to_end() {
+    let dir = tempdir("lsq");
+    simulate(&dir, 11, &[]);
+    let f = |n: &str| dir.join(n).to_str().unwrap().to_string();
+    let out = gough(&["lsq", "--robot", &f("robot.toml"), "--measurements", &f("measurements.csv")]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).lines().count() >= 7);
+    let out = gough(&["reproduce", "--samples", "20"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    for needle in ["exact data", "x1", "x2", "xs", "paper (Tables II–IV"] {
+        assert!(text.contains(needle), "`{needle}` missing from reproduce output");
+    }
+    let help = gough(&["certify", "--help"]);
+    assert!(String::from_utf8_lossy(&help.stdout).contains("Example"));
+}
