@@ -5,7 +5,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn gough(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gough")).args(args).output().expect("the gough binary runs")
+    Command::new(env!("CARGO_BIN_EXE_gough"))
+        .args(args)
+        .output()
+        .expect("the gough binary runs")
 }
 
 fn tempdir(name: &str) -> PathBuf {
@@ -17,16 +20,43 @@ fn tempdir(name: &str) -> PathBuf {
 
 fn simulate(dir: &Path, seed: u64, extra: &[&str]) {
     let seed = seed.to_string();
-    let mut args = vec!["simulate", "--configs", "21", "--seed", &seed, "--out", dir.to_str().unwrap()];
+    let mut args = vec![
+        "simulate",
+        "--configs",
+        "21",
+        "--seed",
+        &seed,
+        "--out",
+        dir.to_str().unwrap(),
+    ];
     args.extend_from_slice(extra);
     let out = gough(&args);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 fn certify(dir: &Path, extra: &[&str]) -> Output {
     let f = |n: &str| dir.join(n).to_str().unwrap().to_string();
-    let (r, m, u, j) = (f("robot.toml"), f("measurements.csv"), f("uncertainty.toml"), f("report.json"));
-    let mut args = vec!["certify", "--robot", &r, "--measurements", &m, "--uncertainty", &u, "--json", &j];
+    let (r, m, u, j) = (
+        f("robot.toml"),
+        f("measurements.csv"),
+        f("uncertainty.toml"),
+        f("report.json"),
+    );
+    let mut args = vec![
+        "certify",
+        "--robot",
+        &r,
+        "--measurements",
+        &m,
+        "--uncertainty",
+        &u,
+        "--json",
+        &j,
+    ];
     args.extend_from_slice(extra);
     gough(&args)
 }
@@ -41,19 +71,35 @@ fn truth_is_inside_every_leg_for_many_seeds() {
         let dir = tempdir(&format!("truth{seed}"));
         simulate(&dir, seed, &[]);
         let out = certify(&dir, &[]);
-        assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         let truth: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(dir.join("truth.json")).unwrap()).unwrap();
+            serde_json::from_str(&std::fs::read_to_string(dir.join("truth.json")).unwrap())
+                .unwrap();
         let rep = report(&dir);
         assert_eq!(rep["version"], 1);
         for (i, leg) in rep["legs"].as_array().unwrap().iter().enumerate() {
             assert_ne!(leg["status"], "empty");
             let t = &truth["legs"][i];
-            let values: Vec<f64> = t["a"].as_array().unwrap().iter().chain(t["b"].as_array().unwrap())
-                .map(|v| v.as_f64().unwrap()).chain([t["l"].as_f64().unwrap()]).collect();
+            let values: Vec<f64> = t["a"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .chain(t["b"].as_array().unwrap())
+                .map(|v| v.as_f64().unwrap())
+                .chain([t["l"].as_f64().unwrap()])
+                .collect();
             for (j, b) in leg["x1"].as_array().unwrap().iter().enumerate() {
                 let (lo, hi) = (b[0].as_f64().unwrap(), b[1].as_f64().unwrap());
-                assert!(lo <= values[j] && values[j] <= hi, "seed {seed} leg {} param {j}", i + 1);
+                assert!(
+                    lo <= values[j] && values[j] <= hi,
+                    "seed {seed} leg {} param {j}",
+                    i + 1
+                );
             }
         }
         let stdout = String::from_utf8_lossy(&out.stdout);
@@ -66,7 +112,12 @@ fn an_outlier_makes_its_leg_empty_and_exits_2() {
     let dir = tempdir("outlier");
     simulate(&dir, 5, &["--outlier", "4:3:0.2"]);
     let out = certify(&dir, &["--legs", "2,3"]);
-    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stdout));
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
     let rep = report(&dir);
     let legs = rep["legs"].as_array().unwrap();
     assert_eq!(legs.len(), 2);
@@ -103,7 +154,10 @@ fn rejects(name: &str, edit: impl Fn(&Path), expect: &[&str]) {
     for e in expect {
         assert!(err.contains(e), "{name}: `{e}` not in: {err}");
     }
-    assert!(!dir.join("report.json").exists(), "{name}: a report was written");
+    assert!(
+        !dir.join("report.json").exists(),
+        "{name}: a report was written"
+    );
 }
 
 fn rewrite(path: &Path, f: impl Fn(String) -> String) {
@@ -113,33 +167,119 @@ fn rewrite(path: &Path, f: impl Fn(String) -> String) {
 
 fn edit_line(dir: &Path, line: usize, f: impl Fn(&str) -> String) {
     rewrite(&dir.join("measurements.csv"), |t| {
-        t.lines().enumerate().map(|(i, l)| if i + 1 == line { f(l) } else { l.to_string() } + "\n").collect()
+        t.lines()
+            .enumerate()
+            .map(|(i, l)| if i + 1 == line { f(l) } else { l.to_string() } + "\n")
+            .collect()
     });
 }
 
 #[test]
 fn malformed_inputs_are_clear_errors() {
-    rejects("missing-column", |d| edit_line(d, 3, |l| l.rsplit_once(',').unwrap().0.to_string()), &["measurements.csv", "line 3", "columns"]);
-    rejects("extra-column", |d| edit_line(d, 4, |l| format!("{l},1.0")), &["measurements.csv", "line 4", "columns"]);
-    rejects("not-a-number", |d| edit_line(d, 5, |l| l.replacen(',', ",abc,", 1).replacen(",abc,", ",x", 1)), &["measurements.csv", "line 5", "py", "expected a number"]);
-    rejects("nan", |d| edit_line(d, 2, |l| format!("NaN{}", &l[l.find(',').unwrap()..])), &["line 2", "px", "finite"]);
-    rejects("inf", |d| edit_line(d, 2, |l| format!("inf{}", &l[l.find(',').unwrap()..])), &["line 2", "px", "finite"]);
-    rejects("axis", |d| edit_line(d, 6, |l| {
-        let mut f: Vec<String> = l.split(',').map(str::to_string).collect();
-        f[3] = "0.9".into();
-        f.join(",")
-    }), &["line 6", "ax,ay,az", "unit"]);
-    rejects("negative-halfwidth", |d| rewrite(&d.join("uncertainty.toml"), |t| t.replace("pos = 0.0005", "pos = -0.0005")), &["uncertainty.toml", "pos", ">= 0"]);
-    rejects("missing-halfwidth", |d| rewrite(&d.join("uncertainty.toml"), |t| t.lines().filter(|l| !l.starts_with("angle_deg")).map(|l| format!("{l}\n")).collect()), &["uncertainty.toml", "angle_deg"]);
-    rejects("few-configs", |d| rewrite(&d.join("measurements.csv"), |t| t.lines().take(5).map(|l| format!("{l}\n")).collect()), &["measurements.csv", "at least 7"]);
-    rejects("leg-count", |d| rewrite(&d.join("robot.toml"), |t| {
-        let cut = t.rfind("[[leg]]").unwrap();
-        t[..cut].to_string()
-    }), &["measurements.csv", "5 legs"]);
-    rejects("negative-radius", |d| rewrite(&d.join("robot.toml"), |t| t.replacen("radius = 0.1", "radius = -0.1", 1)), &["robot.toml", "leg[1].radius", "contain the nominal"]);
-    rejects("bad-toml", |d| rewrite(&d.join("robot.toml"), |t| t.replacen("l = ", "l = [", 1)), &["robot.toml", "line"]);
-    rejects("unknown-key", |d| rewrite(&d.join("uncertainty.toml"), |t| format!("{t}speed = 1\n")), &["uncertainty.toml", "speed"]);
-    rejects("missing-file", |d| std::fs::remove_file(d.join("robot.toml")).unwrap(), &["robot.toml", "cannot read"]);
+    rejects(
+        "missing-column",
+        |d| edit_line(d, 3, |l| l.rsplit_once(',').unwrap().0.to_string()),
+        &["measurements.csv", "line 3", "columns"],
+    );
+    rejects(
+        "extra-column",
+        |d| edit_line(d, 4, |l| format!("{l},1.0")),
+        &["measurements.csv", "line 4", "columns"],
+    );
+    rejects(
+        "not-a-number",
+        |d| {
+            edit_line(d, 5, |l| {
+                l.replacen(',', ",abc,", 1).replacen(",abc,", ",x", 1)
+            })
+        },
+        &["measurements.csv", "line 5", "py", "expected a number"],
+    );
+    rejects(
+        "nan",
+        |d| edit_line(d, 2, |l| format!("NaN{}", &l[l.find(',').unwrap()..])),
+        &["line 2", "px", "finite"],
+    );
+    rejects(
+        "inf",
+        |d| edit_line(d, 2, |l| format!("inf{}", &l[l.find(',').unwrap()..])),
+        &["line 2", "px", "finite"],
+    );
+    rejects(
+        "axis",
+        |d| {
+            edit_line(d, 6, |l| {
+                let mut f: Vec<String> = l.split(',').map(str::to_string).collect();
+                f[3] = "0.9".into();
+                f.join(",")
+            })
+        },
+        &["line 6", "ax,ay,az", "unit"],
+    );
+    rejects(
+        "negative-halfwidth",
+        |d| {
+            rewrite(&d.join("uncertainty.toml"), |t| {
+                t.replace("pos = 0.0005", "pos = -0.0005")
+            })
+        },
+        &["uncertainty.toml", "pos", ">= 0"],
+    );
+    rejects(
+        "missing-halfwidth",
+        |d| {
+            rewrite(&d.join("uncertainty.toml"), |t| {
+                t.lines()
+                    .filter(|l| !l.starts_with("angle_deg"))
+                    .map(|l| format!("{l}\n"))
+                    .collect()
+            })
+        },
+        &["uncertainty.toml", "angle_deg"],
+    );
+    rejects(
+        "few-configs",
+        |d| {
+            rewrite(&d.join("measurements.csv"), |t| {
+                t.lines().take(5).map(|l| format!("{l}\n")).collect()
+            })
+        },
+        &["measurements.csv", "at least 7"],
+    );
+    rejects(
+        "leg-count",
+        |d| {
+            rewrite(&d.join("robot.toml"), |t| {
+                let cut = t.rfind("[[leg]]").unwrap();
+                t[..cut].to_string()
+            })
+        },
+        &["measurements.csv", "5 legs"],
+    );
+    rejects(
+        "negative-radius",
+        |d| {
+            rewrite(&d.join("robot.toml"), |t| {
+                t.replacen("radius = 0.1", "radius = -0.1", 1)
+            })
+        },
+        &["robot.toml", "leg[1].radius", "contain the nominal"],
+    );
+    rejects(
+        "bad-toml",
+        |d| rewrite(&d.join("robot.toml"), |t| t.replacen("l = ", "l = [", 1)),
+        &["robot.toml", "line"],
+    );
+    rejects(
+        "unknown-key",
+        |d| rewrite(&d.join("uncertainty.toml"), |t| format!("{t}speed = 1\n")),
+        &["uncertainty.toml", "speed"],
+    );
+    rejects(
+        "missing-file",
+        |d| std::fs::remove_file(d.join("robot.toml")).unwrap(),
+        &["robot.toml", "cannot read"],
+    );
 }
 
 #[test]
@@ -159,9 +299,16 @@ fn rodrigues_measurements_are_accepted() {
         }
         out
     });
-    rewrite(&dir.join("uncertainty.toml"), |_| "pos = 0.0005\nlen = 0.0005\nq = 2e-5\n".into());
+    rewrite(&dir.join("uncertainty.toml"), |_| {
+        "pos = 0.0005\nlen = 0.0005\nq = 2e-5\n".into()
+    });
     let out = certify(&dir, &["--legs", "1"]);
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
@@ -169,14 +316,27 @@ fn lsq_and_reproduce_run_end_to_end() {
     let dir = tempdir("lsq");
     simulate(&dir, 11, &[]);
     let f = |n: &str| dir.join(n).to_str().unwrap().to_string();
-    let out = gough(&["lsq", "--robot", &f("robot.toml"), "--measurements", &f("measurements.csv")]);
+    let out = gough(&[
+        "lsq",
+        "--robot",
+        &f("robot.toml"),
+        "--measurements",
+        &f("measurements.csv"),
+    ]);
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stdout).lines().count() >= 7);
     let out = gough(&["reproduce", "--samples", "20"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = String::from_utf8_lossy(&out.stdout);
     for needle in ["exact data", "x1", "x2", "xs", "paper (Tables II–IV"] {
-        assert!(text.contains(needle), "`{needle}` missing from reproduce output");
+        assert!(
+            text.contains(needle),
+            "`{needle}` missing from reproduce output"
+        );
     }
     let help = gough(&["certify", "--help"]);
     assert!(String::from_utf8_lossy(&help.stdout).contains("Example"));
