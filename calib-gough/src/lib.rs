@@ -13,6 +13,7 @@ pub mod geometry;
 pub mod lsq;
 pub mod measurement;
 pub mod model;
+pub mod plot;
 pub mod report;
 pub mod simulate;
 

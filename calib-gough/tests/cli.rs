@@ -132,7 +132,14 @@ fn an_outlier_makes_its_leg_empty_and_exits_2() {
 fn sweep_reports_x2_inside_x1() {
     let dir = tempdir("sweep");
     simulate(&dir, 6, &[]);
-    let out = certify(&dir, &["--legs", "1", "--sweep"]);
+    let plots = dir.join("plots");
+    let out = certify(
+        &dir,
+        &["--legs", "1", "--sweep", "--plots", plots.to_str().unwrap()],
+    );
+    assert!(std::fs::read_to_string(plots.join("leg1.svg"))
+        .unwrap()
+        .contains("x2"));
     assert_eq!(out.status.code(), Some(0));
     let rep = report(&dir);
     let leg = &rep["legs"][0];
@@ -325,7 +332,18 @@ fn lsq_and_reproduce_run_end_to_end() {
     ]);
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stdout).lines().count() >= 7);
-    let out = gough(&["reproduce", "--samples", "20"]);
+    let figs = tempdir("figures");
+    let out = gough(&[
+        "reproduce",
+        "--samples",
+        "20",
+        "--out",
+        figs.to_str().unwrap(),
+    ]);
+    for f in ["fig3.svg", "fig4.svg", "fig5.svg"] {
+        let svg = std::fs::read_to_string(figs.join(f)).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("</svg>"), "{f}");
+    }
     assert!(
         out.status.success(),
         "{}",

@@ -3,6 +3,7 @@
 use super::DataFiles;
 use calib_core::{certify, pave, sweep, Certification, Interval, Settings, Status};
 use calib_gough::files::{check_uncertainty, read_measurements, read_robot, read_uncertainty};
+use calib_gough::plot;
 use calib_gough::report::{bounds, table, write_atomically, LegReport, Report};
 use calib_gough::{leg_boxes, GoughLeg, PARAMETER_NAMES};
 use rayon::prelude::*;
@@ -28,6 +29,10 @@ pub struct Args {
     /// Write the JSON report (schema version 1) to this file.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
+    /// Write one SVG per leg into this folder: x0, x1, x2 and the inner box in the projections
+    /// (ax, ay), (bx, by) and (az, l).
+    #[arg(long, value_name = "DIR")]
+    plots: Option<PathBuf>,
 }
 
 struct LegResult {
@@ -120,6 +125,25 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         });
     }
     println!("total: {} legs in {total:.3} s", results.len());
+    if let Some(dir) = &a.plots {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
+        for r in &results {
+            let mut boxes = vec![("x0", "black", r.x0)];
+            if r.cert.status != Status::Empty {
+                boxes.push(("x1", "#369", r.cert.outer));
+            }
+            boxes.extend(r.x2.flatten().map(|b| ("x2", "#693", b)));
+            boxes.extend(r.cert.inner.map(|b| ("inner", "#c33", b)));
+            let title = format!("leg {}: {:?}", r.leg + 1, r.cert.status);
+            let svg =
+                plot::nested_boxes(&boxes, &[(0, 1), (3, 4), (2, 6)], &PARAMETER_NAMES, &title);
+            let path = dir.join(format!("leg{}.svg", r.leg + 1));
+            write_atomically(&path, &svg)
+                .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        }
+        println!("plots written to {}", dir.display());
+    }
     if let Some(path) = &a.json {
         let report = Report {
             version: 1,

@@ -3,7 +3,8 @@
 use calib_core::{certify, sweep, Interval, Settings, Status};
 use calib_gough::geometry::Pose;
 use calib_gough::lsq::fit_leg;
-use calib_gough::report::table;
+use calib_gough::plot;
+use calib_gough::report::{table, write_atomically};
 use calib_gough::{
     builtin_hexapod, leg_boxes, simulate, Orientation, Uncertainty, PARAMETER_NAMES,
 };
@@ -21,6 +22,11 @@ pub struct Args {
     /// Seed of the simulated data set.
     #[arg(long, default_value_t = 2004)]
     seed: u64,
+    /// Write the figures as SVG into this folder: fig3.svg (histogram of the least-squares
+    /// offsets l against the certified interval), fig4.svg (x0, x1 and xs of the base point in 3
+    /// projections), fig5.svg (total box volume per sweep step).
+    #[arg(long, value_name = "DIR")]
+    out: Option<std::path::PathBuf>,
 }
 
 /// The paper's published mid/rad of x0, x1, x2, xs (Tables II–IV), per parameter.
@@ -229,5 +235,59 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         a.samples,
         rayon::current_num_threads()
     );
+    if let Some(dir) = &a.out {
+        write_figures(dir, &fits, x0, x1, xs, &s.volumes)?;
+        println!("figures written to {}", dir.display());
+    }
     Ok(0)
+}
+
+fn write_figures(
+    dir: &std::path::Path,
+    fits: &[[f64; 7]],
+    x0: [Interval; 7],
+    x1: Option<[Interval; 7]>,
+    xs: Option<[Interval; 7]>,
+    volumes: &[f64],
+) -> Result<(), Box<dyn std::error::Error>> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
+    let offsets: Vec<f64> = fits.iter().map(|f| f[6]).collect();
+    let mut boxes = vec![("x0", "black", x0)];
+    boxes.extend(x1.map(|b| ("x1 (certified)", "#369", b)));
+    boxes.extend(xs.map(|b| ("xs (least squares)", "#c33", b)));
+    let figures = [
+        (
+            "fig3.svg",
+            plot::histogram(
+                &offsets,
+                x1.map_or(x0[6], |b| b[6]),
+                "Fig. 3: least-squares offsets l vs certified x1",
+                "l (cm)",
+            ),
+        ),
+        (
+            "fig4.svg",
+            plot::nested_boxes(
+                &boxes,
+                &[(0, 1), (0, 2), (1, 2)],
+                &PARAMETER_NAMES,
+                "Fig. 4: base attachment point",
+            ),
+        ),
+        (
+            "fig5.svg",
+            plot::log_series(
+                volumes,
+                "Fig. 5: total volume per sweep step",
+                "step",
+                "volume (cm^7)",
+            ),
+        ),
+    ];
+    for (name, svg) in figures {
+        let path = dir.join(name);
+        write_atomically(&path, &svg)
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    }
+    Ok(())
 }
