@@ -7,7 +7,8 @@
 //! 2. Rows of a polyhedron containing every solution in `x` ([`Relaxation`]):
 //!    * Krawczyk (paper eqs. 6–7 and Section IV-B): with `A_k = ∂f/∂x (x, M_k)`,
 //!      `b_k ⊇ -f(xm, M)` over `M_k` (the centred form `f(xm, mid M_k) + B_k (M_k - mid M_k)`,
-//!      `B_k = ∂f/∂M (xm, M_k)`, intersected with the natural evaluation) and `Am = mid(A_k)`:
+//!      with `B_k = ∂f/∂M (x, M_k)` from the same evaluation as `A_k`; the paper takes it at
+//!      `(xm, M_k)`, a subset, which costs one more evaluation per row) and `Am = mid(A_k)`:
 //!      `inf(c_k) <= Am·y <= sup(c_k)` with `c_k = b_k - (A_k - Am)·(x - xm)`.
 //!    * Corners: for the corner `v = inf(x)` and every solution `x`,
 //!      `0 = f(v, M) + A'(x - v)` with `A' ∈ A_k` and `x - v >= 0`, hence
@@ -152,27 +153,21 @@ pub fn contract<M: Model<NX, NM>, const NX: usize, const NM: usize>(
     }
 }
 
-/// An enclosure of `{f(v, M) : M ∈ m}` for a point `v`: the centred form in `M` intersected with
-/// the natural evaluation.
+/// An enclosure of `{f(v, M) : M ∈ m}` for a point `v` of the box `x`: the centred form
+/// `f(v, mid m) + B (m - mid m)` (paper eq. 6), where `B = ∂f/∂M (x, m)` was already computed over the
+/// whole box (valid for `v` by the mean-value theorem in `M`, since `v ∈ x`).
 fn value_over_measurement<M: Model<NX, NM>, const NX: usize, const NM: usize>(
     model: &M,
     v: &[Interval; NX],
     m: &[Interval; NM],
+    m_mid: &[Interval; NM],
+    b: &[Interval; NM],
 ) -> Interval {
-    let e = model.evaluate_interval(v, m);
-    let mid: [Interval; NM] = core::array::from_fn(|i| Interval::point(m[i].mid()));
-    let mut centred = model.residual_interval(v, &mid);
+    let mut centred = model.residual_interval(v, m_mid);
     for i in 0..NM {
-        centred += e.dm[i] * (m[i] - mid[i]);
+        centred += b[i] * (m[i] - m_mid[i]);
     }
-    let both = centred.intersection(e.value);
-    if both.is_empty() {
-        // Both enclose f(v, mid M); an empty intersection can only come from a model whose
-        // evaluators disagree. Keep the wider, valid-by-contract natural value.
-        e.value
-    } else {
-        both
-    }
+    centred
 }
 
 /// The corner pair of iteration `i`: first the lowest/highest corners, then a fixed pseudo-random
@@ -220,8 +215,9 @@ pub(crate) fn newton_step<M: Model<NX, NM>, const NX: usize, const NM: usize>(
             return Err(EmptinessProof::CheapRejection { measurement: k });
         }
         let a = e.dx;
+        let m_mid: [Interval; NM] = core::array::from_fn(|i| Interval::point(m[i].mid()));
         if matches!(relaxation, Relaxation::Krawczyk | Relaxation::Both) {
-            let b = -value_over_measurement(model, &xm_iv, m);
+            let b = -value_over_measurement(model, &xm_iv, m, &m_mid, &e.dm);
             let mut c = b;
             for j in 0..NX {
                 row[j] = a[j].mid();
@@ -233,7 +229,7 @@ pub(crate) fn newton_step<M: Model<NX, NM>, const NX: usize, const NM: usize>(
         }
         if matches!(relaxation, Relaxation::Corners | Relaxation::Both) {
             for corner in 0..2 {
-                let fv = value_over_measurement(model, &corner_iv[corner], m);
+                let fv = value_over_measurement(model, &corner_iv[corner], m, &m_mid, &e.dm);
                 // d_j = x_j - v_j is >= 0 where the corner is at inf(x_j), <= 0 where at sup(x_j).
                 // The coefficient bounding A'_j d_j from below is then inf(A_j), resp. sup(A_j).
                 let up = &sides[corner];

@@ -88,6 +88,8 @@ impl Scalar for Interval {
     fn cst(v: f64) -> Self {
         Interval::point(v)
     }
+    /// `[lo, hi]`; panics if the bounds do not describe an interval (checked once per call, off
+    /// the hot path when the constants are known at compile time).
     #[inline(always)]
     fn enclose(_nearest: f64, lo: f64, hi: f64) -> Self {
         Interval::new(lo, hi)

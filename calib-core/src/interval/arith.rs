@@ -44,18 +44,33 @@ impl Mul for Interval {
             return Interval::EMPTY;
         }
         let (a, b, c, d) = (self.lo, self.hi, rhs.lo, rhs.hi);
-        if a >= 0.0 && c >= 0.0 {
-            // The common case in residual evaluation: both non-negative.
-            return Interval::from_bounds_unchecked(mul_down(a, c), mul_up(b, d));
-        }
-        let lo = mul_down(a, c)
-            .min(mul_down(a, d))
-            .min(mul_down(b, c))
-            .min(mul_down(b, d));
-        let hi = mul_up(a, c)
-            .max(mul_up(a, d))
-            .max(mul_up(b, c))
-            .max(mul_up(b, d));
+        // Sign cases: two corner products (four only when both straddle zero).
+        let (lo, hi) = if a >= 0.0 {
+            if c >= 0.0 {
+                (mul_down(a, c), mul_up(b, d))
+            } else if d <= 0.0 {
+                (mul_down(b, c), mul_up(a, d))
+            } else {
+                (mul_down(b, c), mul_up(b, d))
+            }
+        } else if b <= 0.0 {
+            if c >= 0.0 {
+                (mul_down(a, d), mul_up(b, c))
+            } else if d <= 0.0 {
+                (mul_down(b, d), mul_up(a, c))
+            } else {
+                (mul_down(a, d), mul_up(a, c))
+            }
+        } else if c >= 0.0 {
+            (mul_down(a, d), mul_up(b, d))
+        } else if d <= 0.0 {
+            (mul_down(b, c), mul_up(a, c))
+        } else {
+            (
+                mul_down(a, d).min(mul_down(b, c)),
+                mul_up(a, c).max(mul_up(b, d)),
+            )
+        };
         Interval::from_bounds_unchecked(lo, hi)
     }
 }

@@ -7,9 +7,10 @@
 //! most violated constraint `k` and leaves the basis constraint that keeps `λ >= 0` (the dual ratio
 //! test); no leaving candidate means a Farkas ray, i.e. an empty polyhedron. Every iterate is dual
 //! feasible, so even an interrupted solve yields multipliers that [`super::safe_lower_bound`] turns
-//! into a valid bound. `A_W⁻¹` is recomputed by Gauss–Jordan elimination with partial pivoting at
-//! every iteration (`n³` flops, negligible at `n <= ~50`), which keeps it accurate without
-//! refactorisation logic. All buffers are reused: no allocation after the first call of a size.
+//! into a valid bound. `A_W⁻¹` is updated by the Sherman–Morrison formula at each basis change (`n²`
+//! flops) and recomputed by Gauss–Jordan elimination with partial pivoting every
+//! [`REFACTOR_EVERY`] pivots and at the start. All buffers are reused: no allocation after the
+//! first call of a size.
 
 use super::{LpBackend, LpStatus, Polyhedron};
 use crate::linalg::gauss_jordan_inverse;
@@ -18,6 +19,7 @@ use crate::linalg::gauss_jordan_inverse;
 #[derive(Clone, Debug, Default)]
 pub struct DenseSimplex {
     basis: Vec<usize>,
+    in_basis: Vec<bool>,
     a_w: Vec<f64>,
     inv: Vec<f64>,
     y: Vec<f64>,
@@ -33,10 +35,14 @@ pub struct DenseSimplex {
 const FEASIBILITY_TOL: f64 = 1e-12;
 /// Pivot elements below this are not used in the ratio test.
 const PIVOT_TOL: f64 = 1e-11;
+/// Recompute `A_W⁻¹` from scratch after this many rank-one updates.
+const REFACTOR_EVERY: usize = 16;
 
 impl DenseSimplex {
-    fn resize(&mut self, n: usize) {
+    fn resize(&mut self, n: usize, constraints: usize) {
         self.basis.resize(n, 0);
+        self.in_basis.clear();
+        self.in_basis.resize(constraints, false);
         self.a_w.resize(n * n, 0.0);
         self.inv.resize(n * n, 0.0);
         self.y.resize(n, 0.0);
@@ -91,18 +97,23 @@ impl LpBackend for DenseSimplex {
         primal: &mut [f64],
     ) -> LpStatus {
         let (n, m) = (p.dim(), p.rows());
-        self.resize(n);
+        self.resize(n, m + 2 * n);
         dual.iter_mut().for_each(|v| *v = 0.0);
         // Dual feasible start: the box corner that minimises c over the box.
         for j in 0..n {
             self.basis[j] = m + 2 * j + usize::from(c[j] > 0.0);
+            self.in_basis[self.basis[j]] = true;
         }
+        let mut since_refactor = REFACTOR_EVERY;
         let max_pivots = 10 * (n + m) + 50;
         let mut status = LpStatus::Failed;
         self.last_pivots = 0;
         for _ in 0..max_pivots {
-            if !self.invert(p) {
-                break;
+            if since_refactor >= REFACTOR_EVERY {
+                if !self.invert(p) {
+                    break;
+                }
+                since_refactor = 0;
             }
             // y = A_W⁻¹ b_W and λ_W = -A_W⁻ᵀ c.
             for j in 0..n {
@@ -133,7 +144,7 @@ impl LpBackend for DenseSimplex {
             for i in 0..m {
                 let row = p.row(i);
                 let v = row.iter().zip(&self.y).map(|(a, y)| a * y).sum::<f64>() - p.rhs(i);
-                if v > worst && !self.basis.contains(&i) {
+                if v > worst && !self.in_basis[i] {
                     worst = v;
                     entering = Some(i);
                 }
@@ -143,7 +154,7 @@ impl LpBackend for DenseSimplex {
                 let up = (self.y[j] - p.hi()[j]) / scale;
                 let down = (p.lo()[j] - self.y[j]) / scale;
                 for (k, v) in [(m + 2 * j, up), (m + 2 * j + 1, down)] {
-                    if v > worst && !self.basis.contains(&k) {
+                    if v > worst && !self.in_basis[k] {
                         worst = v;
                         entering = Some(k);
                     }
@@ -190,8 +201,26 @@ impl LpBackend for DenseSimplex {
                 primal.copy_from_slice(&self.y);
                 return LpStatus::Infeasible;
             };
+            // Row r of A_W becomes a_k: inv' = inv - inv e_r (w - e_r)ᵀ / w_r (Sherman–Morrison).
+            let wr = self.w[r];
+            for j in 0..n {
+                let u = self.inv[j * n + r];
+                if u != 0.0 {
+                    for col in 0..n {
+                        let v = if col == r {
+                            self.w[col] - 1.0
+                        } else {
+                            self.w[col]
+                        };
+                        self.inv[j * n + col] -= u * v / wr;
+                    }
+                }
+            }
+            self.in_basis[self.basis[r]] = false;
+            self.in_basis[k] = true;
             self.basis[r] = k;
             self.last_pivots += 1;
+            since_refactor += 1;
         }
         for r in 0..n {
             let k = self.basis[r];
