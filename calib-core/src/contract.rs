@@ -65,9 +65,15 @@ pub struct Workspace<const NX: usize> {
 impl<const NX: usize> Workspace<NX> {
     /// A workspace using the LP engine of `settings`.
     pub fn new(settings: &Settings) -> Self {
+        Workspace::with_backend(settings.lp.backend())
+    }
+
+    /// A workspace using a caller-provided LP engine (any engine is safe: its answers only decide
+    /// how tight the rigorous bounds are).
+    pub fn with_backend(lp: Box<dyn LpBackend>) -> Self {
         Workspace {
             poly: Polyhedron::default(),
-            lp: settings.lp.backend(),
+            lp,
             dual: Vec::new(),
             objective: [0.0; NX],
             zeros: [0.0; NX],
