@@ -47,7 +47,7 @@ pub mod lp;
 mod model;
 mod scalar;
 mod settings;
-pub mod sweep;
+pub mod bisection;
 
 pub use calib_macros::interval_model;
 pub use certificate::{is_certified_consistent, is_consistent_point};
@@ -58,4 +58,4 @@ pub use interval::Interval;
 pub use model::{Evaluation, Model};
 pub use scalar::Scalar;
 pub use settings::{Relaxation, Settings};
-pub use sweep::{pave, sweep, Paving, SweepResult};
+pub use bisection::{pave, sweep, Paving, SweepResult};
