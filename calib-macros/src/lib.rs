@@ -5,10 +5,10 @@
 //! Applied to `fn name<S: Scalar>(x: &[S; NX], m: &[S; NM]) -> S`, it keeps the function and emits a
 //! unit struct `Name` implementing `calib_core::Model<NX, NM>` with point, interval and Jacobian
 //! evaluators, all straight-line code generated at compile time. The stages, one file each:
-//! [`parse`] (signature), [`lower`] (body to an expression graph, rejecting unsupported syntax with
-//! spanned errors), [`diff`] (symbolic reverse-mode differentiation on the graph, sharing common
-//! subexpressions), [`rewrite`] (enclosing the literals of the kept function) and [`expand`]
-//! (code generation). Literals are enclosed exactly by [`literal`].
+//! `parse.rs` (signature), `lower.rs` (body to an expression graph, rejecting unsupported syntax with
+//! spanned errors), `diff.rs` (symbolic reverse-mode differentiation on the graph, sharing common
+//! subexpressions), `rewrite.rs` (enclosing the literals of the kept function) and `expand.rs`
+//! (code generation). Literals are enclosed exactly by `literal.rs`.
 #![deny(unsafe_code)]
 
 mod diff;
