@@ -65,7 +65,7 @@ pub fn run(cli: Cli) -> Result<i32, Box<dyn std::error::Error>> {
 /// The data files every command that reads data takes.
 #[derive(clap::Args, Debug)]
 pub struct DataFiles {
-    /// Nominal geometry: one [[leg]] table per leg with a, b, l and radius.
+    /// Nominal geometry: one `[[leg]]` table per leg with a, b, l and radius.
     #[arg(long, value_name = "FILE")]
     pub robot: PathBuf,
     /// Measured configurations: px,py,pz,ax,ay,az,angle_deg,L1..L6 (or px,py,pz,q1,q2,q3,L1..L6).
