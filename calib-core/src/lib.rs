@@ -37,6 +37,7 @@
 // Index loops mirror the matrix notation of the paper (rows k, parameters j) in the numeric code.
 #![allow(clippy::needless_range_loop)]
 
+pub mod bisection;
 pub mod certificate;
 mod certify;
 pub mod contract;
@@ -47,8 +48,8 @@ pub mod lp;
 mod model;
 mod scalar;
 mod settings;
-pub mod bisection;
 
+pub use bisection::{pave, sweep, Paving, SweepResult};
 pub use calib_macros::interval_model;
 pub use certificate::{is_certified_consistent, is_consistent_point};
 pub use certify::{certify, certify_with, Certification, Status};
@@ -58,4 +59,3 @@ pub use interval::Interval;
 pub use model::{Evaluation, Model};
 pub use scalar::Scalar;
 pub use settings::{Relaxation, Settings};
-pub use bisection::{pave, sweep, Paving, SweepResult};

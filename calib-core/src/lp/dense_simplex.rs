@@ -105,6 +105,7 @@ impl LpBackend for DenseSimplex {
             self.in_basis[self.basis[j]] = true;
         }
         let mut since_refactor = REFACTOR_EVERY;
+        let mut degenerate = 0usize;
         let max_pivots = 10 * (n + m) + 50;
         let mut status = LpStatus::Failed;
         self.last_pivots = 0;
@@ -138,7 +139,9 @@ impl LpBackend for DenseSimplex {
                 }
                 self.lambda[r] = (-s).max(0.0);
             }
-            // Most violated constraint outside the basis.
+            // Most violated constraint outside the basis (Dantzig), or the first violated one once
+            // degenerate pivots pile up (Bland's rule, which cannot cycle).
+            let bland = degenerate > 2 * n;
             let mut entering = None;
             let mut worst = FEASIBILITY_TOL;
             for i in 0..m {
@@ -147,16 +150,21 @@ impl LpBackend for DenseSimplex {
                 if v > worst && !self.in_basis[i] {
                     worst = v;
                     entering = Some(i);
+                    if bland {
+                        break;
+                    }
                 }
             }
-            for j in 0..n {
-                let scale = 1.0 + p.hi()[j].abs().max(p.lo()[j].abs());
-                let up = (self.y[j] - p.hi()[j]) / scale;
-                let down = (p.lo()[j] - self.y[j]) / scale;
-                for (k, v) in [(m + 2 * j, up), (m + 2 * j + 1, down)] {
-                    if v > worst && !self.in_basis[k] {
-                        worst = v;
-                        entering = Some(k);
+            if entering.is_none() || !bland {
+                for j in 0..n {
+                    let scale = 1.0 + p.hi()[j].abs().max(p.lo()[j].abs());
+                    let up = (self.y[j] - p.hi()[j]) / scale;
+                    let down = (p.lo()[j] - self.y[j]) / scale;
+                    for (k, v) in [(m + 2 * j, up), (m + 2 * j + 1, down)] {
+                        if v > worst && !self.in_basis[k] && !(bland && entering.is_some()) {
+                            worst = v;
+                            entering = Some(k);
+                        }
                     }
                 }
             }
@@ -173,16 +181,26 @@ impl LpBackend for DenseSimplex {
                 }
                 self.w[r] = s;
             }
-            let mut leave = None;
+            let mut leave: Option<usize> = None;
             let mut best = f64::INFINITY;
             for r in 0..n {
                 if self.w[r] > PIVOT_TOL {
                     let t = self.lambda[r] / self.w[r];
-                    if t < best {
-                        best = t;
+                    // Bland: among (near-)ties, the constraint with the smallest index leaves.
+                    let tie = bland
+                        && leave.is_some_and(|l| {
+                            t <= best * (1.0 + 1e-12) + 1e-300 && self.basis[r] < self.basis[l]
+                        });
+                    if t < best || tie {
+                        best = best.min(t);
                         leave = Some(r);
                     }
                 }
+            }
+            if best <= 1e-14 {
+                degenerate += 1;
+            } else {
+                degenerate = 0;
             }
             let Some(r) = leave else {
                 // Farkas ray: μ_k = 1, μ_W = -w (>= 0 up to rounding).
