@@ -7,7 +7,7 @@ use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 impl Neg for Interval {
     type Output = Interval;
     /// `[-hi, -lo]` (exact).
-    #[inline]
+    #[inline(always)]
     fn neg(self) -> Interval {
         Interval::from_bounds_unchecked(-self.hi, -self.lo)
     }
@@ -16,7 +16,7 @@ impl Neg for Interval {
 impl Add for Interval {
     type Output = Interval;
     /// `[lo1 + lo2, hi1 + hi2]` rounded outward.
-    #[inline]
+    #[inline(always)]
     fn add(self, rhs: Interval) -> Interval {
         if self.is_empty() || rhs.is_empty() {
             return Interval::EMPTY;
@@ -28,7 +28,7 @@ impl Add for Interval {
 impl Sub for Interval {
     type Output = Interval;
     /// `[lo1 - hi2, hi1 - lo2]` rounded outward.
-    #[inline]
+    #[inline(always)]
     fn sub(self, rhs: Interval) -> Interval {
         self + (-rhs)
     }
@@ -38,7 +38,7 @@ impl Mul for Interval {
     type Output = Interval;
     /// Hull of the four corner products, rounded outward; a zero factor gives zero even against an
     /// infinite bound.
-    #[inline]
+    #[inline(always)]
     fn mul(self, rhs: Interval) -> Interval {
         if self.is_empty() || rhs.is_empty() {
             return Interval::EMPTY;

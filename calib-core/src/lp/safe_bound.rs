@@ -14,23 +14,46 @@ use crate::Interval;
 /// of `dual` are treated as zero). `+inf` means the polyhedron is proved empty.
 pub fn safe_lower_bound(p: &Polyhedron, c: &[f64], dual: &[f64]) -> f64 {
     let n = p.dim();
-    let mut total = Interval::ZERO;
-    for j in 0..n {
-        // r_j = c_j + sum_i λ_i G_ij, enclosed.
-        let mut r = Interval::point(c[j]);
+    let usable = |l: f64| l > 0.0 && l.is_finite();
+    // r = c + Gᵀλ, enclosed, accumulated row by row over the non-zero multipliers.
+    const STACK: usize = 32;
+    let mut stack = [Interval::ZERO; STACK];
+    let mut lg = Interval::ZERO;
+    let total = if n <= STACK {
+        let r = &mut stack[..n];
+        for (rj, &cj) in r.iter_mut().zip(c) {
+            *rj = Interval::point(cj);
+        }
         for (i, &l) in dual.iter().enumerate() {
-            if l > 0.0 && l.is_finite() {
-                r += Interval::point(l) * Interval::point(p.row(i)[j]);
+            if usable(l) {
+                let li = Interval::point(l);
+                for (rj, &g) in r.iter_mut().zip(p.row(i)) {
+                    *rj += li * Interval::point(g);
+                }
+                lg += li * Interval::point(p.rhs(i));
             }
         }
-        total += r * Interval::new(p.lo()[j], p.hi()[j]);
-    }
-    let mut lg = Interval::ZERO;
-    for (i, &l) in dual.iter().enumerate() {
-        if l > 0.0 && l.is_finite() {
-            lg += Interval::point(l) * Interval::point(p.rhs(i));
+        (0..n).fold(Interval::ZERO, |t, j| {
+            t + r[j] * Interval::new(p.lo()[j], p.hi()[j])
+        })
+    } else {
+        let mut total = Interval::ZERO;
+        for j in 0..n {
+            let mut r = Interval::point(c[j]);
+            for (i, &l) in dual.iter().enumerate() {
+                if usable(l) {
+                    r += Interval::point(l) * Interval::point(p.row(i)[j]);
+                }
+            }
+            total += r * Interval::new(p.lo()[j], p.hi()[j]);
         }
-    }
+        for (i, &l) in dual.iter().enumerate() {
+            if usable(l) {
+                lg += Interval::point(l) * Interval::point(p.rhs(i));
+            }
+        }
+        total
+    };
     let bound = (total - lg).inf();
     if bound.is_nan() {
         f64::NEG_INFINITY
