@@ -82,6 +82,16 @@ pub fn table(rows: &[(&str, Option<[Interval; 7]>)]) -> String {
     out
 }
 
+/// `ax 1.93  ay 1.96 ...`: the outer/inner width ratio per parameter.
+pub fn ratios(ratio: &[f64; 7]) -> String {
+    let cells: Vec<String> = crate::PARAMETER_NAMES
+        .iter()
+        .zip(ratio)
+        .map(|(n, q)| format!("{n} {q:.2}"))
+        .collect();
+    cells.join("  ")
+}
+
 /// Writes `text` to `path` atomically: to a temporary file beside it, then renamed.
 pub fn write_atomically(path: &std::path::Path, text: &str) -> std::io::Result<()> {
     let dir = path

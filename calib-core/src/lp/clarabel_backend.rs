@@ -98,38 +98,3 @@ impl LpBackend for ClarabelLp {
         }
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::super::{proves_infeasible, safe_lower_bound};
-    use super::*;
-
-    #[test]
-    fn agrees_with_the_known_optimum_and_certifies_infeasibility() {
-        let mut p = Polyhedron::default();
-        p.reset(&[-1.0, -1.0], &[1.0, 1.0]);
-        p.push_row(&[1.0, 1.0], 1.0);
-        p.push_row(&[-1.0, 1.0], 0.5);
-        let mut s = ClarabelLp::default();
-        let (mut dual, mut y) = ([0.0; 2], [0.0; 2]);
-        assert_eq!(
-            s.minimize(&p, &[0.0, -1.0], &mut dual, &mut y),
-            LpStatus::Optimal
-        );
-        let b = safe_lower_bound(&p, &[0.0, -1.0], &dual);
-        assert!(b <= -0.75 && b > -0.75 - 1e-6, "{b}");
-        // Same polyhedron, new objective: reuses the solver.
-        assert_eq!(
-            s.minimize(&p, &[1.0, 0.0], &mut dual, &mut y),
-            LpStatus::Optimal
-        );
-        assert!(safe_lower_bound(&p, &[1.0, 0.0], &dual) <= -1.0 + 1e-6);
-
-        p.reset(&[-1.0, -1.0], &[1.0, 1.0]);
-        p.push_row(&[1.0, 1.0], -0.5);
-        p.push_row(&[-1.0, -1.0], -0.5);
-        let status = s.minimize(&p, &[1.0, 0.0], &mut dual, &mut y);
-        assert_eq!(status, LpStatus::Infeasible);
-        assert!(proves_infeasible(&p, &dual, &[0.0, 0.0]));
-    }
-}

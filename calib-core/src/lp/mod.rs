@@ -68,3 +68,61 @@ impl LpEngine {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `y in [-1, 1]^2, y0 + y1 <= 1, -y0 + y1 <= 0.5`.
+    fn small() -> Polyhedron {
+        let mut p = Polyhedron::default();
+        p.reset(&[-1.0, -1.0], &[1.0, 1.0]);
+        p.push_row(&[1.0, 1.0], 1.0);
+        p.push_row(&[-1.0, 1.0], 0.5);
+        p
+    }
+
+    #[test]
+    fn every_engine_solves_small_lps_and_certifies_infeasibility() {
+        for engine in [LpEngine::DenseSimplex, LpEngine::Clarabel] {
+            let mut lp = engine.backend();
+            let p = small();
+            let (mut dual, mut y) = ([0.0; 2], [0.0; 2]);
+            // max y1: 0.75 at (0.25, 0.75).
+            assert_eq!(
+                lp.minimize(&p, &[0.0, -1.0], &mut dual, &mut y),
+                LpStatus::Optimal
+            );
+            let b = safe_lower_bound(&p, &[0.0, -1.0], &dual);
+            assert!(b <= -0.75 && b > -0.75 - 1e-6, "{}: {b}", lp.name());
+            assert!((y[1] - 0.75).abs() < 1e-6, "{}: {y:?}", lp.name());
+            // Same polyhedron, new objectives (warm start / solver reuse): min y0 = -1.
+            assert_eq!(
+                lp.minimize(&p, &[1.0, 0.0], &mut dual, &mut y),
+                LpStatus::Optimal
+            );
+            assert!(safe_lower_bound(&p, &[1.0, 0.0], &dual) <= -1.0 + 1e-6);
+            assert!(safe_lower_bound(&p, &[1.0, 0.0], &dual) > -1.0 - 1e-6);
+            assert_eq!(
+                lp.minimize(&p, &[-1.0, -1.0], &mut dual, &mut y),
+                LpStatus::Optimal
+            );
+            let b = safe_lower_bound(&p, &[-1.0, -1.0], &dual);
+            assert!(
+                b <= -1.0 && b > -1.0 - 1e-6,
+                "{}: max y0 + y1 is 1, bound {b}",
+                lp.name()
+            );
+            // An empty polyhedron: y0 + y1 <= -0.5 and y0 + y1 >= 0.5.
+            let mut q = Polyhedron::default();
+            q.reset(&[-1.0, -1.0], &[1.0, 1.0]);
+            q.push_row(&[1.0, 1.0], -0.5);
+            q.push_row(&[-1.0, -1.0], -0.5);
+            assert_eq!(
+                lp.minimize(&q, &[1.0, 0.0], &mut dual, &mut y),
+                LpStatus::Infeasible
+            );
+            assert!(proves_infeasible(&q, &dual, &[0.0, 0.0]), "{}", lp.name());
+        }
+    }
+}

@@ -1,5 +1,10 @@
 //! The LP feasible set `{y : G y <= g, lo <= y <= hi}`, stored densely in reusable buffers.
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Source of [`Polyhedron::generation`] values (0 is never handed out).
+static NEXT_GENERATION: AtomicU64 = AtomicU64::new(1);
+
 /// `{y in R^n : G y <= g, lo <= y <= hi}` with finite `lo <= hi`.
 ///
 /// Rows are scaled by exact powers of two on insertion (the set is unchanged) so that every row's
@@ -34,7 +39,7 @@ impl Polyhedron {
         self.hi.extend_from_slice(hi);
         self.g_rows.clear();
         self.g_rhs.clear();
-        self.generation = self.generation.wrapping_add(1);
+        self.generation = NEXT_GENERATION.fetch_add(1, Ordering::Relaxed);
     }
 
     /// Adds the row `a·y <= b` (dropped if any number is not finite or `a = 0` with `b >= 0`).
@@ -99,7 +104,8 @@ impl Polyhedron {
         &self.hi
     }
 
-    /// Changes whenever the rows are rebuilt (lets engines cache a factorisation per polyhedron).
+    /// Unique per build of the rows, across all polyhedra of the process (lets engines cache a
+    /// factorisation or a basis per polyhedron without confusing two of them).
     pub fn generation(&self) -> u64 {
         self.generation
     }

@@ -4,7 +4,7 @@ use super::DataFiles;
 use calib_core::{certify, pave, sweep, Certification, Interval, Settings, Status};
 use calib_gough::files::{check_uncertainty, read_measurements, read_robot, read_uncertainty};
 use calib_gough::plot;
-use calib_gough::report::{bounds, table, write_atomically, LegReport, Report};
+use calib_gough::report::{bounds, ratios, table, write_atomically, LegReport, Report};
 use calib_gough::{leg_boxes, GoughLeg, PARAMETER_NAMES};
 use rayon::prelude::*;
 use std::path::PathBuf;
@@ -185,14 +185,9 @@ fn print_leg(r: &LegResult) {
         Status::Consistent => {
             println!("verdict: consistent (a certified witness satisfies every measurement box)");
             if let Some(ratio) = c.overestimation() {
-                let cells: Vec<String> = PARAMETER_NAMES
-                    .iter()
-                    .zip(ratio)
-                    .map(|(n, q)| format!("{n} {q:.2}"))
-                    .collect();
                 println!(
                     "outer/inner width (worst-case overestimation): {}",
-                    cells.join("  ")
+                    ratios(&ratio)
                 );
             }
         }

@@ -4,7 +4,7 @@ use calib_core::{certify, sweep, Interval, Settings, Status};
 use calib_gough::geometry::Pose;
 use calib_gough::lsq::fit_leg;
 use calib_gough::plot;
-use calib_gough::report::{table, write_atomically};
+use calib_gough::report::{ratios, table, write_atomically};
 use calib_gough::{
     builtin_hexapod, leg_boxes, simulate, Orientation, Uncertainty, PARAMETER_NAMES,
 };
@@ -192,18 +192,11 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         .map(|(n, v)| (*n, Some(v.map(|(m, r)| Interval::mid_rad(m, r)))))
         .collect();
     print!("{}", table(&paper_rows));
-    if let Some(inner) = c.inner {
-        let ratio = c.overestimation().unwrap_or([f64::NAN; 7]);
-        let cells: Vec<String> = PARAMETER_NAMES
-            .iter()
-            .zip(ratio)
-            .map(|(n, q)| format!("{n} {q:.2}"))
-            .collect();
+    if let Some(ratio) = c.overestimation() {
         println!(
             "\ninner bounds (certified points): outer/inner width {}",
-            cells.join("  ")
+            ratios(&ratio)
         );
-        let _ = inner;
     }
     if let (Some(x1), Some(xs)) = (x1, xs) {
         let out: Vec<&str> = (0..7)
