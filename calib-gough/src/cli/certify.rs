@@ -72,6 +72,12 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     }
     let settings = Settings::default();
     let start = Instant::now();
+    // Progress on a terminal only (indicatif draws nothing when stderr is not a terminal).
+    let bar = indicatif::ProgressBar::new(legs.len() as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("certifying legs {bar:30} {pos}/{len} [{elapsed}]")
+            .expect("static template"),
+    );
     let results: Vec<LegResult> = legs
         .par_iter()
         .map(|&leg| {
@@ -93,6 +99,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                 contracted += p.boxes_contracted;
                 (p.boxes.len(), p.inner_volume, p.outer_volume)
             });
+            bar.inc(1);
             LegResult {
                 leg,
                 x0,
@@ -104,6 +111,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             }
         })
         .collect();
+    bar.finish_and_clear();
     let total = start.elapsed().as_secs_f64();
     let mut any_empty = false;
     let mut reports = Vec::new();
