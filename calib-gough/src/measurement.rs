@@ -66,9 +66,10 @@ impl Uncertainty {
     }
 }
 
-/// An enclosure of `[v - h, v + h]` for a measured value `v` read from decimal text and a
-/// half-width `h`: `v` is widened by one ulp on each side first (the decimal may differ from the
-/// parsed double by half an ulp), then the sum is rounded outward.
+/// An enclosure of `[v - h, v + h]` for a value `v` and a half-width `h` read from decimal text
+/// (a measurement and its error bound, or a nominal parameter and its radius): `v` and `h` are
+/// widened by one ulp first (the decimals may differ from the parsed doubles by half an ulp), then
+/// the sum is rounded outward.
 pub fn measured(v: f64, h: f64) -> Interval {
     Interval::new(v.next_down(), v.next_up()) + Interval::new(-h.next_up(), h.next_up())
 }

@@ -3,6 +3,7 @@
 use super::DataFiles;
 use calib_core::{certify, pave, sweep, Certification, Interval, Settings, Status};
 use calib_gough::files::{check_uncertainty, read_measurements, read_robot, read_uncertainty};
+use calib_gough::measurement::measured;
 use calib_gough::plot;
 use calib_gough::report::{bounds, ratios, table, write_atomically, LegReport, Report};
 use calib_gough::{leg_boxes, GoughLeg, PARAMETER_NAMES};
@@ -84,8 +85,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             let t = Instant::now();
             let spec = &robot[leg];
             let nominal = spec.nominal.params();
-            let x0: [Interval; 7] =
-                core::array::from_fn(|j| Interval::mid_rad(nominal[j], spec.radius[j]));
+            let x0: [Interval; 7] = core::array::from_fn(|j| measured(nominal[j], spec.radius[j]));
             let boxes = leg_boxes(&data.configs, &u, leg);
             let cert = certify(&GoughLeg, &x0, &boxes, &settings);
             let mut contracted = 1;

@@ -30,18 +30,21 @@ enum Command {
     ///
     /// Exit code: 0 when every leg is certified (consistent or undecided), 2 when a leg is proved
     /// empty (the data are inconsistent with the model and the error bounds), 1 on errors.
+    #[command(verbatim_doc_comment)]
     Certify(certify::Args),
     /// Levenberg–Marquardt least squares per leg from the nominal geometry, with residual
     /// statistics (the classical calibration the paper compares against).
     ///
     /// Example:
     ///   gough lsq --robot robot.toml --measurements measurements.csv
+    #[command(verbatim_doc_comment)]
     Lsq(lsq::Args),
     /// Write a simulated data set (robot.toml, measurements.csv, uncertainty.toml, truth.json) for
     /// the built-in hexapod, whose leg 1 is the paper's Table I.
     ///
     /// Example:
     ///   gough simulate --configs 21 --seed 7 --out data/ --outlier 5:2:0.1
+    #[command(verbatim_doc_comment)]
     Simulate(simulate::Args),
     /// The paper's Section V experiment on an embedded default (no files): exact-data check, then
     /// x0, x1, x2 (sweep) and xs (hull of Monte-Carlo least-squares solutions) next to the paper's
@@ -49,6 +52,7 @@ enum Command {
     ///
     /// Example:
     ///   gough reproduce --samples 1000
+    #[command(verbatim_doc_comment)]
     Reproduce(reproduce::Args),
 }
 
