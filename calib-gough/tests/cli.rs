@@ -350,7 +350,16 @@ fn lsq_and_reproduce_run_end_to_end() {
         String::from_utf8_lossy(&out.stderr)
     );
     let text = String::from_utf8_lossy(&out.stdout);
-    for needle in ["exact data", "x1", "x2", "xs", "paper (Tables II–IV"] {
+    for needle in [
+        "exact data",
+        "x1",
+        "x2",
+        "xs",
+        "Table II",
+        "Table III",
+        "Table IV",
+        "paper",
+    ] {
         assert!(
             text.contains(needle),
             "`{needle}` missing from reproduce output"

@@ -4,7 +4,7 @@ use calib_core::{certify, sweep, Interval, Settings, Status};
 use calib_gough::geometry::Pose;
 use calib_gough::lsq::fit_leg;
 use calib_gough::plot;
-use calib_gough::report::{ratios, table, write_atomically};
+use calib_gough::report::{ratios, write_atomically};
 use calib_gough::{
     builtin_hexapod, leg_boxes, simulate, Orientation, Uncertainty, PARAMETER_NAMES,
 };
@@ -182,16 +182,8 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         "certified (this run): {:?}, {} iterations",
         c.status, c.iterations
     );
-    print!(
-        "{}",
-        table(&[("x0", Some(x0)), ("x1", x1), ("x2", s.hull), ("xs", xs)])
-    );
-    println!("\npaper (Tables II–IV, its own simulated data):");
-    let paper_rows: Vec<(&str, Option<[Interval; 7]>)> = PAPER
-        .iter()
-        .map(|(n, v)| (*n, Some(v.map(|(m, r)| Interval::mid_rad(m, r)))))
-        .collect();
-    print!("{}", table(&paper_rows));
+    let ours = [("x0", Some(x0)), ("x1", x1), ("x2", s.hull), ("xs", xs)];
+    print!("{}", side_by_side(&ours));
     if let Some(ratio) = c.overestimation() {
         println!(
             "\ninner bounds (certified points): outer/inner width {}",
@@ -233,6 +225,42 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("figures written to {}", dir.display());
     }
     Ok(0)
+}
+
+/// The paper's Tables II–IV (base point, platform point, offset): for each of x0, x1, x2, xs the
+/// mid and rad of this run next to the paper's published values (from its own simulated data).
+fn side_by_side(ours: &[(&str, Option<[Interval; 7]>); 4]) -> String {
+    let groups: [(&str, &[usize]); 3] = [
+        ("Table II: base attachment point a [cm]", &[0, 1, 2]),
+        ("Table III: mobile attachment point b [cm]", &[3, 4, 5]),
+        ("Table IV: leg length offset l [cm]", &[6]),
+    ];
+    let mut out = String::new();
+    for (title, params) in groups {
+        out.push_str(&format!("\n{title}   (this run | paper)\n{:<4}", ""));
+        for &j in params {
+            out.push_str(&format!(" | {:^39}", PARAMETER_NAMES[j]));
+        }
+        out.push('\n');
+        for (row, (label, b)) in ours.iter().enumerate() {
+            out.push_str(&format!("{label:<4}"));
+            for &j in params {
+                let (pm, pr) = PAPER[row].1[j];
+                match b {
+                    Some(b) => out.push_str(&format!(
+                        " | {:>9.4} {:>8.4} | {:>9.4} {:>8.4}",
+                        b[j].mid(),
+                        b[j].rad(),
+                        pm,
+                        pr
+                    )),
+                    None => out.push_str(&format!(" | {:>18} | {pm:>9.4} {pr:>8.4}", "empty")),
+                }
+            }
+            out.push('\n');
+        }
+    }
+    out
 }
 
 fn write_figures(
