@@ -23,6 +23,11 @@ pub fn is_certified_consistent<M: Model<NX, NM>, const NX: usize, const NM: usiz
     measurements: &[[Interval; NM]],
 ) -> bool {
     let xm = x.map(|v| v.mid());
+    let bounded = |b: &[Interval]| b.iter().all(|v| v.is_bounded());
+    if !bounded(x) || !measurements.iter().all(|m| bounded(m)) {
+        // The corners of an unbounded box are not points: no certificate (and no panic).
+        return false;
+    }
     measurements.iter().all(|m| {
         // The linearisation in M at the centre picks the corners most likely to change the sign.
         let mm = m.map(|v| v.mid());

@@ -7,6 +7,10 @@ use serde::Deserialize;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+/// Largest accepted magnitude of any value in the data files (cm, degrees): far beyond any robot,
+/// far below overflow in the interval evaluations.
+pub const MAX_MAGNITUDE: f64 = 1e100;
+
 /// A malformed input file: where and what was expected.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DataError {
@@ -108,15 +112,17 @@ pub fn read_robot(file: &Path) -> Result<Vec<LegSpec>, DataError> {
         .map(|(i, e)| {
             let field = |name: &str| format!("leg[{}].{name}", i + 1);
             let nominal = Leg { a: e.a, b: e.b, l: e.l };
-            if let Some(bad) = nominal.params().iter().position(|v| !v.is_finite()) {
+            let in_range = |v: &f64| v.is_finite() && v.abs() <= MAX_MAGNITUDE;
+            if let Some(bad) = nominal.params().iter().position(|v| !in_range(v)) {
                 let name = crate::PARAMETER_NAMES[bad];
-                return Err(error(file, None, Some(&field(name)), "expected a finite number"));
+                let message = format!("expected a finite number of magnitude below {MAX_MAGNITUDE:e}");
+                return Err(error(file, None, Some(&field(name)), message));
             }
             let radius = match e.radius {
                 Radius::One(r) => [r; 7],
                 Radius::Each(r) => r,
             };
-            if radius.iter().any(|r| !r.is_finite() || *r < 0.0) {
+            if radius.iter().any(|r| !in_range(r) || *r < 0.0) {
                 return Err(error(
                     file,
                     None,
@@ -167,12 +173,12 @@ pub fn read_uncertainty(file: &Path) -> Result<Uncertainty, DataError> {
             .into_iter()
             .filter_map(|(n, v)| v.map(|v| (n, v))),
     ) {
-        if !v.is_finite() || v < 0.0 {
+        if !v.is_finite() || !(0.0..=MAX_MAGNITUDE).contains(&v) {
             return Err(error(
                 file,
                 None,
                 Some(name),
-                format!("expected a finite half-width >= 0, found {v}"),
+                format!("expected a finite half-width >= 0 and below {MAX_MAGNITUDE:e}, found {v}"),
             ));
         }
     }
@@ -290,6 +296,16 @@ pub fn read_measurements(file: &Path, legs: usize) -> Result<Measurements, DataE
                     line,
                     Some(field),
                     format!("expected a finite number, found `{raw}`"),
+                ));
+            }
+            if v.abs() > MAX_MAGNITUDE {
+                return Err(error(
+                    file,
+                    line,
+                    Some(field),
+                    format!(
+                        "`{raw}` is out of range; expected a magnitude below {MAX_MAGNITUDE:e}"
+                    ),
                 ));
             }
             values.push(v);
