@@ -311,3 +311,16 @@ fn certified_boxes_are_at_least_as_tight_as_the_initial_box() {
         assert!(GoughLeg.residual(&w, &m).abs() < 1.0);
     }
 }
+
+#[test]
+fn unbounded_initial_boxes_are_kept_whole_without_panicking() {
+    let sim = simulate(&builtin_hexapod(), 9, 12, Uncertainty::PAPER, 1.0, 0.1);
+    let boxes = leg_boxes(&sim.measured, &sim.uncertainty, 0);
+    let mut x0 = x0_of(&sim, 0, 0.1);
+    x0[6] = Interval::new(0.0, f64::INFINITY);
+    let r = certify(&GoughLeg, &x0, &boxes, &Settings::default());
+    assert_eq!(r.status, Status::Undecided);
+    assert_eq!(r.outer, x0);
+    let s = sweep(&GoughLeg, &x0, &boxes, &Settings::default());
+    assert_eq!(s.hull, Some(x0));
+}

@@ -123,9 +123,18 @@ pub fn sweep<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
             boxes_contracted: 1,
         };
     };
+    let mut volumes = vec![volume(&x1)];
+    if !x1.iter().all(|v| v.is_bounded()) {
+        // An unbounded box cannot be split at a fraction of its width: keep it whole.
+        return SweepResult {
+            boxes: vec![x1],
+            hull: Some(x1),
+            volumes,
+            boxes_contracted: contracted,
+        };
+    }
     let mut kept: Vec<[Interval; NX]> = Vec::new();
     let mut current = x1;
-    let mut volumes = vec![volume(&x1)];
     for step in 0..2 * settings.sweep_steps {
         let pieces = split_all(
             &current,
