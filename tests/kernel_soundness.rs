@@ -324,3 +324,29 @@ fn unbounded_initial_boxes_are_kept_whole_without_panicking() {
     let s = sweep(&GoughLeg, &x0, &boxes, &Settings::default());
     assert_eq!(s.hull, Some(x0));
 }
+
+#[test]
+fn sweep_and_paver_keep_the_truth_over_random_problems() {
+    for seed in 200..204 {
+        let sim = random_problem(seed);
+        let leg = (seed % 6) as usize;
+        let boxes = leg_boxes(&sim.measured, &sim.uncertainty, leg);
+        let t = sim.truth[leg].params();
+        let x0 = x0_of(&sim, leg, 0.1);
+        let settings = Settings {
+            sweep_steps: 1,
+            ..Settings::default()
+        };
+        let s = sweep(&GoughLeg, &x0, &boxes, &settings);
+        assert!(
+            s.boxes.iter().any(|b| contains(b, &t)),
+            "seed {seed}: sweep lost the truth"
+        );
+        let p = pave(&GoughLeg, &x0, &boxes, &settings, 0.5, 40);
+        assert!(
+            p.boxes.iter().any(|b| contains(b, &t)),
+            "seed {seed}: paver lost the truth"
+        );
+        assert!(p.hull.is_some_and(|h| contains(&h, &t)));
+    }
+}
