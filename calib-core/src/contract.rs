@@ -83,11 +83,6 @@ impl<const NX: usize> Workspace<NX> {
             lp_failures: 0,
         }
     }
-
-    /// The LP engine's name.
-    pub fn lp_name(&self) -> &'static str {
-        self.lp.name()
-    }
 }
 
 /// The result of contracting one box.
