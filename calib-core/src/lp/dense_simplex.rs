@@ -52,6 +52,7 @@ const PIVOT_TOL: f64 = 1e-11;
 const REFACTOR_EVERY: usize = 16;
 
 /// The coefficient row and right-hand side of constraint `k` (rows first, then the bounds).
+#[inline(always)]
 fn constraint(p: &Polyhedron, k: usize, a: &mut [f64]) -> f64 {
     let m = p.rows();
     if k < m {
@@ -71,6 +72,7 @@ fn constraint(p: &Polyhedron, k: usize, a: &mut [f64]) -> f64 {
 }
 
 /// `b_k`.
+#[inline(always)]
 fn rhs(p: &Polyhedron, k: usize) -> f64 {
     let m = p.rows();
     if k < m {
@@ -83,6 +85,7 @@ fn rhs(p: &Polyhedron, k: usize) -> f64 {
 }
 
 /// `a_k · y - b_k` (bounds scaled like [`DenseSimplex`]'s violation test).
+#[inline(always)]
 fn violation(p: &Polyhedron, k: usize, y: &[f64]) -> f64 {
     let m = p.rows();
     if k < m {
@@ -99,6 +102,7 @@ fn violation(p: &Polyhedron, k: usize, y: &[f64]) -> f64 {
 }
 
 /// `a_k · d`.
+#[inline(always)]
 fn along(p: &Polyhedron, k: usize, d: &[f64]) -> f64 {
     let m = p.rows();
     if k < m {
@@ -375,6 +379,7 @@ impl DenseSimplex {
 }
 
 /// `a_k · y - b_k` without the bound scaling (a true slack for ratio tests).
+#[inline(always)]
 fn violation_unscaled(p: &Polyhedron, k: usize, y: &[f64]) -> f64 {
     let m = p.rows();
     if k < m {
