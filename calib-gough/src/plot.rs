@@ -17,6 +17,22 @@ fn header(width: f64, title: &str) -> String {
     )
 }
 
+/// A short axis label: integers as integers, others with 4 significant digits.
+fn label(v: f64) -> String {
+    if v == v.round() && v.abs() < 1e6 {
+        format!("{v:.0}")
+    } else {
+        let digits = (4 - v.abs().log10().ceil() as i32).clamp(0, 12) as usize;
+        format!("{v:.digits$}")
+    }
+}
+
+/// `[lo, hi]` widened by 5% on each side, so that boxes do not sit on the frame.
+fn padded(i: Interval) -> Interval {
+    let w = 0.05 * (i.sup() - i.inf());
+    Interval::new(i.inf() - w, i.sup() + w)
+}
+
 /// Maps `[lo, hi]` to `[a, b]` pixels.
 fn scale(v: f64, lo: f64, hi: f64, a: f64, b: f64) -> f64 {
     if hi > lo {
@@ -41,18 +57,20 @@ fn axes(s: &mut String, x0: f64, xlabel: &str, ylabel: &str, xr: (f64, f64), yr:
         H + 12.0
     );
     let _ = writeln!(s, "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 {} {})\">{ylabel}</text>", x0 + 12.0, (t + b) / 2.0, x0 + 12.0, (t + b) / 2.0);
-    for (v, x) in [(xr.0, l), (xr.1, r)] {
+    for (v, x, anchor) in [(xr.0, l, "start"), (xr.1, r, "end")] {
         let _ = writeln!(
             s,
-            "<text x=\"{x}\" y=\"{}\" text-anchor=\"middle\">{v:.4}</text>",
-            b + 12.0
+            "<text x=\"{x}\" y=\"{}\" text-anchor=\"{anchor}\">{}</text>",
+            b + 12.0,
+            label(v)
         );
     }
     for (v, y) in [(yr.0, b), (yr.1, t)] {
         let _ = writeln!(
             s,
-            "<text x=\"{}\" y=\"{y}\" text-anchor=\"end\">{v:.3}</text>",
-            l - 3.0
+            "<text x=\"{}\" y=\"{y}\" text-anchor=\"end\">{}</text>",
+            l - 3.0,
+            label(v)
         );
     }
 }
@@ -111,13 +129,15 @@ pub fn nested_boxes(
     for (p, &(i, j)) in pairs.iter().enumerate() {
         let x0 = p as f64 * W;
         let hull = |k: usize| {
-            boxes
-                .iter()
-                .fold(Interval::EMPTY, |h, (_, _, b)| h.hull(b[k]))
+            padded(
+                boxes
+                    .iter()
+                    .fold(Interval::EMPTY, |h, (_, _, b)| h.hull(b[k])),
+            )
         };
         let (hi_, hj) = (hull(i), hull(j));
         let (l, r, t, b) = (x0 + M, x0 + W - 10.0, 30.0, H - 10.0);
-        for (label, colour, bx) in boxes {
+        for (name, colour, bx) in boxes {
             if bx[i].is_empty() || bx[j].is_empty() {
                 continue;
             }
@@ -129,7 +149,7 @@ pub fn nested_boxes(
                 scale(bx[j].sup(), hj.inf(), hj.sup(), b, t),
                 scale(bx[j].inf(), hj.inf(), hj.sup(), b, t),
             );
-            let _ = writeln!(s, "<rect x=\"{xa}\" y=\"{ya}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\"><title>{label}</title></rect>", (xb - xa).max(0.5), (yb - ya).max(0.5));
+            let _ = writeln!(s, "<rect x=\"{xa}\" y=\"{ya}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\"><title>{name}</title></rect>", (xb - xa).max(0.5), (yb - ya).max(0.5));
         }
         axes(
             &mut s,
@@ -157,9 +177,11 @@ pub fn nested_boxes(
 /// Fig. 5: a positive series on a log scale (total box volume per sweep step).
 pub fn log_series(values: &[f64], title: &str, xlabel: &str, ylabel: &str) -> String {
     let positive: Vec<f64> = values.iter().map(|v| v.max(f64::MIN_POSITIVE)).collect();
-    let (lo, hi) = positive.iter().fold((f64::INFINITY, 0.0f64), |(a, b), v| {
-        (a.min(v.log10()), b.max(v.log10()))
-    });
+    let (lo, hi) = positive
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v.log10()), b.max(v.log10()))
+        });
     let (lo, hi) = if hi > lo {
         (lo, hi)
     } else {
@@ -216,5 +238,12 @@ mod tests {
             assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
             assert!(!svg.contains("NaN") && !svg.contains("inf"));
         }
+        // The log scale spans the data: first point at the top, last at the bottom of the frame.
+        let svg = log_series(&[1e-8, 1e-9], "t", "step", "volume");
+        assert!(svg.contains("points=\"45,30 350,270\""), "{svg}");
+        assert_eq!(
+            (label(8.0), label(-9.0104), label(52.36512)),
+            ("8".into(), "-9.010".into(), "52.37".into())
+        );
     }
 }
