@@ -69,17 +69,22 @@ impl LpEngine {
     }
 }
 
+/// `y in [-1, 1]^2, y0 + y1 <= 1, -y0 + y1 <= 0.5`: the polyhedron of the LP unit tests.
+#[cfg(test)]
+pub(crate) fn small_test_polyhedron() -> Polyhedron {
+    let mut p = Polyhedron::default();
+    p.reset(&[-1.0, -1.0], &[1.0, 1.0]);
+    p.push_row(&[1.0, 1.0], 1.0);
+    p.push_row(&[-1.0, 1.0], 0.5);
+    p
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// `y in [-1, 1]^2, y0 + y1 <= 1, -y0 + y1 <= 0.5`.
     fn small() -> Polyhedron {
-        let mut p = Polyhedron::default();
-        p.reset(&[-1.0, -1.0], &[1.0, 1.0]);
-        p.push_row(&[1.0, 1.0], 1.0);
-        p.push_row(&[-1.0, 1.0], 0.5);
-        p
+        small_test_polyhedron()
     }
 
     #[test]

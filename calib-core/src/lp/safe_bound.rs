@@ -73,12 +73,7 @@ mod tests {
     use super::*;
 
     fn square() -> Polyhedron {
-        // y in [-1, 1]^2, y0 + y1 <= 1, -y0 + y1 <= 0.5
-        let mut p = Polyhedron::default();
-        p.reset(&[-1.0, -1.0], &[1.0, 1.0]);
-        p.push_row(&[1.0, 1.0], 1.0);
-        p.push_row(&[-1.0, 1.0], 0.5);
-        p
+        super::super::small_test_polyhedron()
     }
 
     #[test]

@@ -107,43 +107,33 @@ pub fn assert_jacobians_match_finite_differences<
     m: &[f64; NM],
 ) {
     let f = model.residual(x, m);
-    let central = |g: &dyn Fn(f64) -> f64, v: f64| {
+    // Central difference of `g` at `v`, compared with the generated derivative `d`.
+    let check = |g: &dyn Fn(f64) -> f64, v: f64, d: f64, what: String| {
         let h = 1e-6 * v.abs().max(1.0);
-        ((g(v + h) - g(v - h)) / (2.0 * h), h)
+        let fd = (g(v + h) - g(v - h)) / (2.0 * h);
+        let tol = 1e-6 * (1.0 + d.abs()) + 8.0 * f64::EPSILON * f.abs().max(1.0) / h;
+        assert!(
+            (fd - d).abs() <= tol,
+            "{what}: generated {d} vs finite difference {fd}"
+        );
     };
     let jx = model.jacobian_x(x, m);
     for i in 0..NX {
-        let (fd, h) = central(
-            &|v| {
-                let mut y = *x;
-                y[i] = v;
-                model.residual(&y, m)
-            },
-            x[i],
-        );
-        let tol = 1e-6 * (1.0 + jx[i].abs()) + 8.0 * f64::EPSILON * f.abs().max(1.0) / h;
-        assert!(
-            (fd - jx[i]).abs() <= tol,
-            "df/dx{i}: generated {} vs finite difference {fd}",
-            jx[i]
-        );
+        let g = |v: f64| {
+            let mut y = *x;
+            y[i] = v;
+            model.residual(&y, m)
+        };
+        check(&g, x[i], jx[i], format!("df/dx{i}"));
     }
     let jm = model.jacobian_m(x, m);
     for i in 0..NM {
-        let (fd, h) = central(
-            &|v| {
-                let mut y = *m;
-                y[i] = v;
-                model.residual(x, &y)
-            },
-            m[i],
-        );
-        let tol = 1e-6 * (1.0 + jm[i].abs()) + 8.0 * f64::EPSILON * f.abs().max(1.0) / h;
-        assert!(
-            (fd - jm[i]).abs() <= tol,
-            "df/dm{i}: generated {} vs finite difference {fd}",
-            jm[i]
-        );
+        let g = |v: f64| {
+            let mut y = *m;
+            y[i] = v;
+            model.residual(x, &y)
+        };
+        check(&g, m[i], jm[i], format!("df/dm{i}"));
     }
 }
 
