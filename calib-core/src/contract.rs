@@ -41,6 +41,9 @@ pub enum EmptinessProof {
         /// The parameter (0-based).
         parameter: usize,
     },
+    /// Every piece of a subdivision of the box was proved empty by one of the tests above
+    /// ([`crate::hull`]).
+    Subdivision,
 }
 
 /// Reusable buffers for contractions: after the first contraction of a given problem size, a

@@ -4,7 +4,8 @@
 //! over, the [`Model`] trait, the `#[interval_model]` code generator that turns one generic
 //! residual into specialized point, interval and Jacobian evaluators at compile time, and the
 //! certified kernel: [`certify`] (interval Newton / Krawczyk–LP contraction to a fixed point, with
-//! certificates), [`sweep`] (the paper's bisection sweep) and [`pave`] (branch and prune).
+//! certificates), [`hull`] (the tight certified hull: outer and inner bounds refined until they
+//! meet within a tolerance), [`sweep`] (the paper's bisection sweep) and [`pave`] (branch and prune).
 //!
 //! ```
 //! use calib_core::{certify, interval_model, Interval, Model, Scalar, Settings, Status};
@@ -42,6 +43,7 @@ pub mod certificate;
 mod certify;
 pub mod contract;
 mod dual;
+mod hull;
 pub mod interval;
 mod linalg;
 pub mod lp;
@@ -55,6 +57,7 @@ pub use certificate::{is_certified_consistent, is_consistent_point};
 pub use certify::{certify, certify_with, Certification, Status};
 pub use contract::{contract, Contraction, EmptinessProof, Workspace};
 pub use dual::Dual;
+pub use hull::{hull, hull_with, Hull};
 pub use interval::Interval;
 pub use model::{Evaluation, Model};
 pub use scalar::Scalar;

@@ -21,7 +21,7 @@ pub enum Relaxation {
     Both,
 }
 
-/// Settings of [`crate::certify`], [`crate::sweep`] and [`crate::pave`].
+/// Settings of [`crate::certify`], [`crate::hull`], [`crate::sweep`] and [`crate::pave`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Settings {
     /// Stop the fixed-point iteration when `‖rad(x_j)‖₁ - ‖rad(x_{j+1})‖₁ < delta`
@@ -42,8 +42,17 @@ pub struct Settings {
     pub sweep_fraction: f64,
     /// Sweep steps from the lower bounds, then as many from the upper bounds (paper: 4).
     pub sweep_steps: usize,
-    /// Contract the boxes of a sweep step and of the paver in parallel (rayon; default true).
+    /// Contract the boxes of a sweep step, of the paver and of a [`crate::hull`] round in parallel
+    /// (rayon; default true).
     pub parallel: bool,
+    /// [`crate::hull`] stops refining a parameter once `wid(outer) <= (1 + tol) wid(inner)`
+    /// (default 0.05).
+    pub hull_tolerance: f64,
+    /// [`crate::hull`] contracts at most this many boxes (default 200 000).
+    pub hull_max_boxes: usize,
+    /// [`crate::hull`] stops starting new rounds after this many seconds (default: no limit; a
+    /// time limit makes the result depend on the machine's speed).
+    pub hull_max_seconds: Option<f64>,
 }
 
 impl Default for Settings {
@@ -58,6 +67,9 @@ impl Default for Settings {
             sweep_fraction: 0.05,
             sweep_steps: 4,
             parallel: true,
+            hull_tolerance: 0.05,
+            hull_max_boxes: 200_000,
+            hull_max_seconds: None,
         }
     }
 }
@@ -72,6 +84,19 @@ impl Settings {
     /// The settings with another LP engine.
     pub fn with_lp(mut self, lp: LpEngine) -> Self {
         self.lp = lp;
+        self
+    }
+
+    /// The settings with another [`crate::hull`] tolerance (see [`Settings::hull_tolerance`]).
+    pub fn with_hull_tolerance(mut self, tol: f64) -> Self {
+        self.hull_tolerance = tol;
+        self
+    }
+
+    /// The settings with other [`crate::hull`] budgets: boxes contracted and seconds.
+    pub fn with_hull_budget(mut self, max_boxes: usize, max_seconds: Option<f64>) -> Self {
+        self.hull_max_boxes = max_boxes;
+        self.hull_max_seconds = max_seconds;
         self
     }
 

@@ -1,0 +1,590 @@
+//! [`hull`]: the tightest certified answer — an outer box that contains every solution and an inner
+//! box spanned by certified solutions, refined until they meet within a tolerance.
+//!
+//! The paper's fixed point `x1` (Section IV) is only as tight as one linear relaxation over the whole
+//! box, and its largest-box sweep (Section V) keeps little of what bisection proves. Here the
+//! *hull of all surviving boxes* is kept and refined where it matters:
+//!
+//! **Outer bound.** A list of boxes covers every solution of `x0` (it starts as `[x1]`). The outer
+//! box is their hull. Each round, for every face of the hull that is not yet close to the inner
+//! bound (lower face of parameter `j`: `lo_j(outer) < lo_j(inner) - tol/2 · wid_j(inner)`), the box
+//! whose bound attains that face is split at the midpoint of its widest dimension (relative to the
+//! hull) and both halves are contracted with the Newton/LP step ([`crate::contract`]). Halves
+//! proved empty are discarded — every discarded piece carries a proof; the survivors replace the
+//! box. This is a best-first branch and bound on `min x_j` and `max x_j` over the solution set,
+//! shared by the `2n` faces, so that a box proved empty for one face is gone for all. Boxes that
+//! lie within the satisfied zone of every face are retired into one box `D` that stays in the
+//! hull. The same loop handles large prior boxes: while the Newton step does not bite, the face
+//! boxes are simply split until it does.
+//!
+//! **Inner bound.** Certified consistent points ([`crate::is_consistent_point`]) are pushed towards
+//! each face by successive linear programs: at a point `p`, with `f_k = f(p, mid M_k)`,
+//! `g_k = ∂f/∂x (p, mid M_k)` and `w_k = Σ_i |∂f/∂M_i| rad(M_{k,i})` (the first-order half-range of
+//! `f(p, ·)` over `M_k`, paper eq. 6), minimise `±d_j` subject to `|f_k + g_k·d| <= θ w_k` and
+//! `p + d` in the box, then certify `p + d`; the margin `θ < 1` absorbs the linearisation error and
+//! is lowered when a step fails. The starting points are the LP extreme points the contraction
+//! already computes. The inner box is the hull of certified points, so it lies inside the hull of
+//! the solution set.
+//!
+//! **Stop rule.** Per parameter, stop refining when `wid(outer) <= (1 + tol) wid(inner)`
+//! ([`Settings::hull_tolerance`]), or when [`Settings::hull_max_boxes`] boxes were contracted or
+//! [`Settings::hull_max_seconds`] elapsed; the ratios reached are reported.
+//!
+//! **Parallel and deterministic.** The halves of one round are contracted in parallel (rayon) and
+//! merged in a fixed order, so the result does not depend on the number of threads (it does depend
+//! on the time budget, when one is set and reached).
+
+use crate::certificate::{find_witness, is_consistent_point};
+use crate::contract::{contract, EmptinessProof, Workspace};
+use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
+use crate::{Interval, Model, Settings, Status};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// The result of [`hull`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Hull<const NX: usize> {
+    /// The verdict: `Empty` (every piece of `x0` proved empty), `Consistent` (a certified solution
+    /// exists) or `Undecided`.
+    pub status: Status,
+    /// Contains every solution in `x0` (all intervals empty when the status is `Empty`).
+    pub outer: [Interval; NX],
+    /// The hull of certified consistent points (`None` when none was found): the true hull of the
+    /// solution set lies between `inner` and `outer`.
+    pub inner: Option<[Interval; NX]>,
+    /// The paper's fixed point `x1` (Section IV), for comparison (`None` when `x0` was proved empty
+    /// at once).
+    pub x1: Option<[Interval; NX]>,
+    /// For `Empty`: the proof (the contraction's, or [`EmptinessProof::Subdivision`]).
+    pub emptiness: Option<EmptinessProof>,
+    /// A certified consistent point.
+    pub witness: Option<[f64; NX]>,
+    /// The certified consistent points that attain the faces of `inner`: for parameter `j`, entry
+    /// `2j` attains `inf(inner_j)` and entry `2j + 1` attains `sup(inner_j)` (empty when `inner` is
+    /// `None`). Each can be rechecked with [`crate::is_consistent_point`].
+    pub inner_points: Vec<[f64; NX]>,
+    /// Per parameter, `wid(outer) / wid(inner)` (`inf` where there is no inner width).
+    pub ratio: [f64; NX],
+    /// Whether every parameter met the tolerance (`false`: a budget ran out first).
+    pub converged: bool,
+    /// Boxes contracted with the Newton/LP step.
+    pub boxes_contracted: usize,
+    /// Refinement rounds.
+    pub rounds: usize,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// A box of the cover, with whether it is too small to split further.
+#[derive(Clone, Copy)]
+struct Piece<const NX: usize> {
+    b: [Interval; NX],
+    atomic: bool,
+}
+
+/// A face of the outer box: parameter `j`, lower (`upper == false`) or upper side.
+#[derive(Clone, Copy, PartialEq, Eq)]
+struct Face {
+    j: usize,
+    upper: bool,
+}
+
+impl Face {
+    fn all(nx: usize) -> impl Iterator<Item = Face> {
+        (0..nx).flat_map(|j| [Face { j, upper: false }, Face { j, upper: true }])
+    }
+
+    /// How far `b` reaches beyond the face direction: `-inf(b_j)` for a lower face, `sup(b_j)` for
+    /// an upper one (larger is more extreme).
+    fn reach(self, b: &Interval) -> f64 {
+        if self.upper {
+            b.sup()
+        } else {
+            -b.inf()
+        }
+    }
+
+    /// The slot of this face in the workspace's LP extreme points.
+    fn slot(self) -> usize {
+        2 * self.j + usize::from(self.upper)
+    }
+}
+
+/// The certified hull of the solution set in `x0` (see the module documentation).
+///
+/// ```
+/// use calib_core::{hull, interval_model, Interval, Scalar, Settings, Status};
+///
+/// #[interval_model]
+/// pub fn circle<S: Scalar>(x: &[S; 3], m: &[S; 2]) -> S {
+///     let [cx, cy, r] = *x;
+///     ((m[0] - cx).sqr() + (m[1] - cy).sqr()).sqrt() - r
+/// }
+///
+/// let measurements: Vec<[Interval; 2]> = (0..12)
+///     .map(|k| {
+///         let t = k as f64 * 0.5;
+///         [Interval::mid_rad(t.cos(), 1e-3), Interval::mid_rad(t.sin(), 1e-3)]
+///     })
+///     .collect();
+/// let x0 = [Interval::new(-0.1, 0.1), Interval::new(-0.1, 0.1), Interval::new(0.9, 1.1)];
+/// let h = hull(&Circle, &x0, &measurements, &Settings::default());
+/// assert_eq!(h.status, Status::Consistent);
+/// let inner = h.inner.unwrap();
+/// for j in 0..3 {
+///     assert!(inner[j].is_subset_of(h.outer[j]));           // inner ⊆ true hull ⊆ outer
+///     assert!(h.outer[j].is_subset_of(h.x1.unwrap()[j]));   // never looser than the paper's x1
+/// }
+/// assert!(h.outer[2].contains(1.0));
+/// ```
+pub fn hull<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
+    model: &M,
+    x0: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    settings: &Settings,
+) -> Hull<NX> {
+    hull_with(model, x0, measurements, settings, &|| settings.lp.backend())
+}
+
+/// [`hull`] with the LP engine of every contraction made by `engine` (one engine per worker
+/// thread). Any engine is safe: its answers are hints that only decide how tight the rigorous
+/// bounds are. (The inner-point search uses its own dense simplex: its points are certified by the
+/// sign test, whatever produced them.)
+pub fn hull_with<M, const NX: usize, const NM: usize>(
+    model: &M,
+    x0: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    settings: &Settings,
+    engine: &(dyn Fn() -> Box<dyn LpBackend> + Sync),
+) -> Hull<NX>
+where
+    M: Model<NX, NM> + Sync,
+{
+    let start = Instant::now();
+    let mut ws = Workspace::with_backend(engine());
+    let c = contract(model, x0, measurements, settings, &mut ws);
+    let mut out = Hull {
+        status: Status::Undecided,
+        outer: [Interval::EMPTY; NX],
+        inner: None,
+        x1: None,
+        emptiness: None,
+        witness: None,
+        inner_points: Vec::new(),
+        ratio: [f64::INFINITY; NX],
+        converged: false,
+        boxes_contracted: 1,
+        rounds: 0,
+        seconds: 0.0,
+    };
+    let x1 = match c.result {
+        Err(proof) => {
+            out.status = Status::Empty;
+            out.emptiness = Some(proof);
+            out.seconds = start.elapsed().as_secs_f64();
+            return out;
+        }
+        Ok(x1) => x1,
+    };
+    out.x1 = Some(x1);
+    if !x1.iter().all(|v| v.is_bounded()) {
+        // An unbounded box can be neither split at its midpoint nor linearised: keep it whole.
+        out.outer = x1;
+        out.seconds = start.elapsed().as_secs_f64();
+        return out;
+    }
+    let extremes = if c.iterations > 0 {
+        ws.extreme_points.clone()
+    } else {
+        Vec::new()
+    };
+    let mut refiner = Refiner {
+        model,
+        x0,
+        measurements,
+        settings,
+        engine,
+        cover: vec![Piece {
+            b: x1,
+            atomic: false,
+        }],
+        retired: None,
+        inner: None,
+        inner_points: Vec::new(),
+        witness: None,
+        contracted: 1,
+    };
+    let witness = find_witness(model, &x1, measurements, &extremes);
+    refiner.add_points(witness.as_slice());
+    // First inner points: push the LP extreme points of x1 (or the witness) towards their faces.
+    let seeds: Vec<(Face, [f64; NX])> = Face::all(NX)
+        .flat_map(|f| {
+            let lp = extremes.get(f.slot()).copied();
+            lp.into_iter().chain(witness).map(move |p| (f, p))
+        })
+        .collect();
+    refiner.add_points(&refiner.push_all(&x1, &seeds));
+    let converged = refiner.run(start);
+    out.boxes_contracted = refiner.contracted;
+    out.rounds = converged.1;
+    out.converged = converged.0;
+    out.witness = refiner.witness;
+    out.inner = refiner.inner;
+    out.inner_points = refiner.inner_points.clone();
+    match refiner.outer() {
+        None => {
+            out.status = Status::Empty;
+            out.emptiness = Some(EmptinessProof::Subdivision);
+        }
+        Some(outer) => {
+            out.outer = outer;
+            if out.witness.is_some() {
+                out.status = Status::Consistent;
+            }
+            if let Some(inner) = out.inner {
+                out.ratio = core::array::from_fn(|j| outer[j].wid() / inner[j].wid());
+            }
+        }
+    }
+    out.seconds = start.elapsed().as_secs_f64();
+    out
+}
+
+/// The state of the refinement: the cover of the solution set and the certified points.
+struct Refiner<'a, M, const NX: usize, const NM: usize> {
+    model: &'a M,
+    x0: &'a [Interval; NX],
+    measurements: &'a [[Interval; NM]],
+    settings: &'a Settings,
+    engine: &'a (dyn Fn() -> Box<dyn LpBackend> + Sync),
+    /// Boxes whose union contains every solution not in `retired`.
+    cover: Vec<Piece<NX>>,
+    /// The hull of retired boxes (boxes within the satisfied zone of every face).
+    retired: Option<[Interval; NX]>,
+    /// The hull of certified consistent points.
+    inner: Option<[Interval; NX]>,
+    /// Per face (slot `2j`, `2j + 1`), the certified point that reaches furthest towards it.
+    inner_points: Vec<[f64; NX]>,
+    /// One certified consistent point.
+    witness: Option<[f64; NX]>,
+    /// Boxes contracted so far.
+    contracted: usize,
+}
+
+impl<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize> Refiner<'_, M, NX, NM> {
+    /// The hull of the cover, the retired boxes and the inner box (`None` when all are empty).
+    /// Sound: every solution lies in a cover box or a retired box, and the inner box is made of
+    /// solutions, so adding it changes nothing but keeps the outer box around it.
+    fn outer(&self) -> Option<[Interval; NX]> {
+        let mut h: Option<[Interval; NX]> = self.retired;
+        for b in self.cover.iter().map(|p| &p.b).chain(self.inner.iter()) {
+            h = Some(match h {
+                None => *b,
+                Some(h) => core::array::from_fn(|j| h[j].hull(b[j])),
+            });
+        }
+        h
+    }
+
+    /// How far beyond the inner bound a face may still reach when it counts as satisfied:
+    /// `tol/2 · wid(inner_j)` (plus a few ulps, so that point-like parameters can stop too).
+    fn slack(&self, j: usize) -> f64 {
+        let Some(inner) = &self.inner else {
+            return f64::NEG_INFINITY;
+        };
+        let w = inner[j].wid();
+        let scale = inner[j].mag().max(f64::MIN_POSITIVE);
+        0.5 * self.settings.hull_tolerance * w + 8.0 * f64::EPSILON * scale
+    }
+
+    /// The reach of the inner bound in the direction of `face` plus its slack: a box whose reach
+    /// is at most this cannot make the face unsatisfied.
+    fn threshold(&self, face: Face) -> f64 {
+        match &self.inner {
+            None => f64::NEG_INFINITY,
+            Some(inner) => face.reach(&inner[face.j]) + self.slack(face.j),
+        }
+    }
+
+    /// Adds certified points: each face keeps the point that reaches furthest, and the inner box
+    /// is their hull.
+    fn add_points(&mut self, points: &[[f64; NX]]) {
+        for p in points {
+            self.witness.get_or_insert(*p);
+            if self.inner_points.is_empty() {
+                self.inner_points = vec![*p; 2 * NX];
+            }
+            for f in Face::all(NX) {
+                let held = &mut self.inner_points[f.slot()];
+                if f.reach(&Interval::point(p[f.j])) > f.reach(&Interval::point(held[f.j])) {
+                    *held = *p;
+                }
+            }
+        }
+        if !self.inner_points.is_empty() {
+            let pts = &self.inner_points;
+            self.inner = Some(core::array::from_fn(|j| {
+                Interval::new(pts[2 * j][j], pts[2 * j + 1][j])
+            }));
+        }
+    }
+
+    /// Pushes each seed towards its face inside `bounds` (clamped to `x0`); returns the certified
+    /// points found.
+    fn push_all(&self, bounds: &[Interval; NX], seeds: &[(Face, [f64; NX])]) -> Vec<[f64; NX]> {
+        let region: [Interval; NX] = core::array::from_fn(|j| bounds[j].intersection(self.x0[j]));
+        if region.iter().any(|v| v.is_empty()) {
+            return Vec::new();
+        }
+        let mut points = Vec::new();
+        let mut lp = DenseSimplex::default();
+        for (face, seed) in seeds {
+            if let Some(p) =
+                push_outward(self.model, &mut lp, seed, *face, &region, self.measurements)
+            {
+                points.push(p);
+            }
+        }
+        points
+    }
+
+    /// Runs refinement rounds until every face is satisfied or a budget is spent. Returns whether
+    /// it converged and the number of rounds.
+    fn run(&mut self, start: Instant) -> (bool, usize) {
+        let mut rounds = 0;
+        loop {
+            self.retire();
+            let faces: Vec<Face> = Face::all(NX).filter(|f| self.face_open(*f)).collect();
+            // Per open face, the box that attains it.
+            let mut picked: Vec<(usize, Vec<Face>)> = Vec::new();
+            for face in &faces {
+                let best = self
+                    .cover
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, p)| !p.atomic)
+                    .max_by(|a, b| {
+                        face.reach(&a.1.b[face.j])
+                            .total_cmp(&face.reach(&b.1.b[face.j]))
+                    });
+                let Some((i, p)) = best else { continue };
+                if face.reach(&p.b[face.j]) <= self.threshold(*face) {
+                    continue;
+                }
+                match picked.iter_mut().find(|(k, _)| *k == i) {
+                    Some((_, fs)) => fs.push(*face),
+                    None => picked.push((i, vec![*face])),
+                }
+            }
+            if picked.is_empty() {
+                // Either every face is satisfied, or the open ones are held by boxes too small
+                // to split.
+                return (faces.is_empty(), rounds);
+            }
+            let over_time = self
+                .settings
+                .hull_max_seconds
+                .is_some_and(|s| start.elapsed().as_secs_f64() >= s);
+            if self.contracted + 2 * picked.len() > self.settings.hull_max_boxes || over_time {
+                return (false, rounds);
+            }
+            rounds += 1;
+            self.refine(&picked);
+        }
+    }
+
+    /// Whether a face is not yet within tolerance of the inner bound.
+    fn face_open(&self, face: Face) -> bool {
+        let Some(outer) = self.outer() else {
+            return false;
+        };
+        face.reach(&outer[face.j]) > self.threshold(face)
+    }
+
+    /// Moves boxes that no open face can pick into the retired hull.
+    fn retire(&mut self) {
+        if self.inner.is_none() {
+            return;
+        }
+        let thresholds: Vec<(Face, f64)> = Face::all(NX).map(|f| (f, self.threshold(f))).collect();
+        let mut retired = self.retired;
+        self.cover.retain(|p| {
+            let reaches = thresholds.iter().any(|(f, t)| f.reach(&p.b[f.j]) > *t);
+            if !reaches {
+                retired = Some(match retired {
+                    None => p.b,
+                    Some(h) => core::array::from_fn(|j| h[j].hull(p.b[j])),
+                });
+            }
+            reaches
+        });
+        self.retired = retired;
+    }
+
+    /// Splits the picked boxes, contracts the halves in parallel, replaces the boxes by the
+    /// surviving halves and pushes their LP extreme points towards the picking faces.
+    fn refine(&mut self, picked: &[(usize, Vec<Face>)]) {
+        let outer = self.outer().unwrap_or(*self.x0);
+        let mut jobs: Vec<([Interval; NX], &[Face])> = Vec::with_capacity(2 * picked.len());
+        let mut atomic = Vec::new();
+        for (i, faces) in picked {
+            let b = self.cover[*i].b;
+            match split(&b, &outer) {
+                Some((l, r)) => {
+                    jobs.push((l, faces));
+                    jobs.push((r, faces));
+                }
+                None => atomic.push(*i),
+            }
+        }
+        for i in atomic {
+            self.cover[i].atomic = true;
+        }
+        let inner = self.inner;
+        let work = |ws: &mut Workspace<NX>, (b, faces): &([Interval; NX], &[Face])| {
+            let c = contract(self.model, b, self.measurements, self.settings, ws);
+            let Ok(child) = c.result else {
+                return None;
+            };
+            // Seeds: the child's LP extreme points that reach beyond the inner bound.
+            let seeds: Vec<(Face, [f64; NX])> = if c.iterations > 0 {
+                faces
+                    .iter()
+                    .map(|f| (*f, ws.extreme_points[f.slot()]))
+                    .filter(|(f, p)| match &inner {
+                        None => true,
+                        Some(h) => f.reach(&Interval::point(p[f.j])) > f.reach(&h[f.j]),
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            Some((child, self.push_all(&child, &seeds)))
+        };
+        let results: Vec<Option<Refined<NX>>> = if self.settings.parallel {
+            jobs.par_iter()
+                .map_init(|| Workspace::with_backend((self.engine)()), work)
+                .collect()
+        } else {
+            let mut ws = Workspace::with_backend((self.engine)());
+            jobs.iter().map(|j| work(&mut ws, j)).collect()
+        };
+        self.contracted += jobs.len();
+        let mut replaced: Vec<usize> = picked
+            .iter()
+            .map(|(i, _)| *i)
+            .filter(|i| !self.cover[*i].atomic)
+            .collect();
+        replaced.sort_unstable();
+        for i in replaced.into_iter().rev() {
+            self.cover.swap_remove(i);
+        }
+        for (child, points) in results.into_iter().flatten() {
+            self.cover.push(Piece {
+                b: child,
+                atomic: false,
+            });
+            self.add_points(&points);
+        }
+    }
+}
+
+/// A contracted half and the certified points pushed from its LP extreme points.
+type Refined<const NX: usize> = ([Interval; NX], Vec<[f64; NX]>);
+
+/// Splits `b` at the midpoint of its widest dimension relative to `outer` (`None` when no
+/// dimension can be split: the midpoint equals a bound).
+fn split<const NX: usize>(
+    b: &[Interval; NX],
+    outer: &[Interval; NX],
+) -> Option<([Interval; NX], [Interval; NX])> {
+    let rel = |j: usize| b[j].wid() / outer[j].wid().max(f64::MIN_POSITIVE);
+    let j = (0..NX).max_by(|&a, &c| rel(a).total_cmp(&rel(c)))?;
+    let (lo, hi) = (b[j].inf(), b[j].sup());
+    let m = b[j].mid();
+    if !(lo < m && m < hi) {
+        return None;
+    }
+    let (mut l, mut r) = (*b, *b);
+    l[j] = Interval::new(lo, m);
+    r[j] = Interval::new(m, hi);
+    Some((l, r))
+}
+
+/// Local optimisation of one parameter over the solution set: from `start`, successive linear
+/// programs move towards the face (see the module documentation) inside `region`; each step is
+/// kept only when the new point is certified consistent. Returns the most extreme certified point
+/// found (`None` when no point was certified).
+fn push_outward<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    lp: &mut DenseSimplex,
+    start: &[f64; NX],
+    face: Face,
+    region: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+) -> Option<[f64; NX]> {
+    let mut p: [f64; NX] =
+        core::array::from_fn(|j| start[j].clamp(region[j].inf(), region[j].sup()));
+    let mut best = is_consistent_point(model, &p, measurements).then_some(p);
+    // θ = 1 - margin: the margin starts tiny (the LP optimum should reach the face) and doubles
+    // whenever a step fails to certify.
+    let mut margin = 1e-3;
+    let mut poly = Polyhedron::default();
+    let mut objective = [0.0; NX];
+    objective[face.j] = if face.upper { -1.0 } else { 1.0 };
+    let mut dual = vec![0.0; 2 * measurements.len()];
+    let mut primal = [0.0; NX];
+    let mut row = [0.0; NX];
+    for _ in 0..12 {
+        let lo: [f64; NX] = core::array::from_fn(|j| region[j].inf() - p[j]);
+        let hi: [f64; NX] = core::array::from_fn(|j| region[j].sup() - p[j]);
+        if lo
+            .iter()
+            .zip(&hi)
+            .any(|(l, h)| l.partial_cmp(h).is_none_or(|o| o.is_gt()))
+        {
+            break;
+        }
+        poly.reset(&lo, &hi);
+        for m in measurements {
+            let mm = m.map(|v| v.mid());
+            let e = model.evaluate(&p, &mm);
+            let w: f64 = (1.0 - margin) * (0..NM).map(|i| e.dm[i].abs() * m[i].rad()).sum::<f64>();
+            // f + g·d <= θw  and  -(f + g·d) <= θw
+            row.copy_from_slice(&e.dx);
+            poly.push_row(&row, w - e.value);
+            row.iter_mut().for_each(|v| *v = -*v);
+            poly.push_row(&row, w + e.value);
+        }
+        dual.resize(poly.rows(), 0.0);
+        if lp.minimize(&poly, &objective, &mut dual, &mut primal) != LpStatus::Optimal {
+            margin = (2.0 * margin).min(0.9);
+            continue;
+        }
+        let q: [f64; NX] =
+            core::array::from_fn(|j| (p[j] + primal[j]).clamp(region[j].inf(), region[j].sup()));
+        if is_consistent_point(model, &q, measurements) {
+            let gain = match &best {
+                None => f64::INFINITY,
+                Some(b) => {
+                    face.reach(&Interval::point(q[face.j]))
+                        - face.reach(&Interval::point(b[face.j]))
+                }
+            };
+            p = q;
+            best = Some(q);
+            if gain <= 1e-12 * (1.0 + q[face.j].abs()) {
+                break;
+            }
+        } else {
+            // Linearisation error: a larger margin, from the last certified point.
+            margin = (2.0 * margin).min(0.9);
+            if let Some(b) = best {
+                p = b;
+            } else {
+                p = q;
+            }
+        }
+    }
+    best
+}
