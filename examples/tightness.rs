@@ -13,29 +13,8 @@
 //! `wid(inner)/wid(feasible)` over the seven parameters, the paper's `x1` for comparison, boxes and
 //! seconds.
 use calib_core::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
-use calib_core::{hull, Interval, Model, Settings};
+use calib_core::{hull, is_consistent_by_corners, Interval, Model, Settings};
 use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Uncertainty};
-
-/// Every measurement box has a corner with `f <= 0` and one with `f >= 0` at the point `x`.
-fn feasible(x: &[f64; 7], boxes: &[[Interval; 7]]) -> bool {
-    let xi = x.map(Interval::point);
-    boxes.iter().all(|m| {
-        let (mut neg, mut pos) = (false, false);
-        for mask in 0..128u32 {
-            let c: [Interval; 7] = core::array::from_fn(|i| {
-                Interval::point(if mask >> i & 1 == 1 {
-                    m[i].sup()
-                } else {
-                    m[i].inf()
-                })
-            });
-            let f = GoughLeg.residual_interval(&xi, &c);
-            neg |= f.sup() <= 0.0;
-            pos |= f.inf() >= 0.0;
-        }
-        neg && pos
-    })
-}
 
 /// The most extreme feasible point along `±x_j` reached from `start` by successive LPs on the
 /// first-order consistency conditions `|f + g·d| <= θ w`, with backtracking.
@@ -69,7 +48,7 @@ fn extreme(
         }
         let q: [f64; 7] =
             core::array::from_fn(|i| (p[i] + primal[i]).clamp(x0[i].inf(), x0[i].sup()));
-        if feasible(&q, boxes) {
+        if is_consistent_by_corners(&GoughLeg, &q, boxes) {
             if (q[j] - p[j]).abs() < 1e-13 {
                 break;
             }

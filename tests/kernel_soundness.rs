@@ -4,64 +4,17 @@
 #![allow(clippy::needless_range_loop)] // indices follow the paper (legs, parameters)
 
 use calib_core::lp::LpEngine;
-use calib_core::{certify, pave, sweep, Interval, Model, Relaxation, Settings, Status};
+use calib_core::{
+    certify, is_consistent_by_corners, pave, sweep, Interval, Model, Relaxation, Settings, Status,
+};
 use calib_gough::geometry::Pose;
-use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Leg, Simulation, Uncertainty};
+use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Uncertainty};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-fn x0_of(sim: &Simulation, leg: usize, radius: f64) -> [Interval; 7] {
-    sim.nominal[leg]
-        .params()
-        .map(|v| Interval::mid_rad(v, radius))
-}
+mod support;
 
-fn contains(b: &[Interval; 7], x: &[f64; 7]) -> bool {
-    (0..7).all(|j| b[j].contains(x[j]))
-}
-
-/// A random problem: random truth near the built-in hexapod, random number of configurations,
-/// random error bounds (per component, from 1e-3 to 10 times the paper's), random noise level.
-fn random_problem(seed: u64) -> Simulation {
-    let mut rng = StdRng::seed_from_u64(seed);
-    let truth: Vec<Leg> = builtin_hexapod()
-        .iter()
-        .map(|leg| Leg::from_params(&leg.params().map(|v| v + rng.random_range(-1.0..1.0))))
-        .collect();
-    let mut f = || 10f64.powf(rng.random_range(-3.0..1.0));
-    let u = Uncertainty {
-        pos: Uncertainty::PAPER.pos * f(),
-        len: Uncertainty::PAPER.len * f(),
-        axis: Uncertainty::PAPER.axis * f(),
-        angle_deg: Uncertainty::PAPER.angle_deg * f(),
-        q: 0.0,
-    };
-    let configs = rng.random_range(9..=25);
-    let noise = rng.random_range(0.0..=1.0);
-    simulate(&truth, configs, seed, u, noise, 0.1)
-}
-
-/// Independent re-check of a witness: for every measurement box, among its 2^7 corners one gives a
-/// rigorously non-positive and one a non-negative residual.
-fn recheck_witness(w: &[f64; 7], boxes: &[[Interval; 7]]) -> bool {
-    let x = w.map(Interval::point);
-    boxes.iter().all(|m| {
-        let (mut neg, mut pos) = (false, false);
-        for mask in 0..128u32 {
-            let corner: [Interval; 7] = core::array::from_fn(|i| {
-                Interval::point(if mask >> i & 1 == 1 {
-                    m[i].sup()
-                } else {
-                    m[i].inf()
-                })
-            });
-            let f = GoughLeg.residual_interval(&x, &corner);
-            neg |= f.sup() <= 0.0;
-            pos |= f.inf() >= 0.0;
-        }
-        neg && pos
-    })
-}
+use support::{contains, random_problem, x0_of};
 
 #[test]
 fn truth_is_inside_every_certified_box_of_random_problems() {
@@ -93,7 +46,7 @@ fn truth_is_inside_every_certified_box_of_random_problems() {
                 consistent += 1;
                 assert!(contains(&r.outer, &w));
                 assert!(
-                    recheck_witness(&w, &boxes),
+                    is_consistent_by_corners(&GoughLeg, &w, &boxes),
                     "seed {seed} leg {leg}: witness fails the re-check"
                 );
                 let inner = r.inner.expect("inner bounds with a witness");

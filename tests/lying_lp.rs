@@ -1,9 +1,10 @@
 //! The certificate does not depend on the LP engine: an engine that returns wrong multipliers,
 //! wrong primal points and false infeasibility claims cannot make the kernel lose a solution or
-//! claim emptiness — the safe bounds and the Farkas check catch every lie.
+//! claim emptiness — the safe bounds and the Farkas check catch every lie, in `certify` and in
+//! `hull`, which shaves and discards boxes with the same engine.
 
 use calib_core::lp::{LpBackend, LpStatus, Polyhedron};
-use calib_core::{certify_with, Interval, Settings, Status, Workspace};
+use calib_core::{certify_with, hull_with, Interval, Settings, Status, Workspace};
 use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Uncertainty};
 
 /// A deliberately wrong LP engine driven by a small deterministic generator.
@@ -82,5 +83,32 @@ fn a_lying_lp_engine_cannot_break_the_certificate() {
             assert!(r.outer[j].is_subset_of(x0[j]));
         }
         assert!(r.lp_failures > 0, "the lies were noticed");
+    }
+}
+
+#[test]
+fn a_lying_lp_engine_cannot_break_the_hull() {
+    let truth = builtin_hexapod();
+    for seed in 0..3u64 {
+        let sim = simulate(&truth, 21, seed, Uncertainty::PAPER, 1.0, 0.1);
+        let leg = (2 * seed % 6) as usize;
+        let boxes = leg_boxes(&sim.measured, &sim.uncertainty, leg);
+        let x0 = sim.nominal[leg].params().map(|v| Interval::mid_rad(v, 0.1));
+        let state = std::sync::atomic::AtomicU64::new(seed + 1);
+        let liar = || -> Box<dyn LpBackend> {
+            let s = state.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            Box::new(LyingLp { state: s })
+        };
+        let settings = Settings::default().with_hull_budget(600, None);
+        let h = hull_with(&GoughLeg, &x0, &boxes, &settings, &liar);
+        assert_ne!(h.status, Status::Empty, "seed {seed}: a lie became a proof");
+        let t = truth[leg].params();
+        for j in 0..7 {
+            assert!(
+                h.outer[j].contains(t[j]),
+                "seed {seed}: the truth was cut from parameter {j}"
+            );
+            assert!(h.outer[j].is_subset_of(x0[j]));
+        }
     }
 }

@@ -54,6 +54,42 @@ pub fn is_consistent_point<M: Model<NX, NM>, const NX: usize, const NM: usize>(
         && is_certified_consistent(model, &x.map(Interval::point), measurements)
 }
 
+/// Whether the point `x` is consistent with every measurement box by an exhaustive test: among the
+/// `2^NM` corners of each box, one gives a rigorously non-positive and one a non-negative residual.
+/// Slower than [`is_consistent_point`] and independent of the linearisation it uses to pick two
+/// corners: meant for checking certified points in tests and measurements.
+///
+/// # Panics
+/// If `NM > 20` (more than a million corners per box).
+pub fn is_consistent_by_corners<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    x: &[f64; NX],
+    measurements: &[[Interval; NM]],
+) -> bool {
+    assert!(NM <= 20, "2^{NM} corners per measurement box is too many");
+    let xi = x.map(Interval::point);
+    x.iter().all(|v| v.is_finite())
+        && measurements.iter().all(|m| {
+            let (mut neg, mut pos) = (false, false);
+            for mask in 0..1u64 << NM {
+                let corner: [Interval; NM] = core::array::from_fn(|i| {
+                    Interval::point(if mask >> i & 1 == 1 {
+                        m[i].sup()
+                    } else {
+                        m[i].inf()
+                    })
+                });
+                let f = model.residual_interval(&xi, &corner);
+                neg |= f.sup() <= 0.0;
+                pos |= f.inf() >= 0.0;
+                if neg && pos {
+                    return true;
+                }
+            }
+            false
+        })
+}
+
 /// A Gauss–Newton (Levenberg-damped) least-squares point of `Σ_k f(x, mid M_k)²` started at the
 /// box centre and kept inside the box: a good candidate for a witness.
 pub(crate) fn least_squares_point<M: Model<NX, NM>, const NX: usize, const NM: usize>(
