@@ -55,6 +55,8 @@ pub struct Hull<const NX: usize> {
     /// The paper's fixed point `x1` (Section IV), for comparison (`None` when `x0` was proved empty
     /// at once).
     pub x1: Option<[Interval; NX]>,
+    /// Newton/LP steps of the contraction to `x1`.
+    pub iterations: usize,
     /// For `Empty`: the proof (the contraction's, or [`EmptinessProof::Subdivision`]).
     pub emptiness: Option<EmptinessProof>,
     /// A certified consistent point.
@@ -168,6 +170,7 @@ where
         outer: [Interval::EMPTY; NX],
         inner: None,
         x1: None,
+        iterations: c.iterations,
         emptiness: None,
         witness: None,
         inner_points: Vec::new(),

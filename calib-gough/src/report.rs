@@ -5,10 +5,17 @@
 //!   "legs": [ { "leg": 1, "status": "consistent" | "empty" | "undecided",
 //!               "names": ["ax","ay","az","bx","by","bz","l"],
 //!               "x0": [[lo, hi], ...], "x1": [[lo, hi], ...], "x2": [[lo, hi], ...] or null,
-//!               "inner": [[lo, hi], ...] or null, "witness": [..7] or null,
+//!               "outer": [[lo, hi], ...] or null, "inner": [[lo, hi], ...] or null,
+//!               "converged": true | false | null, "witness": [..7] or null,
 //!               "iterations": n, "boxes": n, "seconds": s } ],
 //!   "seconds": total }
 //! ```
+//! `outer` is the tightest certified box (the tight hull; `x1` with `--fast`), `inner` the hull of
+//! certified consistent parameter vectors: the true range of each parameter lies between them.
+//! `converged` says whether the hull refinement met its tolerance (`null` with `--fast`); `x1` is
+//! the paper's fixed point. `outer` and `converged` were added to version 1 without breaking it:
+//! reports written before read back with `null` there.
+//!
 //! Bounds are written with Rust's shortest round-trip formatting (serde_json), so reading them back
 //! gives the same `f64`s: no bound is moved inward by printing. An empty box is written as `null`
 //! bounds.
@@ -27,12 +34,18 @@ pub struct LegReport {
     pub names: Vec<String>,
     /// The initial box.
     pub x0: Vec<[f64; 2]>,
-    /// The certified box (`null` when empty).
+    /// The paper's fixed point x1, a certified box (`null` when empty).
     pub x1: Option<Vec<[f64; 2]>>,
     /// The hull of the sweep (`null` without `--sweep` or when empty).
     pub x2: Option<Vec<[f64; 2]>>,
+    /// The tightest certified outer box (`null` when empty).
+    #[serde(default)]
+    pub outer: Option<Vec<[f64; 2]>>,
     /// Certified inner bounds (`null` without a witness).
     pub inner: Option<Vec<[f64; 2]>>,
+    /// Whether the hull refinement met its tolerance (`null` with `--fast`).
+    #[serde(default)]
+    pub converged: Option<bool>,
     /// A certified consistent parameter vector.
     pub witness: Option<Vec<f64>>,
     /// Newton/LP iterations of the certification.
@@ -130,7 +143,9 @@ mod tests {
                 x0: bounds(&b),
                 x1: Some(bounds(&b)),
                 x2: None,
+                outer: Some(bounds(&b)),
                 inner: Some(bounds(&b)),
+                converged: Some(true),
                 witness: Some(vec![0.1; 7]),
                 iterations: 3,
                 boxes: 1,

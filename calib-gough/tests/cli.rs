@@ -93,18 +93,59 @@ fn truth_is_inside_every_leg_for_many_seeds() {
                 .map(|v| v.as_f64().unwrap())
                 .chain([t["l"].as_f64().unwrap()])
                 .collect();
-            for (j, b) in leg["x1"].as_array().unwrap().iter().enumerate() {
-                let (lo, hi) = (b[0].as_f64().unwrap(), b[1].as_f64().unwrap());
-                assert!(
-                    lo <= values[j] && values[j] <= hi,
-                    "seed {seed} leg {} param {j}",
-                    i + 1
-                );
+            let bound = |name: &str, j: usize| {
+                let b = &leg[name][j];
+                (b[0].as_f64().unwrap(), b[1].as_f64().unwrap())
+            };
+            assert_eq!(leg["converged"], true, "seed {seed} leg {}", i + 1);
+            for (j, &t) in values.iter().enumerate() {
+                let (x1, outer, inner) = (bound("x1", j), bound("outer", j), bound("inner", j));
+                for (lo, hi) in [x1, outer] {
+                    assert!(lo <= t && t <= hi, "seed {seed} leg {} param {j}", i + 1);
+                }
+                // inner ⊆ outer ⊆ x1, and outer within the default tolerance of inner.
+                assert!(x1.0 <= outer.0 && outer.0 <= inner.0 && inner.1 <= outer.1);
+                assert!(outer.1 <= x1.1);
+                assert!(outer.1 - outer.0 <= 1.05 * (inner.1 - inner.0) * (1.0 + 1e-12));
             }
         }
         let stdout = String::from_utf8_lossy(&out.stdout);
         assert!(stdout.contains("== leg 6") && stdout.contains("x1"));
+        assert!(stdout.contains("outer/inner width") && stdout.contains("true range"));
     }
+}
+
+#[test]
+fn fast_reports_the_papers_x1_as_the_outer_box() {
+    let dir = tempdir("fast");
+    simulate(&dir, 5, &[]);
+    let out = certify(&dir, &["--fast", "--legs", "2,5"]);
+    assert_eq!(out.status.code(), Some(0));
+    let rep = report(&dir);
+    let legs = rep["legs"].as_array().unwrap();
+    assert_eq!(legs.len(), 2);
+    for leg in legs {
+        assert_eq!(leg["outer"], leg["x1"]);
+        assert!(leg["converged"].is_null());
+        assert_eq!(leg["boxes"], 1);
+    }
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("x1/inner width") && stdout.contains("drop --fast"));
+}
+
+#[test]
+fn a_spent_budget_is_reported_and_the_boxes_stay_certified() {
+    let dir = tempdir("budget");
+    simulate(&dir, 6, &[]);
+    let out = certify(&dir, &["--legs", "3", "--max-boxes", "20"]);
+    assert_eq!(out.status.code(), Some(0));
+    let leg = &report(&dir)["legs"][0];
+    assert_eq!(leg["converged"], false);
+    assert!(leg["boxes"].as_u64().unwrap() <= 20);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("budget spent"));
+    let bad = certify(&dir, &["--tolerance", "0"]);
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--tolerance"));
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! `gough certify`.
 
 use super::DataFiles;
-use calib_core::{certify, pave, sweep, Certification, Interval, Settings, Status};
+use calib_core::{certify, hull, pave, sweep, EmptinessProof, Interval, Settings, Status};
 use calib_gough::files::{check_uncertainty, read_measurements, read_robot, read_uncertainty};
 use calib_gough::measurement::measured;
 use calib_gough::plot;
@@ -21,6 +21,20 @@ pub struct Args {
     /// Only these legs (1-based, comma-separated), e.g. --legs 1,3.
     #[arg(long, value_delimiter = ',', value_name = "LIST")]
     legs: Option<Vec<usize>>,
+    /// Only the paper's fixed point x1 (one Newton/LP contraction, milliseconds per leg) instead
+    /// of the tight hull: x1 is then the outer box, with its own (looser) inner bounds.
+    #[arg(long)]
+    fast: bool,
+    /// Refine until outer width <= (1 + TOL) × inner width for every parameter.
+    #[arg(long, value_name = "TOL", default_value_t = 0.05)]
+    tolerance: f64,
+    /// Contract at most this many boxes per leg when refining the hull.
+    #[arg(long, value_name = "N", default_value_t = 200_000)]
+    max_boxes: usize,
+    /// Stop refining a leg's hull after this many seconds (the result stays certified; the
+    /// ratio reached is reported).
+    #[arg(long, value_name = "SECONDS")]
+    max_seconds: Option<f64>,
     /// Also run the paper's 128-box bisection sweep and report its hull x2.
     #[arg(long)]
     sweep: bool,
@@ -30,16 +44,27 @@ pub struct Args {
     /// Write the JSON report (schema version 1) to this file.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
-    /// Write one SVG per leg into this folder: x0, x1, x2 and the inner box in the projections
-    /// (ax, ay), (bx, by) and (az, l).
+    /// Write one SVG per leg into this folder: x0, x1, x2, the outer and the inner box in the
+    /// projections (ax, ay), (bx, by) and (az, l).
     #[arg(long, value_name = "DIR")]
     plots: Option<PathBuf>,
 }
 
+/// One leg's certified result, from the tight hull or (with `--fast`) from x1 alone.
 struct LegResult {
     leg: usize,
     x0: [Interval; 7],
-    cert: Certification<7>,
+    status: Status,
+    emptiness: Option<EmptinessProof>,
+    /// The paper's fixed point (`None` when x0 was proved empty at once).
+    x1: Option<[Interval; 7]>,
+    /// The tightest certified outer box (`None` when empty).
+    outer: Option<[Interval; 7]>,
+    inner: Option<[Interval; 7]>,
+    witness: Option<[f64; 7]>,
+    iterations: usize,
+    /// Whether the hull met the tolerance (`None` with `--fast`).
+    converged: Option<bool>,
     x2: Option<Option<[Interval; 7]>>,
     paving: Option<(usize, f64, f64)>,
     boxes: usize,
@@ -71,7 +96,21 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             return Err(format!("--pave: expected a relative width in (0, 1), found {tol}").into());
         }
     }
-    let settings = Settings::default();
+    if !(a.tolerance > 0.0 && a.tolerance.is_finite()) {
+        return Err(format!(
+            "--tolerance: expected a positive number, found {}",
+            a.tolerance
+        )
+        .into());
+    }
+    if let Some(s) = a.max_seconds {
+        if s.is_nan() || s <= 0.0 {
+            return Err(format!("--max-seconds: expected a positive number, found {s}").into());
+        }
+    }
+    let settings = Settings::default()
+        .with_hull_tolerance(a.tolerance)
+        .with_hull_budget(a.max_boxes, a.max_seconds);
     let start = Instant::now();
     // Progress on a terminal only (indicatif draws nothing when stderr is not a terminal).
     let bar = indicatif::ProgressBar::new(legs.len() as u64);
@@ -87,8 +126,45 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             let nominal = spec.nominal.params();
             let x0: [Interval; 7] = core::array::from_fn(|j| measured(nominal[j], spec.radius[j]));
             let boxes = leg_boxes(&data.configs, &u, leg);
-            let cert = certify(&GoughLeg, &x0, &boxes, &settings);
-            let mut contracted = 1;
+            let mut r = if a.fast {
+                let c = certify(&GoughLeg, &x0, &boxes, &settings);
+                let x1 = (c.status != Status::Empty).then_some(c.outer);
+                LegResult {
+                    leg,
+                    x0,
+                    status: c.status,
+                    emptiness: c.emptiness,
+                    x1,
+                    outer: x1,
+                    inner: c.inner,
+                    witness: c.witness,
+                    iterations: c.iterations,
+                    converged: None,
+                    x2: None,
+                    paving: None,
+                    boxes: 1,
+                    seconds: 0.0,
+                }
+            } else {
+                let h = hull(&GoughLeg, &x0, &boxes, &settings);
+                LegResult {
+                    leg,
+                    x0,
+                    status: h.status,
+                    emptiness: h.emptiness,
+                    x1: h.x1,
+                    outer: (h.status != Status::Empty).then_some(h.outer),
+                    inner: h.inner,
+                    witness: h.witness,
+                    iterations: h.iterations,
+                    converged: Some(h.converged),
+                    x2: None,
+                    paving: None,
+                    boxes: h.boxes_contracted,
+                    seconds: 0.0,
+                }
+            };
+            let mut contracted = r.boxes;
             let x2 = a.sweep.then(|| {
                 let s = sweep(&GoughLeg, &x0, &boxes, &settings);
                 contracted += s.boxes_contracted;
@@ -100,15 +176,11 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                 (p.boxes.len(), p.inner_volume, p.outer_volume)
             });
             bar.inc(1);
-            LegResult {
-                leg,
-                x0,
-                cert,
-                x2,
-                paving,
-                boxes: contracted,
-                seconds: t.elapsed().as_secs_f64(),
-            }
+            r.x2 = x2;
+            r.paving = paving;
+            r.boxes = contracted;
+            r.seconds = t.elapsed().as_secs_f64();
+            r
         })
         .collect();
     bar.finish_and_clear();
@@ -116,18 +188,20 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let mut any_empty = false;
     let mut reports = Vec::new();
     for r in &results {
-        any_empty |= r.cert.status == Status::Empty;
+        any_empty |= r.status == Status::Empty;
         print_leg(r);
         reports.push(LegReport {
             leg: r.leg + 1,
-            status: format!("{:?}", r.cert.status).to_lowercase(),
+            status: format!("{:?}", r.status).to_lowercase(),
             names: PARAMETER_NAMES.iter().map(|s| s.to_string()).collect(),
             x0: bounds(&r.x0),
-            x1: (r.cert.status != Status::Empty).then(|| bounds(&r.cert.outer)),
+            x1: r.x1.map(|b| bounds(&b)),
             x2: r.x2.flatten().map(|b| bounds(&b)),
-            inner: r.cert.inner.map(|b| bounds(&b)),
-            witness: r.cert.witness.map(|w| w.to_vec()),
-            iterations: r.cert.iterations,
+            outer: r.outer.map(|b| bounds(&b)),
+            inner: r.inner.map(|b| bounds(&b)),
+            converged: r.converged,
+            witness: r.witness.map(|w| w.to_vec()),
+            iterations: r.iterations,
             boxes: r.boxes,
             seconds: r.seconds,
         });
@@ -138,12 +212,13 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             .map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
         for r in &results {
             let mut boxes = vec![("x0", "black", r.x0)];
-            if r.cert.status != Status::Empty {
-                boxes.push(("x1", "#369", r.cert.outer));
-            }
+            boxes.extend(r.x1.map(|b| ("x1", "#369", b)));
             boxes.extend(r.x2.flatten().map(|b| ("x2", "#693", b)));
-            boxes.extend(r.cert.inner.map(|b| ("inner", "#c33", b)));
-            let title = format!("leg {}: {:?}", r.leg + 1, r.cert.status);
+            if !a.fast {
+                boxes.extend(r.outer.map(|b| ("outer", "#939", b)));
+            }
+            boxes.extend(r.inner.map(|b| ("inner", "#c33", b)));
+            let title = format!("leg {}: {:?}", r.leg + 1, r.status);
             let svg =
                 plot::nested_boxes(&boxes, &[(0, 1), (3, 4), (2, 6)], &PARAMETER_NAMES, &title);
             let path = dir.join(format!("leg{}.svg", r.leg + 1));
@@ -167,39 +242,54 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
 }
 
 fn print_leg(r: &LegResult) {
-    let c = &r.cert;
     println!(
-        "== leg {} — {:?} ({} iterations, {:.3} s)",
+        "== leg {} — {:?} ({} iterations to x1, {} boxes, {:.3} s)",
         r.leg + 1,
-        c.status,
-        c.iterations,
+        r.status,
+        r.iterations,
+        r.boxes,
         r.seconds
     );
-    let x1 = (c.status != Status::Empty).then_some(c.outer);
-    let mut rows = vec![("x0", Some(r.x0)), ("x1", x1)];
+    let mut rows = vec![("x0", Some(r.x0)), ("x1", r.x1)];
     if let Some(x2) = r.x2 {
         rows.push(("x2", x2));
     }
-    if let Some(inner) = c.inner {
+    if r.converged.is_some() {
+        rows.push(("outer", r.outer));
+    }
+    if let Some(inner) = r.inner {
         rows.push(("inner", Some(inner)));
     }
     print!("{}", table(&rows));
-    match c.status {
+    match r.status {
         Status::Empty => println!(
             "verdict: no parameter vector in x0 fits the measurements within their error bounds \
              (proof: {:?})",
-            c.emptiness.expect("empty has a proof")
+            r.emptiness.expect("empty has a proof")
         ),
         Status::Consistent => {
-            println!("verdict: consistent (a certified witness satisfies every measurement box)");
-            if let Some(ratio) = c.overestimation() {
-                println!(
-                    "outer/inner width (worst-case overestimation): {}",
-                    ratios(&ratio)
-                );
-            }
+            println!("verdict: consistent (a certified witness satisfies every measurement box)")
         }
-        Status::Undecided => println!("verdict: undecided (x1 is still a certified enclosure)"),
+        Status::Undecided => println!(
+            "verdict: undecided (no certified witness found; the outer box is still a certified \
+             enclosure)"
+        ),
+    }
+    if let (Some(outer), Some(inner)) = (r.outer, r.inner) {
+        let ratio: [f64; 7] = core::array::from_fn(|j| outer[j].wid() / inner[j].wid());
+        let which = if r.converged.is_some() { "outer" } else { "x1" };
+        println!("{which}/inner width: {}", ratios(&ratio));
+        match r.converged {
+            Some(true) => println!(
+                "  the true range of each parameter lies between inner and outer: outer overstates \
+                 it by at most the ratio"
+            ),
+            Some(false) => println!(
+                "  budget spent before every ratio reached the tolerance (--max-boxes, \
+                 --max-seconds); both boxes are still certified"
+            ),
+            None => println!("  (--fast: the paper's x1 only; drop --fast for the tight hull)"),
+        }
     }
     if let Some((n, inner, outer)) = r.paving {
         println!("paving: {n} boxes, inner volume {inner:.3e}, outer volume {outer:.3e}");

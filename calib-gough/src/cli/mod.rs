@@ -22,11 +22,23 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Certify every leg: outer box, verdict, evidence, timing.
+    /// Certify every leg: the tight outer box, inner bounds, verdict, evidence, timing.
     ///
     /// Example:
     ///   gough certify --robot robot.toml --measurements measurements.csv \
-    ///                 --uncertainty uncertainty.toml --sweep --json report.json
+    ///                 --uncertainty uncertainty.toml --json report.json
+    ///
+    /// What the boxes mean, per leg parameter (a = base point, b = platform point, l = offset):
+    ///   outer  every parameter vector that fits all measurements within their error bounds lies
+    ///          in this box: a proof, with rigorous rounding.
+    ///   inner  spanned by parameter vectors each proved to fit all measurements: the true range
+    ///          of every parameter covers at least this box.
+    ///   ratio  outer width / inner width: the true range lies between the two, so 1.05 means
+    ///          the outer box overstates it by at most 5%. By default the refinement stops at 1.05
+    ///          (--tolerance 0.05) or when its budget runs out.
+    ///   x1     the paper's fixed point (one Newton/LP contraction), kept for comparison;
+    ///          --fast reports only x1 (milliseconds per leg) as the outer box.
+    ///   x2     the paper's 128-box bisection sweep (with --sweep), for comparison.
     ///
     /// Exit code: 0 when every leg is certified (consistent or undecided), 2 when a leg is proved
     /// empty (the data are inconsistent with the model and the error bounds), 1 on errors.
@@ -48,7 +60,7 @@ enum Command {
     Simulate(simulate::Args),
     /// The paper's Section V experiment on an embedded default (no files): exact-data check, then
     /// x0, x1, x2 (sweep) and xs (hull of Monte-Carlo least-squares solutions) next to the paper's
-    /// Tables II–IV.
+    /// Tables II–IV, and the tight certified hull (outer, inner) of this run.
     ///
     /// Example:
     ///   gough reproduce --samples 1000
