@@ -1,6 +1,6 @@
 //! `gough reproduce`: the paper's Section V experiment on an embedded default.
 
-use calib_core::{certify, sweep, Interval, Settings, Status};
+use calib_core::{certify, hull, sweep, Interval, Settings, Status};
 use calib_gough::geometry::Pose;
 use calib_gough::lsq::fit_leg;
 use calib_gough::plot;
@@ -121,6 +121,9 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let t2 = Instant::now();
     let s = sweep(&calib_gough::GoughLeg, &x0, &boxes, &settings);
     let t_sweep = t2.elapsed().as_secs_f64();
+    let t4 = Instant::now();
+    let h = hull(&calib_gough::GoughLeg, &x0, &boxes, &settings);
+    let t_hull = t4.elapsed().as_secs_f64();
 
     // xs: hull of least-squares solutions on measurements drawn inside M ∩ [true - e, true + e].
     let t3 = Instant::now();
@@ -182,26 +185,64 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         "certified (this run): {:?}, {} iterations",
         c.status, c.iterations
     );
-    let ours = [("x0", Some(x0)), ("x1", x1), ("x2", s.hull), ("xs", xs)];
+    let outer = (h.status != Status::Empty).then_some(h.outer);
+    let ours = [
+        ("x0", Some(x0)),
+        ("x1", x1),
+        ("x2", s.hull),
+        ("xs", xs),
+        ("outer", outer),
+        ("inner", h.inner),
+    ];
     print!("{}", side_by_side(&ours));
+    println!(
+        "\nx0 initial box, x1 the paper's fixed point, x2 its sweep, xs the hull of the least-squares \
+         solutions;\nouter the tight certified hull (every consistent parameter vector lies in it), \
+         inner the hull of\nparameter vectors proved consistent: the true range lies between them."
+    );
     if let Some(ratio) = c.overestimation() {
         println!(
-            "\ninner bounds (certified points): outer/inner width {}",
+            "x1/inner width (x1's own inner bounds):   {}",
             ratios(&ratio)
         );
     }
-    if let (Some(x1), Some(xs)) = (x1, xs) {
-        let out: Vec<&str> = (0..7)
-            .filter(|&j| !xs[j].is_subset_of(x1[j]))
+    if h.inner.is_some() {
+        println!(
+            "outer/inner width (tight hull, {} boxes): {}",
+            h.boxes_contracted,
+            ratios(&h.ratio)
+        );
+    }
+    if let (Some(x1), Some(outer)) = (x1, outer) {
+        let shrink: [f64; 7] = core::array::from_fn(|j| x1[j].wid() / outer[j].wid());
+        println!(
+            "x1 width / outer width:                   {}",
+            ratios(&shrink)
+        );
+    }
+    for (name, certified) in [("x1", x1), ("outer", outer)] {
+        let (Some(b), Some(xs)) = (certified, xs) else {
+            continue;
+        };
+        let sticking: Vec<&str> = (0..7)
+            .filter(|&j| !xs[j].is_subset_of(b[j]))
             .map(|j| PARAMETER_NAMES[j])
             .collect();
-        if out.is_empty() {
-            println!("all {} least-squares solutions lie inside x1", fits.len());
+        let count = fits
+            .iter()
+            .filter(|f| (0..7).any(|j| !b[j].contains(f[j])))
+            .count();
+        if sticking.is_empty() {
+            println!(
+                "all {} least-squares solutions lie inside {name}",
+                fits.len()
+            );
         } else {
             println!(
-                "least-squares solutions stick out of the certified x1 in: {} — those solutions are not \
-                 consistent with the measurements and their error bounds",
-                out.join(", ")
+                "{count} of {} least-squares solutions stick out of the certified {name} (in {}): \
+                 they are not consistent with the measurements and their error bounds",
+                fits.len(),
+                sticking.join(", ")
             );
         }
     }
@@ -216,7 +257,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             .join(" ")
     );
     println!(
-        "timing: certify {t_certify:.3} s, sweep {t_sweep:.3} s, {} least-squares fits {t_mc:.3} s ({} threads)",
+        "timing: certify {t_certify:.3} s, sweep {t_sweep:.3} s, hull {t_hull:.3} s, {} least-squares fits {t_mc:.3} s ({} threads)",
         a.samples,
         rayon::current_num_threads()
     );
@@ -229,7 +270,9 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
 
 /// The paper's Tables II–IV (base point, platform point, offset): for each of x0, x1, x2, xs the
 /// mid and rad of this run next to the paper's published values (from its own simulated data).
-fn side_by_side(ours: &[(&str, Option<[Interval; 7]>); 4]) -> String {
+/// The paper's Tables II–IV next to this run; rows without a published counterpart (the tight hull)
+/// show a dash in the paper's column.
+fn side_by_side(ours: &[(&str, Option<[Interval; 7]>)]) -> String {
     let groups: [(&str, &[usize]); 3] = [
         ("Table II: base attachment point a [cm]", &[0, 1, 2]),
         ("Table III: mobile attachment point b [cm]", &[3, 4, 5]),
@@ -237,24 +280,26 @@ fn side_by_side(ours: &[(&str, Option<[Interval; 7]>); 4]) -> String {
     ];
     let mut out = String::new();
     for (title, params) in groups {
-        out.push_str(&format!("\n{title}   (this run | paper)\n{:<4}", ""));
+        out.push_str(&format!("\n{title}   (this run | paper)\n{:<5}", ""));
         for &j in params {
             out.push_str(&format!(" | {:^39}", PARAMETER_NAMES[j]));
         }
         out.push('\n');
-        for (row, (label, b)) in ours.iter().enumerate() {
-            out.push_str(&format!("{label:<4}"));
+        for (label, b) in ours {
+            out.push_str(&format!("{label:<5}"));
+            let paper = PAPER.iter().find(|(name, _)| name == label);
             for &j in params {
-                let (pm, pr) = PAPER[row].1[j];
+                let theirs = match paper {
+                    Some((_, p)) => format!("{:>9.4} {:>8.4}", p[j].0, p[j].1),
+                    None => format!("{:>18}", "—"),
+                };
                 match b {
                     Some(b) => out.push_str(&format!(
-                        " | {:>9.4} {:>8.4} | {:>9.4} {:>8.4}",
+                        " | {:>9.4} {:>8.4} | {theirs}",
                         b[j].mid(),
                         b[j].rad(),
-                        pm,
-                        pr
                     )),
-                    None => out.push_str(&format!(" | {:>18} | {pm:>9.4} {pr:>8.4}", "empty")),
+                    None => out.push_str(&format!(" | {:>18} | {theirs}", "empty")),
                 }
             }
             out.push('\n');
