@@ -12,53 +12,13 @@
 //! prints per leg the worst `wid(outer)/wid(feasible)`, `wid(outer)/wid(inner)` and
 //! `wid(inner)/wid(feasible)` over the seven parameters, the paper's `x1` for comparison, boxes and
 //! seconds.
-use calib_core::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
-use calib_core::{hull, is_consistent_by_corners, Interval, Model, Settings};
+use calib_core::{hull, Interval, Settings};
 use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Uncertainty};
 
-/// The most extreme feasible point along `±x_j` reached from `start` by successive LPs on the
-/// first-order consistency conditions `|f + g·d| <= θ w`, with backtracking.
-fn extreme(
-    start: [f64; 7],
-    j: usize,
-    sign: f64,
-    x0: &[Interval; 7],
-    boxes: &[[Interval; 7]],
-) -> [f64; 7] {
-    let mut p = start;
-    let mut lp = DenseSimplex::default();
-    let mut poly = Polyhedron::default();
-    let mut c = [0.0; 7];
-    c[j] = sign;
-    let (mut dual, mut primal) = (vec![0.0; 2 * boxes.len()], [0.0; 7]);
-    let mut theta = 0.999;
-    for _ in 0..30 {
-        let lo: [f64; 7] = core::array::from_fn(|i| x0[i].inf() - p[i]);
-        let hi: [f64; 7] = core::array::from_fn(|i| x0[i].sup() - p[i]);
-        poly.reset(&lo, &hi);
-        for m in boxes {
-            let e = GoughLeg.evaluate(&p, &m.map(|v| v.mid()));
-            let w: f64 = (0..7).map(|i| e.dm[i].abs() * m[i].rad()).sum();
-            poly.push_row(&e.dx, theta * w - e.value);
-            poly.push_row(&e.dx.map(|v| -v), theta * w + e.value);
-        }
-        dual.resize(poly.rows(), 0.0);
-        if lp.minimize(&poly, &c, &mut dual, &mut primal) != LpStatus::Optimal {
-            break;
-        }
-        let q: [f64; 7] =
-            core::array::from_fn(|i| (p[i] + primal[i]).clamp(x0[i].inf(), x0[i].sup()));
-        if is_consistent_by_corners(&GoughLeg, &q, boxes) {
-            if (q[j] - p[j]).abs() < 1e-13 {
-                break;
-            }
-            p = q;
-        } else {
-            theta = 1.0 - 2.0 * (1.0 - theta);
-        }
-    }
-    p
-}
+// The independent feasible-point finder shared with the tests.
+#[path = "../tests/support/mod.rs"]
+mod support;
+use support::extreme;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();

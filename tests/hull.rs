@@ -8,7 +8,7 @@ use calib_core::{
     certify, hull, is_consistent_by_corners, EmptinessProof, Interval, Settings, Status,
 };
 use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Uncertainty};
-use support::{contains, random_problem, x0_of};
+use support::{contains, extreme, random_problem, x0_of};
 
 /// A box budget that keeps the random-problem tests quick; soundness holds whatever the budget.
 fn budgeted() -> Settings {
@@ -39,6 +39,43 @@ fn hull_keeps_the_truth_and_nests_its_bounds_over_random_problems() {
             }
         }
         assert!(h.boxes_contracted <= 1500 + 2 * 14, "budget respected");
+    }
+}
+
+/// The outer box is the hull of the cover *and* the inner box, so a cover that lost solutions could
+/// hide behind the inner points (they span ~95% of the true hull), and a piece lost inside the
+/// cover does not change its hull. Without inner bounds the outer box is the cover's hull alone,
+/// refined until the budget: the truth and independently found extreme solutions (pushed from
+/// the truth towards each face) must all be inside.
+#[test]
+fn the_cover_alone_keeps_every_extreme_solution_over_random_problems() {
+    let mut settings = Settings::default().with_hull_budget(800, None);
+    settings.inner_bounds = false;
+    for seed in 200..212 {
+        let sim = random_problem(seed);
+        let leg = (seed % 6) as usize;
+        let boxes = leg_boxes(&sim.measured, &sim.uncertainty, leg);
+        let x0 = x0_of(&sim, leg, 0.1);
+        let h = hull(&GoughLeg, &x0, &boxes, &settings);
+        assert!(h.inner.is_none() && !h.converged);
+        assert_ne!(h.status, Status::Empty, "seed {seed}: consistent data");
+        let truth = sim.truth[leg].params();
+        assert!(
+            contains(&h.outer, &truth),
+            "seed {seed}: the cover lost the truth"
+        );
+        for j in 0..7 {
+            for sign in [1.0, -1.0] {
+                let p = extreme(truth, j, sign, &x0, &boxes);
+                assert!(is_consistent_by_corners(&GoughLeg, &p, &boxes));
+                assert!(
+                    contains(&h.outer, &p),
+                    "seed {seed}: the cover lost a solution at the {sign} face of {j}: {p:?}"
+                );
+            }
+        }
+        let x1 = h.x1.expect("x0 is not empty");
+        assert!((0..7).all(|j| h.outer[j].is_subset_of(x1[j])));
     }
 }
 

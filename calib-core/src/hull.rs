@@ -26,6 +26,9 @@
 //! already computes. The inner box is the hull of certified points, so it lies inside the hull of
 //! the solution set.
 //!
+//! Without inner bounds ([`Settings::inner_bounds`] `= false`) no face is ever satisfied: the outer
+//! box alone is refined until a budget is spent (the witness still decides the status).
+//!
 //! **Stop rule.** Per parameter, stop refining when `wid(outer) <= (1 + tol) wid(inner)`
 //! ([`Settings::hull_tolerance`]), or when [`Settings::hull_max_boxes`] boxes were contracted or
 //! [`Settings::hull_max_seconds`] elapsed; the ratios reached are reported.
@@ -218,15 +221,18 @@ where
         contracted: 1,
     };
     let witness = find_witness(model, &x1, measurements, &extremes);
-    refiner.add_points(witness.as_slice());
-    // First inner points: push the LP extreme points of x1 (or the witness) towards their faces.
-    let seeds: Vec<(Face, [f64; NX])> = Face::all(NX)
-        .flat_map(|f| {
-            let lp = extremes.get(f.slot()).copied();
-            lp.into_iter().chain(witness).map(move |p| (f, p))
-        })
-        .collect();
-    refiner.add_points(&refiner.push_all(&x1, &seeds));
+    refiner.witness = witness;
+    if settings.inner_bounds {
+        refiner.add_points(witness.as_slice());
+        // First inner points: push the LP extreme points of x1 (or the witness) to their faces.
+        let seeds: Vec<(Face, [f64; NX])> = Face::all(NX)
+            .flat_map(|f| {
+                let lp = extremes.get(f.slot()).copied();
+                lp.into_iter().chain(witness).map(move |p| (f, p))
+            })
+            .collect();
+        refiner.add_points(&refiner.push_all(&x1, &seeds));
+    }
     let converged = refiner.run(start);
     out.boxes_contracted = refiner.contracted;
     out.rounds = converged.1;
@@ -450,7 +456,7 @@ impl<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize> Refiner<'_, M, N
                 return None;
             };
             // Seeds: the child's LP extreme points that reach beyond the inner bound.
-            let seeds: Vec<(Face, [f64; NX])> = if c.iterations > 0 {
+            let seeds: Vec<(Face, [f64; NX])> = if c.iterations > 0 && self.settings.inner_bounds {
                 faces
                     .iter()
                     .map(|f| (*f, ws.extreme_points[f.slot()]))

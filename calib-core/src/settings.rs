@@ -34,6 +34,7 @@ pub struct Settings {
     /// The LP engine (default [`LpEngine::DenseSimplex`]).
     pub lp: LpEngine,
     /// Search certified witnesses near each parameter's extremes for inner bounds (default true).
+    /// [`crate::hull`] without inner bounds refines the outer box alone until its budget is spent.
     pub inner_bounds: bool,
     /// Bisection steps of the inner-bound search along each segment (default 24).
     pub inner_bisections: usize,
