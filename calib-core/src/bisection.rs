@@ -14,7 +14,9 @@
 //! which gives an inner volume next to the outer one.
 
 use crate::certificate::is_certified_consistent;
+use crate::certify::MAX_SUBSETS;
 use crate::contract::{contract, Workspace};
+use crate::outliers::{drop_sets, keep_all_but};
 use crate::{Interval, Model, Settings};
 use rayon::prelude::*;
 
@@ -113,6 +115,9 @@ pub fn sweep<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
         NX <= 16,
         "the sweep splits every dimension: 2^{NX} boxes per step is too many"
     );
+    if settings.max_outliers > 0 {
+        return sweep_relaxed(model, x0, measurements, settings);
+    }
     let mut ws = Workspace::new(settings);
     let mut contracted = 1;
     let Ok(x1) = contract(model, x0, measurements, settings, &mut ws).result else {
@@ -169,6 +174,58 @@ pub fn sweep<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
         volumes,
         boxes_contracted: contracted,
     }
+}
+
+/// The sweep with `q` outliers tolerated: the union of the sweeps of every subset of `p - q`
+/// measurements (see [`crate::outliers`]); volumes are added step by step (an outer volume of the
+/// union). Beyond the subset limit, `x0` is kept whole.
+fn sweep_relaxed<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
+    model: &M,
+    x0: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    settings: &Settings,
+) -> SweepResult<NX> {
+    let Some(drops) = drop_sets(measurements.len(), settings.max_outliers, MAX_SUBSETS) else {
+        return SweepResult {
+            boxes: vec![*x0],
+            hull: Some(*x0),
+            volumes: vec![volume(x0)],
+            boxes_contracted: 0,
+        };
+    };
+    let plain = settings.clone().with_max_outliers(0);
+    let mut out = SweepResult {
+        boxes: Vec::new(),
+        hull: None,
+        volumes: Vec::new(),
+        boxes_contracted: 0,
+    };
+    let sweeps: Vec<SweepResult<NX>> = drops
+        .iter()
+        .map(|d| sweep(model, x0, &keep_all_but(measurements, d), &plain))
+        .collect();
+    // A sweep that ended early keeps its last volume for the remaining steps.
+    let steps = sweeps.iter().map(|s| s.volumes.len()).max().unwrap_or(0);
+    out.volumes = (0..steps)
+        .map(|i| {
+            sweeps
+                .iter()
+                .map(|s| {
+                    s.volumes
+                        .get(i)
+                        .or(s.volumes.last())
+                        .copied()
+                        .unwrap_or(0.0)
+                })
+                .sum()
+        })
+        .collect();
+    for s in sweeps {
+        out.boxes.extend(s.boxes);
+        out.boxes_contracted += s.boxes_contracted;
+    }
+    out.hull = hull_of(&out.boxes);
+    out
 }
 
 /// The result of [`pave`].

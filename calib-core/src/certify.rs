@@ -2,6 +2,7 @@
 
 use crate::certificate::{find_witness, inner_box};
 use crate::contract::{contract, EmptinessProof, Workspace};
+use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
 use crate::{Interval, Model, Settings};
 
 /// The verdict on a box of parameters.
@@ -38,6 +39,14 @@ pub struct Certification<const NX: usize> {
     pub lp_solves: usize,
     /// LP solves that failed or whose infeasibility claim did not check.
     pub lp_failures: usize,
+    /// For `Empty` (with no outliers tolerated): a minimal set of measurements (0-based, sorted)
+    /// that no parameter vector of `x0` fits together — removing any one of them, the rest is not
+    /// proved empty (see [`crate::outliers`]).
+    pub conflict: Option<Vec<usize>>,
+    /// With [`Settings::max_outliers`] `= q > 0`: the measurements (0-based, sorted) that every
+    /// parameter vector fitting at least `p - q` of them misfits — certified outliers under the
+    /// assumption that at most `q` are bad. Empty otherwise.
+    pub outliers: Vec<usize>,
 }
 
 impl<const NX: usize> Certification<NX> {
@@ -56,7 +65,10 @@ impl<const NX: usize> Certification<NX> {
 /// IV), then looks for a certified witness and inner bounds.
 ///
 /// `measurements[k]` is the box `M_k` of measurement `k`. The returned `outer` box contains every
-/// `x ∈ x0` with `f(x, M_k) = 0` for some `M_k ∈ measurements[k]`, for all `k`.
+/// `x ∈ x0` with `f(x, M_k) = 0` for some `M_k ∈ measurements[k]`, for all `k` — or, with
+/// [`Settings::max_outliers`] `= q`, for all but at most `q` of the `k` (the union over every choice
+/// of `q` dropped measurements; see the `outliers` section of the crate documentation). An `Empty`
+/// verdict comes with a minimal conflict set ([`Certification::conflict`]).
 pub fn certify<M: Model<NX, NM>, const NX: usize, const NM: usize>(
     model: &M,
     x0: &[Interval; NX],
@@ -75,6 +87,111 @@ pub fn certify_with<M: Model<NX, NM>, const NX: usize, const NM: usize>(
     settings: &Settings,
     ws: &mut Workspace<NX>,
 ) -> Certification<NX> {
+    if settings.max_outliers > 0 {
+        return certify_relaxed(model, x0, measurements, settings, ws);
+    }
+    let mut out = certify_plain(model, x0, measurements, settings, ws);
+    if out.status == Status::Empty {
+        let used = match out.emptiness {
+            Some(EmptinessProof::CheapRejection { measurement }) => vec![measurement],
+            _ => Vec::new(),
+        };
+        out.conflict = Some(conflict_set(measurements.len(), &used, |kept| {
+            let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
+            certify_plain(model, x0, &subset, settings, ws).status == Status::Empty
+        }));
+    }
+    out
+}
+
+/// At most this many subsets are certified for the q-relaxation (`C(p, q)` of them); beyond, the
+/// result is `Undecided` with the initial box.
+pub(crate) const MAX_SUBSETS: usize = 20_000;
+
+/// The q-relaxed certification: every subset of `p - q` measurements certified on its own, the
+/// hulls of the results (see [`crate::outliers`]).
+fn certify_relaxed<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    x0: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    settings: &Settings,
+    ws: &mut Workspace<NX>,
+) -> Certification<NX> {
+    let p = measurements.len();
+    let mut out = Certification {
+        status: Status::Undecided,
+        outer: *x0,
+        iterations: 0,
+        emptiness: None,
+        witness: None,
+        inner: None,
+        lp_solves: 0,
+        lp_failures: 0,
+        conflict: None,
+        outliers: Vec::new(),
+    };
+    let Some(drops) = drop_sets(p, settings.max_outliers, MAX_SUBSETS) else {
+        // Too many subsets (or q >= p): keep the initial box, undecided.
+        return out;
+    };
+    let mut outer: Option<[Interval; NX]> = None;
+    let mut alive = Vec::with_capacity(drops.len());
+    for d in &drops {
+        let subset = keep_all_but(measurements, d);
+        let c = certify_plain(model, x0, &subset, settings, ws);
+        out.iterations += c.iterations;
+        out.lp_solves += c.lp_solves;
+        out.lp_failures += c.lp_failures;
+        alive.push(c.status != Status::Empty);
+        if c.status == Status::Empty {
+            continue;
+        }
+        outer = Some(hull_box(outer, &c.outer));
+        if let Some(inner) = c.inner {
+            out.inner = Some(hull_box(out.inner, &inner));
+        }
+        if out.witness.is_none() {
+            out.witness = c.witness;
+        }
+    }
+    match outer {
+        None => {
+            out.status = Status::Empty;
+            out.outer = [Interval::EMPTY; NX];
+            out.emptiness = Some(EmptinessProof::EverySubset);
+        }
+        Some(o) => {
+            out.outer = o;
+            out.status = if out.witness.is_some() {
+                Status::Consistent
+            } else {
+                Status::Undecided
+            };
+            out.outliers = certified_outliers(p, &drops, &alive);
+        }
+    }
+    out
+}
+
+/// The hull of `b` and an optional box.
+pub(crate) fn hull_box<const NX: usize>(
+    h: Option<[Interval; NX]>,
+    b: &[Interval; NX],
+) -> [Interval; NX] {
+    match h {
+        None => *b,
+        Some(h) => core::array::from_fn(|j| h[j].hull(b[j])),
+    }
+}
+
+/// [`certify_with`] without outliers and without the conflict search.
+fn certify_plain<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+    model: &M,
+    x0: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    settings: &Settings,
+    ws: &mut Workspace<NX>,
+) -> Certification<NX> {
     let (solves, failures) = (ws.lp_solves, ws.lp_failures);
     let c = contract(model, x0, measurements, settings, ws);
     let mut out = Certification {
@@ -86,6 +203,8 @@ pub fn certify_with<M: Model<NX, NM>, const NX: usize, const NM: usize>(
         inner: None,
         lp_solves: 0,
         lp_failures: 0,
+        conflict: None,
+        outliers: Vec::new(),
     };
     match c.result {
         Err(proof) => {

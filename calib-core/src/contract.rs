@@ -44,6 +44,9 @@ pub enum EmptinessProof {
     /// Every piece of a subdivision of the box was proved empty by one of the tests above
     /// ([`crate::hull`]).
     Subdivision,
+    /// With `q` outliers tolerated: every choice of `q` dropped measurements leaves a set that was
+    /// proved empty by one of the tests above.
+    EverySubset,
 }
 
 /// Reusable buffers for contractions: after the first contraction of a given problem size, a

@@ -38,8 +38,10 @@
 //! on the time budget, when one is set and reached).
 
 use crate::certificate::{find_witness, is_consistent_point};
+use crate::certify::{certify, hull_box, MAX_SUBSETS};
 use crate::contract::{contract, EmptinessProof, Workspace};
 use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
+use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
 use crate::{Interval, Model, Settings, Status};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -78,13 +80,22 @@ pub struct Hull<const NX: usize> {
     pub rounds: usize,
     /// Wall-clock seconds.
     pub seconds: f64,
+    /// For `Empty` (with no outliers tolerated): a minimal set of measurements (0-based, sorted)
+    /// that no parameter vector of `x0` fits together (see [`crate::outliers`]).
+    pub conflict: Option<Vec<usize>>,
+    /// With [`Settings::max_outliers`] `= q > 0`: the measurements that every parameter vector
+    /// fitting at least `p - q` of them misfits (certified outliers; see [`crate::outliers`]).
+    pub outliers: Vec<usize>,
 }
 
-/// A box of the cover, with whether it is too small to split further.
+/// A box of the cover, with whether it is too small to split further and which measurement subset
+/// it belongs to.
 #[derive(Clone, Copy)]
 struct Piece<const NX: usize> {
     b: [Interval; NX],
     atomic: bool,
+    /// The measurement subset whose solutions it covers (0 without outliers).
+    set: usize,
 }
 
 /// A face of the outer box: parameter `j`, lower (`upper == false`) or upper side.
@@ -165,33 +176,115 @@ pub fn hull_with<M, const NX: usize, const NM: usize>(
 where
     M: Model<NX, NM> + Sync,
 {
+    let mut out = hull_core(model, x0, measurements, settings, engine);
+    if out.status == Status::Empty && settings.max_outliers == 0 {
+        // The conflict set, with the prover that gave the verdict: the contraction alone when it
+        // proved x0 empty at once, else the hull (with a bounded budget per subset).
+        let plain = settings.clone();
+        out.conflict = if out.x1.is_none() {
+            certify(model, x0, measurements, &plain).conflict
+        } else {
+            let mut quick = plain.with_hull_budget(settings.hull_max_boxes.min(2000), None);
+            quick.inner_bounds = false;
+            Some(conflict_set(measurements.len(), &[], |kept| {
+                let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
+                hull_core(model, x0, &subset, &quick, engine).status == Status::Empty
+            }))
+        };
+    }
+    out
+}
+
+/// [`hull_with`] without the conflict search.
+fn hull_core<M, const NX: usize, const NM: usize>(
+    model: &M,
+    x0: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    settings: &Settings,
+    engine: &(dyn Fn() -> Box<dyn LpBackend> + Sync),
+) -> Hull<NX>
+where
+    M: Model<NX, NM> + Sync,
+{
     let start = Instant::now();
-    let mut ws = Workspace::with_backend(engine());
-    let c = contract(model, x0, measurements, settings, &mut ws);
     let mut out = Hull {
         status: Status::Undecided,
-        outer: [Interval::EMPTY; NX],
+        outer: *x0,
         inner: None,
         x1: None,
-        iterations: c.iterations,
+        iterations: 0,
         emptiness: None,
         witness: None,
         inner_points: Vec::new(),
         ratio: [f64::INFINITY; NX],
         converged: false,
-        boxes_contracted: 1,
+        boxes_contracted: 0,
         rounds: 0,
         seconds: 0.0,
+        conflict: None,
+        outliers: Vec::new(),
     };
-    let x1 = match c.result {
-        Err(proof) => {
-            out.status = Status::Empty;
-            out.emptiness = Some(proof);
-            out.seconds = start.elapsed().as_secs_f64();
-            return out;
+    let q = settings.max_outliers;
+    let drops = if q == 0 {
+        vec![Vec::new()]
+    } else if let Some(d) = drop_sets(measurements.len(), q, MAX_SUBSETS) {
+        d
+    } else {
+        // Too many subsets (or q >= p): keep the initial box, undecided.
+        out.x1 = Some(*x0);
+        return out;
+    };
+    let sets: Vec<Vec<[Interval; NM]>> = drops
+        .iter()
+        .map(|d| keep_all_but(measurements, d))
+        .collect();
+    // x1 of every subset (one subset without outliers), with its LP extreme points.
+    let first = |ws: &mut Workspace<NX>, set: &Vec<[Interval; NM]>| {
+        let c = contract(model, x0, set, settings, ws);
+        let extremes = if c.iterations > 0 {
+            ws.extreme_points.clone()
+        } else {
+            Vec::new()
+        };
+        (c, extremes)
+    };
+    let firsts: Vec<_> = if settings.parallel && sets.len() > 1 {
+        sets.par_iter()
+            .map_init(|| Workspace::with_backend(engine()), first)
+            .collect()
+    } else {
+        let mut ws = Workspace::with_backend(engine());
+        sets.iter().map(|set| first(&mut ws, set)).collect()
+    };
+    out.boxes_contracted = sets.len();
+    let mut cover = Vec::new();
+    let mut x1: Option<[Interval; NX]> = None;
+    for (set, (c, _)) in firsts.iter().enumerate() {
+        out.iterations += c.iterations;
+        match c.result {
+            Err(proof) => {
+                out.emptiness.get_or_insert(proof);
+            }
+            Ok(b) => {
+                x1 = Some(hull_box(x1, &b));
+                cover.push(Piece {
+                    b,
+                    atomic: false,
+                    set,
+                });
+            }
         }
-        Ok(x1) => x1,
+    }
+    let Some(x1) = x1 else {
+        out.status = Status::Empty;
+        out.outer = [Interval::EMPTY; NX];
+        if q > 0 {
+            out.emptiness = Some(EmptinessProof::EverySubset);
+        }
+        out.seconds = start.elapsed().as_secs_f64();
+        return out;
     };
+    out.emptiness = None;
     out.x1 = Some(x1);
     if !x1.iter().all(|v| v.is_bounded()) {
         // An unbounded box can be neither split at its midpoint nor linearised: keep it whole.
@@ -199,31 +292,37 @@ where
         out.seconds = start.elapsed().as_secs_f64();
         return out;
     }
-    let extremes = if c.iterations > 0 {
-        ws.extreme_points.clone()
-    } else {
-        Vec::new()
-    };
     let mut refiner = Refiner {
         model,
         x0,
-        measurements,
+        sets: &sets,
         settings,
         engine,
-        cover: vec![Piece {
-            b: x1,
-            atomic: false,
-        }],
+        cover,
         retired: None,
+        retired_sets: vec![false; sets.len()],
+        pointed_sets: vec![false; sets.len()],
         inner: None,
         inner_points: Vec::new(),
         witness: None,
-        contracted: 1,
+        contracted: sets.len(),
     };
-    let witness = find_witness(model, &x1, measurements, &extremes);
-    refiner.witness = witness;
-    if settings.inner_bounds {
-        refiner.add_points(witness.as_slice());
+    let pieces = refiner.cover.clone();
+    for piece in &pieces {
+        let extremes = &firsts[piece.set].1;
+        let witness = if refiner.witness.is_none() {
+            find_witness(model, &piece.b, &sets[piece.set], extremes)
+        } else {
+            None
+        };
+        if !settings.inner_bounds {
+            if witness.is_some() {
+                refiner.witness = witness;
+                refiner.pointed_sets[piece.set] = true;
+            }
+            continue;
+        }
+        refiner.add_points(witness.as_slice(), piece.set);
         // First inner points: push the LP extreme points of x1 (or the witness) to their faces.
         let seeds: Vec<(Face, [f64; NX])> = Face::all(NX)
             .flat_map(|f| {
@@ -231,7 +330,8 @@ where
                 lp.into_iter().chain(witness).map(move |p| (f, p))
             })
             .collect();
-        refiner.add_points(&refiner.push_all(&x1, &seeds));
+        let points = refiner.push_all(&piece.b, &seeds, piece.set);
+        refiner.add_points(&points, piece.set);
     }
     let converged = refiner.run(start);
     out.boxes_contracted = refiner.contracted;
@@ -243,7 +343,12 @@ where
     match refiner.outer() {
         None => {
             out.status = Status::Empty;
-            out.emptiness = Some(EmptinessProof::Subdivision);
+            out.outer = [Interval::EMPTY; NX];
+            out.emptiness = Some(if q > 0 {
+                EmptinessProof::EverySubset
+            } else {
+                EmptinessProof::Subdivision
+            });
         }
         Some(outer) => {
             out.outer = outer;
@@ -252,6 +357,9 @@ where
             }
             if let Some(inner) = out.inner {
                 out.ratio = core::array::from_fn(|j| outer[j].wid() / inner[j].wid());
+            }
+            if q > 0 {
+                out.outliers = certified_outliers(measurements.len(), &drops, &refiner.alive());
             }
         }
     }
@@ -263,13 +371,18 @@ where
 struct Refiner<'a, M, const NX: usize, const NM: usize> {
     model: &'a M,
     x0: &'a [Interval; NX],
-    measurements: &'a [[Interval; NM]],
+    /// The measurement subsets (one, all measurements, without outliers).
+    sets: &'a [Vec<[Interval; NM]>],
     settings: &'a Settings,
     engine: &'a (dyn Fn() -> Box<dyn LpBackend> + Sync),
     /// Boxes whose union contains every solution not in `retired`.
     cover: Vec<Piece<NX>>,
     /// The hull of retired boxes (boxes within the satisfied zone of every face).
     retired: Option<[Interval; NX]>,
+    /// Per subset: whether one of its boxes was retired (so it may hold solutions).
+    retired_sets: Vec<bool>,
+    /// Per subset: whether a certified point of it was found (so it holds solutions).
+    pointed_sets: Vec<bool>,
     /// The hull of certified consistent points.
     inner: Option<[Interval; NX]>,
     /// Per face (slot `2j`, `2j + 1`), the certified point that reaches furthest towards it.
@@ -315,9 +428,23 @@ impl<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize> Refiner<'_, M, N
         }
     }
 
-    /// Adds certified points: each face keeps the point that reaches furthest, and the inner box
-    /// is their hull.
-    fn add_points(&mut self, points: &[[f64; NX]]) {
+    /// Per subset: whether it may hold solutions (a box of it is left, or a point was certified).
+    fn alive(&self) -> Vec<bool> {
+        let mut alive: Vec<bool> = (0..self.sets.len())
+            .map(|s| self.retired_sets[s] || self.pointed_sets[s])
+            .collect();
+        for p in &self.cover {
+            alive[p.set] = true;
+        }
+        alive
+    }
+
+    /// Adds points certified against subset `set`: each face keeps the point that reaches
+    /// furthest, and the inner box is their hull.
+    fn add_points(&mut self, points: &[[f64; NX]], set: usize) {
+        if !points.is_empty() {
+            self.pointed_sets[set] = true;
+        }
         for p in points {
             self.witness.get_or_insert(*p);
             if self.inner_points.is_empty() {
@@ -340,7 +467,12 @@ impl<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize> Refiner<'_, M, N
 
     /// Pushes each seed towards its face inside `bounds` (clamped to `x0`); returns the certified
     /// points found.
-    fn push_all(&self, bounds: &[Interval; NX], seeds: &[(Face, [f64; NX])]) -> Vec<[f64; NX]> {
+    fn push_all(
+        &self,
+        bounds: &[Interval; NX],
+        seeds: &[(Face, [f64; NX])],
+        set: usize,
+    ) -> Vec<[f64; NX]> {
         let region: [Interval; NX] = core::array::from_fn(|j| bounds[j].intersection(self.x0[j]));
         if region.iter().any(|v| v.is_empty()) {
             return Vec::new();
@@ -349,7 +481,7 @@ impl<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize> Refiner<'_, M, N
         let mut lp = DenseSimplex::default();
         for (face, seed) in seeds {
             if let Some(p) =
-                push_outward(self.model, &mut lp, seed, *face, &region, self.measurements)
+                push_outward(self.model, &mut lp, seed, *face, &region, &self.sets[set])
             {
                 points.push(p);
             }
@@ -417,9 +549,11 @@ impl<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize> Refiner<'_, M, N
         }
         let thresholds: Vec<(Face, f64)> = Face::all(NX).map(|f| (f, self.threshold(f))).collect();
         let mut retired = self.retired;
+        let retired_sets = &mut self.retired_sets;
         self.cover.retain(|p| {
             let reaches = thresholds.iter().any(|(f, t)| f.reach(&p.b[f.j]) > *t);
             if !reaches {
+                retired_sets[p.set] = true;
                 retired = Some(match retired {
                     None => p.b,
                     Some(h) => core::array::from_fn(|j| h[j].hull(p.b[j])),
@@ -434,14 +568,14 @@ impl<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize> Refiner<'_, M, N
     /// surviving halves and pushes their LP extreme points towards the picking faces.
     fn refine(&mut self, picked: &[(usize, Vec<Face>)]) {
         let outer = self.outer().unwrap_or(*self.x0);
-        let mut jobs: Vec<([Interval; NX], &[Face])> = Vec::with_capacity(2 * picked.len());
+        let mut jobs: Vec<([Interval; NX], &[Face], usize)> = Vec::with_capacity(2 * picked.len());
         let mut atomic = Vec::new();
         for (i, faces) in picked {
-            let b = self.cover[*i].b;
+            let Piece { b, set, .. } = self.cover[*i];
             match split(&b, &outer) {
                 Some((l, r)) => {
-                    jobs.push((l, faces));
-                    jobs.push((r, faces));
+                    jobs.push((l, faces, set));
+                    jobs.push((r, faces, set));
                 }
                 None => atomic.push(*i),
             }
@@ -450,8 +584,8 @@ impl<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize> Refiner<'_, M, N
             self.cover[i].atomic = true;
         }
         let inner = self.inner;
-        let work = |ws: &mut Workspace<NX>, (b, faces): &([Interval; NX], &[Face])| {
-            let c = contract(self.model, b, self.measurements, self.settings, ws);
+        let work = |ws: &mut Workspace<NX>, (b, faces, set): &([Interval; NX], &[Face], usize)| {
+            let c = contract(self.model, b, &self.sets[*set], self.settings, ws);
             let Ok(child) = c.result else {
                 return None;
             };
@@ -468,7 +602,7 @@ impl<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize> Refiner<'_, M, N
             } else {
                 Vec::new()
             };
-            Some((child, self.push_all(&child, &seeds)))
+            Some((child, self.push_all(&child, &seeds, *set), *set))
         };
         let results: Vec<Option<Refined<NX>>> = if self.settings.parallel {
             jobs.par_iter()
@@ -488,18 +622,19 @@ impl<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize> Refiner<'_, M, N
         for i in replaced.into_iter().rev() {
             self.cover.swap_remove(i);
         }
-        for (child, points) in results.into_iter().flatten() {
+        for (child, points, set) in results.into_iter().flatten() {
             self.cover.push(Piece {
                 b: child,
                 atomic: false,
+                set,
             });
-            self.add_points(&points);
+            self.add_points(&points, set);
         }
     }
 }
 
-/// A contracted half and the certified points pushed from its LP extreme points.
-type Refined<const NX: usize> = ([Interval; NX], Vec<[f64; NX]>);
+/// A contracted half, the certified points pushed from its LP extreme points, and its subset.
+type Refined<const NX: usize> = ([Interval; NX], Vec<[f64; NX]>, usize);
 
 /// Splits `b` at the midpoint of its widest dimension relative to `outer` (`None` when no
 /// dimension can be split: the midpoint equals a bound).

@@ -48,6 +48,7 @@ pub mod interval;
 mod linalg;
 pub mod lp;
 mod model;
+pub mod outliers;
 mod scalar;
 mod settings;
 

@@ -51,6 +51,11 @@ pub struct Settings {
     pub hull_tolerance: f64,
     /// [`crate::hull`] contracts at most this many boxes (default 200 000).
     pub hull_max_boxes: usize,
+    /// Tolerate up to this many outliers (default 0): [`crate::certify`], [`crate::hull`] and
+    /// [`crate::sweep`] then enclose every parameter vector that fits at least `p - q` of the `p`
+    /// measurements (the union over every choice of `q` dropped measurements, `C(p, q)` subsets,
+    /// at most 20 000 of them; beyond, the initial box is returned undecided).
+    pub max_outliers: usize,
     /// [`crate::hull`] stops starting new rounds after this many seconds (default: no limit; a
     /// time limit makes the result depend on the machine's speed).
     pub hull_max_seconds: Option<f64>,
@@ -71,6 +76,7 @@ impl Default for Settings {
             hull_tolerance: 0.05,
             hull_max_boxes: 200_000,
             hull_max_seconds: None,
+            max_outliers: 0,
         }
     }
 }
@@ -98,6 +104,12 @@ impl Settings {
     pub fn with_hull_budget(mut self, max_boxes: usize, max_seconds: Option<f64>) -> Self {
         self.hull_max_boxes = max_boxes;
         self.hull_max_seconds = max_seconds;
+        self
+    }
+
+    /// The settings with up to `q` outliers tolerated (see [`Settings::max_outliers`]).
+    pub fn with_max_outliers(mut self, q: usize) -> Self {
+        self.max_outliers = q;
         self
     }
 

@@ -1,0 +1,151 @@
+//! Outliers: conflict sets of inconsistent data, and certification with up to `q` outliers
+//! tolerated.
+//!
+//! **q-relaxed solution set.** With `p` measurements and `q` tolerated outliers, a parameter vector
+//! is a solution when it fits at least `p - q` measurements. That set is exactly the union, over
+//! the *drop-sets* `D ⊆ {0..p}` with `|D| = q`, of the solution sets of the measurements not in `D`:
+//! so `certify`, `hull` and `sweep` certify each of those subsets with the ordinary (q = 0) method
+//! — whose LPs only ever use measurements that every solution of that subset fits — and take the
+//! hull of the results. A subset proved empty is a proof for its part of the union; the union is
+//! empty only when every subset is.
+//!
+//! **Certified outliers.** Measurement `k` is a certified outlier (under the assumption of at most
+//! `q` bad measurements) when every subset that keeps `k` was proved empty: every solution then
+//! misfits `k`.
+//!
+//! **Conflict sets.** When a box is proved empty, a *deletion filter* finds a minimal set of
+//! measurements that still cannot be fitted together: drop each measurement in turn and keep the
+//! drop when the rest is still proved empty; repeat until no single removal keeps the proof.
+//! Measurements that the proof used are tried last, so they tend to stay in the set.
+
+/// Subsets of `0..p` with `q` elements in lexicographic order, if there are at most `limit`.
+pub(crate) fn drop_sets(p: usize, q: usize, limit: usize) -> Option<Vec<Vec<usize>>> {
+    if q > p || binomial(p, q) > limit as f64 {
+        return None;
+    }
+    let mut out = Vec::new();
+    let mut current: Vec<usize> = (0..q).collect();
+    loop {
+        out.push(current.clone());
+        // The next combination: bump the rightmost index that can still move.
+        let Some(i) = (0..q).rev().find(|&i| current[i] < p - q + i) else {
+            return Some(out);
+        };
+        current[i] += 1;
+        for k in i + 1..q {
+            current[k] = current[k - 1] + 1;
+        }
+    }
+}
+
+/// `C(p, q)` as a float (no overflow for large arguments).
+pub(crate) fn binomial(p: usize, q: usize) -> f64 {
+    (0..q.min(p)).fold(1.0, |acc, i| acc * (p - i) as f64 / (i + 1) as f64)
+}
+
+/// The measurements of `all` whose indices are not in the sorted `drop`.
+pub(crate) fn keep_all_but<T: Copy>(all: &[T], drop: &[usize]) -> Vec<T> {
+    all.iter()
+        .enumerate()
+        .filter(|(k, _)| drop.binary_search(k).is_err())
+        .map(|(_, m)| *m)
+        .collect()
+}
+
+/// The measurements (sorted indices) that every possibly non-empty subset drops: `alive[s]` says
+/// whether the subset without `drops[s]` may hold a solution. Empty when no subset is alive.
+pub(crate) fn certified_outliers(p: usize, drops: &[Vec<usize>], alive: &[bool]) -> Vec<usize> {
+    if !alive.iter().any(|a| *a) {
+        return Vec::new();
+    }
+    (0..p)
+        .filter(|k| {
+            drops
+                .iter()
+                .zip(alive)
+                .all(|(d, a)| !a || d.binary_search(k).is_ok())
+        })
+        .collect()
+}
+
+/// A minimal conflict set by the deletion filter (see the module documentation): `proves_empty`
+/// decides whether a set of measurement indices (sorted) is proved empty; `used` are the
+/// measurements the original proof used (tried last). Assumes `proves_empty(0..p)` holds.
+pub(crate) fn conflict_set(
+    p: usize,
+    used: &[usize],
+    mut proves_empty: impl FnMut(&[usize]) -> bool,
+) -> Vec<usize> {
+    let mut set: Vec<usize> = (0..p).collect();
+    let order: Vec<usize> = (0..p)
+        .filter(|k| !used.contains(k))
+        .chain(used.iter().copied().filter(|&k| k < p))
+        .collect();
+    // Passes until no single removal keeps the proof (a prover need not be monotone).
+    loop {
+        let mut changed = false;
+        for &k in &order {
+            let Ok(pos) = set.binary_search(&k) else {
+                continue;
+            };
+            let mut rest = set.clone();
+            rest.remove(pos);
+            if !rest.is_empty() && proves_empty(&rest) {
+                set = rest;
+                changed = true;
+            }
+        }
+        if !changed {
+            return set;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn drop_sets_enumerate_every_combination_once() {
+        let d = drop_sets(5, 2, 100).unwrap();
+        assert_eq!(d.len(), 10);
+        assert_eq!(d[0], vec![0, 1]);
+        assert_eq!(d[9], vec![3, 4]);
+        let mut sorted = d.clone();
+        sorted.dedup();
+        assert_eq!(sorted.len(), 10);
+        assert_eq!(drop_sets(4, 0, 10).unwrap(), vec![Vec::<usize>::new()]);
+        assert!(
+            drop_sets(40, 3, 1000).is_none(),
+            "9880 subsets exceed the limit"
+        );
+        assert!(drop_sets(3, 4, 1000).is_none());
+    }
+
+    #[test]
+    fn outliers_are_the_measurements_every_live_subset_drops() {
+        let drops = drop_sets(4, 1, 10).unwrap();
+        // Only the subset without measurement 2 survives: 2 is an outlier.
+        assert_eq!(
+            certified_outliers(4, &drops, &[false, false, true, false]),
+            vec![2]
+        );
+        // Two survivors: no single measurement is dropped by both.
+        assert!(certified_outliers(4, &drops, &[true, false, true, false]).is_empty());
+        assert!(certified_outliers(4, &drops, &[false; 4]).is_empty());
+    }
+
+    #[test]
+    fn the_deletion_filter_finds_a_minimal_conflict() {
+        // "Empty" exactly when the set holds both 3 and 5, or all of 0, 1, 2.
+        let empty = |s: &[usize]| (s.contains(&3) && s.contains(&5)) || s.starts_with(&[0, 1, 2]);
+        let c = conflict_set(8, &[5], empty);
+        assert!(empty(&c));
+        for k in 0..c.len() {
+            let mut rest = c.clone();
+            rest.remove(k);
+            assert!(!empty(&rest), "{c:?} is not minimal");
+        }
+        assert_eq!(c, vec![3, 5]);
+    }
+}
