@@ -217,6 +217,8 @@ pub struct Measurements {
     pub configs: Vec<Configuration>,
     /// Whether the file had `q1,q2,q3` columns (else `ax,ay,az,angle_deg`).
     pub rodrigues: bool,
+    /// The 1-based file line of each configuration (for messages that name a configuration).
+    pub lines: Vec<usize>,
 }
 
 /// Reads `measurements.csv` with header `px,py,pz,ax,ay,az,angle_deg,L1..Lk` or
@@ -266,6 +268,7 @@ pub fn read_measurements(file: &Path, legs: usize) -> Result<Measurements, DataE
         ));
     }
     let mut configs = Vec::new();
+    let mut lines = Vec::new();
     for record in reader.records() {
         let record = record.map_err(|e| {
             let line = e.position().map(|p| p.line() as usize);
@@ -340,6 +343,7 @@ pub fn read_measurements(file: &Path, legs: usize) -> Result<Measurements, DataE
             orientation,
             lengths: rest.to_vec(),
         });
+        lines.push(line.unwrap_or(configs.len() + 1));
     }
     if configs.len() < 7 {
         return Err(error(
@@ -352,7 +356,11 @@ pub fn read_measurements(file: &Path, legs: usize) -> Result<Measurements, DataE
             ),
         ));
     }
-    Ok(Measurements { configs, rodrigues })
+    Ok(Measurements {
+        configs,
+        rodrigues,
+        lines,
+    })
 }
 
 #[cfg(test)]

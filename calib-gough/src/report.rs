@@ -7,13 +7,15 @@
 //!               "x0": [[lo, hi], ...], "x1": [[lo, hi], ...], "x2": [[lo, hi], ...] or null,
 //!               "outer": [[lo, hi], ...] or null, "inner": [[lo, hi], ...] or null,
 //!               "converged": true | false | null, "witness": [..7] or null,
+//!               "conflict": [configuration, ...] or null, "outliers": [configuration, ...],
 //!               "iterations": n, "boxes": n, "seconds": s } ],
 //!   "seconds": total }
 //! ```
 //! `outer` is the tightest certified box (the tight hull; `x1` with `--fast`), `inner` the hull of
 //! certified consistent parameter vectors: the true range of each parameter lies between them.
-//! `converged` says whether the hull refinement met its tolerance (`null` with `--fast`); `x1` is
-//! the paper's fixed point. `outer` and `converged` were added to version 1 without breaking it:
+//! `conflict` (empty legs) and `outliers` (with `--max-outliers`) are 1-based configuration
+//! numbers: the k-th data row of the CSV is configuration k. `converged` says whether the hull refinement met its tolerance (`null` with `--fast`); `x1` is
+//! the paper's fixed point. `outer`, `converged`, `conflict` and `outliers` were added to version 1 without breaking it:
 //! reports written before read back with `null` there.
 //!
 //! Bounds are written with Rust's shortest round-trip formatting (serde_json), so reading them back
@@ -46,6 +48,13 @@ pub struct LegReport {
     /// Whether the hull refinement met its tolerance (`null` with `--fast`).
     #[serde(default)]
     pub converged: Option<bool>,
+    /// For an empty leg: a minimal set of configurations (1-based: the k-th data row of the CSV
+    /// is configuration k) that cannot be fitted together.
+    #[serde(default)]
+    pub conflict: Option<Vec<usize>>,
+    /// With `--max-outliers`: the configurations (1-based) proved to be outliers.
+    #[serde(default)]
+    pub outliers: Vec<usize>,
     /// A certified consistent parameter vector.
     pub witness: Option<Vec<f64>>,
     /// Newton/LP iterations of the certification.
@@ -146,6 +155,8 @@ mod tests {
                 outer: Some(bounds(&b)),
                 inner: Some(bounds(&b)),
                 converged: Some(true),
+                conflict: Some(vec![3, 9]),
+                outliers: vec![9],
                 witness: Some(vec![0.1; 7]),
                 iterations: 3,
                 boxes: 1,

@@ -167,6 +167,63 @@ fn an_outlier_makes_its_leg_empty_and_exits_2() {
     assert_eq!(legs[1]["leg"], 3);
     assert_eq!(legs[1]["status"], "empty");
     assert!(legs[1]["x1"].is_null());
+    // The culprit is named in words, by configuration number and CSV line, never as a debug enum.
+    let conflict: Vec<u64> = legs[1]["conflict"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_u64().unwrap())
+        .collect();
+    assert!(conflict.contains(&4), "{conflict:?}");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    // Configuration 4 is data row 4, on line 5 of the file (after the header).
+    assert!(stdout.contains("(measurements.csv line"), "{stdout}");
+    assert!(stdout.contains(" 5") && stdout.contains("conflict: configuration"));
+    assert!(stdout.contains("--max-outliers 1"), "{stdout}");
+    assert!(!stdout.contains("CheapRejection") && !stdout.contains("LpInfeasible"));
+}
+
+#[test]
+fn max_outliers_names_every_culprit_and_keeps_the_truth() {
+    let dir = tempdir("outliers");
+    simulate(&dir, 8, &["--outlier", "5:2:0.3", "--outlier", "13:2:0.05"]);
+    let truth: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("truth.json")).unwrap()).unwrap();
+    assert_eq!(truth["outliers"].as_array().unwrap().len(), 2);
+    let strict = certify(&dir, &["--legs", "2", "--max-outliers", "1"]);
+    assert_eq!(
+        strict.status.code(),
+        Some(2),
+        "one tolerated outlier is not enough"
+    );
+    let out = certify(&dir, &["--legs", "2,3", "--max-outliers", "2"]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let rep = report(&dir);
+    let leg2 = &rep["legs"][0];
+    assert_eq!(leg2["outliers"], serde_json::json!([5, 13]));
+    assert_eq!(rep["legs"][1]["outliers"], serde_json::json!([]));
+    let t = &truth["legs"][1];
+    let values: Vec<f64> = t["a"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .chain(t["b"].as_array().unwrap())
+        .map(|v| v.as_f64().unwrap())
+        .chain([t["l"].as_f64().unwrap()])
+        .collect();
+    for (j, &v) in values.iter().enumerate() {
+        let b = &leg2["outer"][j];
+        assert!(b[0].as_f64().unwrap() <= v && v <= b[1].as_f64().unwrap());
+    }
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("configurations 5, 13 (measurements.csv lines 6, 14)"));
+    let bad = certify(&dir, &["--max-outliers", "21"]);
+    assert_eq!(bad.status.code(), Some(1));
 }
 
 #[test]

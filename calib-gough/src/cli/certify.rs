@@ -8,7 +8,7 @@ use calib_gough::plot;
 use calib_gough::report::{bounds, ratios, table, write_atomically, LegReport, Report};
 use calib_gough::{leg_boxes, GoughLeg, PARAMETER_NAMES};
 use rayon::prelude::*;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(clap::Args, Debug)]
@@ -35,6 +35,11 @@ pub struct Args {
     /// ratio reached is reported).
     #[arg(long, value_name = "SECONDS")]
     max_seconds: Option<f64>,
+    /// Tolerate up to Q bad configurations per leg: the boxes then contain every parameter vector
+    /// that fits all but at most Q configurations, and the configurations proved to be outliers
+    /// are listed. Costs about C(configurations, Q) certifications per leg.
+    #[arg(long, value_name = "Q", default_value_t = 0)]
+    max_outliers: usize,
     /// Also run the paper's 128-box bisection sweep and report its hull x2.
     #[arg(long)]
     sweep: bool,
@@ -62,6 +67,10 @@ struct LegResult {
     outer: Option<[Interval; 7]>,
     inner: Option<[Interval; 7]>,
     witness: Option<[f64; 7]>,
+    /// For an empty leg: a minimal set of configurations (0-based) that cannot be fitted together.
+    conflict: Option<Vec<usize>>,
+    /// With `--max-outliers`: the configurations (0-based) proved to be outliers.
+    outliers: Vec<usize>,
     iterations: usize,
     /// Whether the hull met the tolerance (`None` with `--fast`).
     converged: Option<bool>,
@@ -110,7 +119,16 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     }
     let settings = Settings::default()
         .with_hull_tolerance(a.tolerance)
-        .with_hull_budget(a.max_boxes, a.max_seconds);
+        .with_hull_budget(a.max_boxes, a.max_seconds)
+        .with_max_outliers(a.max_outliers);
+    if a.max_outliers >= data.configs.len() {
+        return Err(format!(
+            "--max-outliers {}: must be smaller than the number of configurations ({})",
+            a.max_outliers,
+            data.configs.len()
+        )
+        .into());
+    }
     let start = Instant::now();
     // Progress on a terminal only (indicatif draws nothing when stderr is not a terminal).
     let bar = indicatif::ProgressBar::new(legs.len() as u64);
@@ -138,6 +156,8 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                     outer: x1,
                     inner: c.inner,
                     witness: c.witness,
+                    conflict: c.conflict,
+                    outliers: c.outliers,
                     iterations: c.iterations,
                     converged: None,
                     x2: None,
@@ -156,6 +176,8 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                     outer: (h.status != Status::Empty).then_some(h.outer),
                     inner: h.inner,
                     witness: h.witness,
+                    conflict: h.conflict,
+                    outliers: h.outliers,
                     iterations: h.iterations,
                     converged: Some(h.converged),
                     x2: None,
@@ -189,7 +211,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let mut reports = Vec::new();
     for r in &results {
         any_empty |= r.status == Status::Empty;
-        print_leg(r);
+        print_leg(r, &data.lines, &a.files.measurements, a.max_outliers);
         reports.push(LegReport {
             leg: r.leg + 1,
             status: format!("{:?}", r.status).to_lowercase(),
@@ -200,6 +222,8 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             outer: r.outer.map(|b| bounds(&b)),
             inner: r.inner.map(|b| bounds(&b)),
             converged: r.converged,
+            conflict: r.conflict.as_ref().map(|c| one_based(c)),
+            outliers: one_based(&r.outliers),
             witness: r.witness.map(|w| w.to_vec()),
             iterations: r.iterations,
             boxes: r.boxes,
@@ -241,7 +265,59 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     Ok(if any_empty { 2 } else { 0 })
 }
 
-fn print_leg(r: &LegResult) {
+/// 0-based configuration indices as the 1-based configuration numbers users see.
+fn one_based(configs: &[usize]) -> Vec<usize> {
+    configs.iter().map(|k| k + 1).collect()
+}
+
+/// "configurations 4, 8 (measurements.csv lines 5, 9)": configurations named by number and line.
+fn name_configurations(configs: &[usize], lines: &[usize], file: &Path) -> String {
+    let file = file
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let numbers: Vec<String> = configs.iter().map(|k| (k + 1).to_string()).collect();
+    let at: Vec<String> = configs
+        .iter()
+        .map(|&k| lines.get(k).map_or("?".into(), |l| l.to_string()))
+        .collect();
+    let (noun, line) = if configs.len() == 1 {
+        ("configuration", "line")
+    } else {
+        ("configurations", "lines")
+    };
+    format!(
+        "{noun} {} ({file} {line} {})",
+        numbers.join(", "),
+        at.join(", ")
+    )
+}
+
+/// What proved a leg empty, in words.
+fn proof_in_words(proof: Option<EmptinessProof>) -> String {
+    match proof {
+        Some(EmptinessProof::CheapRejection { measurement }) => format!(
+            "configuration {} fits no parameter vector left after contraction",
+            measurement + 1
+        ),
+        Some(EmptinessProof::LpInfeasible) => {
+            "the linear relaxation of the data has no solution (checked Farkas certificate)".into()
+        }
+        Some(EmptinessProof::EmptyIntersection { parameter }) => format!(
+            "the certified lower and upper bounds of {} crossed",
+            PARAMETER_NAMES.get(parameter).unwrap_or(&"a parameter")
+        ),
+        Some(EmptinessProof::Subdivision) => {
+            "every piece of a subdivision of x0 was proved empty".into()
+        }
+        Some(EmptinessProof::EverySubset) => {
+            "whichever configurations are dropped, the rest was proved inconsistent".into()
+        }
+        None => "no proof recorded".into(),
+    }
+}
+
+fn print_leg(r: &LegResult, lines: &[usize], file: &Path, max_outliers: usize) {
     println!(
         "== leg {} — {:?} ({} iterations to x1, {} boxes, {:.3} s)",
         r.leg + 1,
@@ -262,11 +338,38 @@ fn print_leg(r: &LegResult) {
     }
     print!("{}", table(&rows));
     match r.status {
-        Status::Empty => println!(
-            "verdict: no parameter vector in x0 fits the measurements within their error bounds \
-             (proof: {:?})",
-            r.emptiness.expect("empty has a proof")
-        ),
+        Status::Empty => {
+            let tolerated = if max_outliers > 0 {
+                format!(", even with {max_outliers} of them tolerated as outliers")
+            } else {
+                String::new()
+            };
+            println!(
+                "verdict: no parameter vector in x0 fits the measurements within their error \
+                 bounds{tolerated} — proved: {}",
+                proof_in_words(r.emptiness)
+            );
+            if let Some(conflict) = &r.conflict {
+                let named = name_configurations(conflict, lines, file);
+                if conflict.len() == 1 {
+                    println!("conflict: {named} alone fits no parameter vector of x0.");
+                } else {
+                    println!(
+                        "conflict: {named} cannot be fitted together; with any one of them \
+                         removed the rest is not proved inconsistent."
+                    );
+                }
+                println!(
+                    "  re-measure them, or run with --max-outliers {} to tolerate {} bad \
+                     configuration{}",
+                    max_outliers + 1,
+                    max_outliers + 1,
+                    if max_outliers == 0 { "" } else { "s" }
+                );
+            } else {
+                println!("  run with a larger --max-outliers, or check the model and error bounds");
+            }
+        }
         Status::Consistent => {
             println!("verdict: consistent (a certified witness satisfies every measurement box)")
         }
@@ -289,6 +392,20 @@ fn print_leg(r: &LegResult) {
                  --max-seconds); both boxes are still certified"
             ),
             None => println!("  (--fast: the paper's x1 only; drop --fast for the tight hull)"),
+        }
+    }
+    if max_outliers > 0 && r.status != Status::Empty {
+        if r.outliers.is_empty() {
+            println!(
+                "outliers (at most {max_outliers} tolerated): no configuration is proved to be one"
+            );
+        } else {
+            println!(
+                "outliers (at most {max_outliers} tolerated): {} — every parameter vector that \
+                 fits the rest misfits {}",
+                name_configurations(&r.outliers, lines, file),
+                if r.outliers.len() == 1 { "it" } else { "them" }
+            );
         }
     }
     if let Some((n, inner, outer)) = r.paving {

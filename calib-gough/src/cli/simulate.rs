@@ -17,8 +17,9 @@ pub struct Args {
     #[arg(long, default_value_t = 1.0)]
     noise_scale: f64,
     /// Move one leg reading: CONFIG:LEG:DELTA (1-based configuration and leg, DELTA in cm).
+    /// Repeat for several outliers: --outlier 5:2:0.3 --outlier 9:2:0.05.
     #[arg(long, value_name = "CONFIG:LEG:DELTA")]
-    outlier: Option<String>,
+    outlier: Vec<String>,
     /// Output folder (created if missing).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
@@ -52,14 +53,14 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     if !(a.noise_scale.is_finite() && a.noise_scale >= 0.0) {
         return Err("--noise-scale: expected a finite number >= 0".into());
     }
-    let outlier = a
+    let outliers = a
         .outlier
-        .as_deref()
+        .iter()
         .map(|s| parse_outlier(s, a.configs))
-        .transpose()?;
+        .collect::<Result<Vec<_>, _>>()?;
     let u = Uncertainty::PAPER;
     let mut sim = simulate(&builtin_hexapod(), a.configs, a.seed, u, a.noise_scale, 0.1);
-    if let Some((c, l, d)) = outlier {
+    for &(c, l, d) in &outliers {
         sim.measured[c].lengths[l] += d;
     }
     std::fs::create_dir_all(&a.out)
@@ -104,7 +105,10 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         "param_order": ["a_x", "a_y", "a_z", "b_x", "b_y", "b_z", "l"],
         "legs": legs(&sim.truth),
         "nominal": legs(&sim.nominal),
-        "outlier": outlier.map(|(c, l, d)| serde_json::json!({ "config": c + 1, "leg": l + 1, "delta": d })),
+        "outliers": outliers
+            .iter()
+            .map(|(c, l, d)| serde_json::json!({ "config": c + 1, "leg": l + 1, "delta": d }))
+            .collect::<Vec<_>>(),
     });
     for (name, text) in [
         ("measurements.csv", csv),
