@@ -1,13 +1,12 @@
 //! `gough certify`.
 
 use super::DataFiles;
-use calib_core::{certify, hull, pave, sweep, EmptinessProof, Interval, Settings, Status};
+use calib_core::{EmptinessProof, Status};
+use calib_gough::certification::{certify_legs, report, CertifyOptions, LegResult};
 use calib_gough::files::{check_uncertainty, read_measurements, read_robot, read_uncertainty};
-use calib_gough::measurement::measured;
 use calib_gough::plot;
-use calib_gough::report::{bounds, ratios, table, write_atomically, LegReport, Report};
-use calib_gough::{leg_boxes, GoughLeg, PARAMETER_NAMES};
-use rayon::prelude::*;
+use calib_gough::report::{ratios, table, write_atomically};
+use calib_gough::PARAMETER_NAMES;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -55,80 +54,23 @@ pub struct Args {
     plots: Option<PathBuf>,
 }
 
-/// One leg's certified result, from the tight hull or (with `--fast`) from x1 alone.
-struct LegResult {
-    leg: usize,
-    x0: [Interval; 7],
-    status: Status,
-    emptiness: Option<EmptinessProof>,
-    /// The paper's fixed point (`None` when x0 was proved empty at once).
-    x1: Option<[Interval; 7]>,
-    /// The tightest certified outer box (`None` when empty).
-    outer: Option<[Interval; 7]>,
-    inner: Option<[Interval; 7]>,
-    witness: Option<[f64; 7]>,
-    /// For an empty leg: a minimal set of configurations (0-based) that cannot be fitted together.
-    conflict: Option<Vec<usize>>,
-    /// With `--max-outliers`: the configurations (0-based) proved to be outliers.
-    outliers: Vec<usize>,
-    iterations: usize,
-    /// Whether the hull met the tolerance (`None` with `--fast`).
-    converged: Option<bool>,
-    x2: Option<Option<[Interval; 7]>>,
-    paving: Option<(usize, f64, f64)>,
-    boxes: usize,
-    seconds: f64,
-}
-
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let robot = read_robot(&a.files.robot)?;
     let data = read_measurements(&a.files.measurements, robot.len())?;
     let u = read_uncertainty(&a.uncertainty)?;
     check_uncertainty(&a.uncertainty, &u, data.rodrigues)?;
-    let legs: Vec<usize> = match &a.legs {
-        Some(list) => {
-            for &l in list {
-                if l == 0 || l > robot.len() {
-                    return Err(format!(
-                        "--legs: leg {l} does not exist (robot.toml has {} legs)",
-                        robot.len()
-                    )
-                    .into());
-                }
-            }
-            list.iter().map(|l| l - 1).collect()
-        }
-        None => (0..robot.len()).collect(),
+    let options = CertifyOptions {
+        legs: a.legs.clone(),
+        fast: a.fast,
+        sweep: a.sweep,
+        pave: a.pave,
+        tolerance: a.tolerance,
+        max_boxes: a.max_boxes,
+        max_seconds: a.max_seconds,
+        max_outliers: a.max_outliers,
     };
-    if let Some(tol) = a.pave {
-        if !(tol > 0.0 && tol < 1.0) {
-            return Err(format!("--pave: expected a relative width in (0, 1), found {tol}").into());
-        }
-    }
-    if !(a.tolerance > 0.0 && a.tolerance.is_finite()) {
-        return Err(format!(
-            "--tolerance: expected a positive number, found {}",
-            a.tolerance
-        )
-        .into());
-    }
-    if let Some(s) = a.max_seconds {
-        if s.is_nan() || s <= 0.0 {
-            return Err(format!("--max-seconds: expected a positive number, found {s}").into());
-        }
-    }
-    let settings = Settings::default()
-        .with_hull_tolerance(a.tolerance)
-        .with_hull_budget(a.max_boxes, a.max_seconds)
-        .with_max_outliers(a.max_outliers);
-    if a.max_outliers >= data.configs.len() {
-        return Err(format!(
-            "--max-outliers {}: must be smaller than the number of configurations ({})",
-            a.max_outliers,
-            data.configs.len()
-        )
-        .into());
-    }
+    // Option errors before any work (certify_legs checks them again).
+    let (legs, _) = options.validate(robot.len(), data.configs.len())?;
     let start = Instant::now();
     // Progress on a terminal only (indicatif draws nothing when stderr is not a terminal).
     let bar = indicatif::ProgressBar::new(legs.len() as u64);
@@ -136,99 +78,13 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         indicatif::ProgressStyle::with_template("certifying legs {bar:30} {pos}/{len} [{elapsed}]")
             .expect("static template"),
     );
-    let results: Vec<LegResult> = legs
-        .par_iter()
-        .map(|&leg| {
-            let t = Instant::now();
-            let spec = &robot[leg];
-            let nominal = spec.nominal.params();
-            let x0: [Interval; 7] = core::array::from_fn(|j| measured(nominal[j], spec.radius[j]));
-            let boxes = leg_boxes(&data.configs, &u, leg);
-            let mut r = if a.fast {
-                let c = certify(&GoughLeg, &x0, &boxes, &settings);
-                let x1 = (c.status != Status::Empty).then_some(c.outer);
-                LegResult {
-                    leg,
-                    x0,
-                    status: c.status,
-                    emptiness: c.emptiness,
-                    x1,
-                    outer: x1,
-                    inner: c.inner,
-                    witness: c.witness,
-                    conflict: c.conflict,
-                    outliers: c.outliers,
-                    iterations: c.iterations,
-                    converged: None,
-                    x2: None,
-                    paving: None,
-                    boxes: 1,
-                    seconds: 0.0,
-                }
-            } else {
-                let h = hull(&GoughLeg, &x0, &boxes, &settings);
-                LegResult {
-                    leg,
-                    x0,
-                    status: h.status,
-                    emptiness: h.emptiness,
-                    x1: h.x1,
-                    outer: (h.status != Status::Empty).then_some(h.outer),
-                    inner: h.inner,
-                    witness: h.witness,
-                    conflict: h.conflict,
-                    outliers: h.outliers,
-                    iterations: h.iterations,
-                    converged: Some(h.converged),
-                    x2: None,
-                    paving: None,
-                    boxes: h.boxes_contracted,
-                    seconds: 0.0,
-                }
-            };
-            let mut contracted = r.boxes;
-            let x2 = a.sweep.then(|| {
-                let s = sweep(&GoughLeg, &x0, &boxes, &settings);
-                contracted += s.boxes_contracted;
-                s.hull
-            });
-            let paving = a.pave.map(|tol| {
-                let p = pave(&GoughLeg, &x0, &boxes, &settings, tol, 20_000);
-                contracted += p.boxes_contracted;
-                (p.boxes.len(), p.inner_volume, p.outer_volume)
-            });
-            bar.inc(1);
-            r.x2 = x2;
-            r.paving = paving;
-            r.boxes = contracted;
-            r.seconds = t.elapsed().as_secs_f64();
-            r
-        })
-        .collect();
+    let results = certify_legs(&robot, &data.configs, &u, &options, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let total = start.elapsed().as_secs_f64();
     let mut any_empty = false;
-    let mut reports = Vec::new();
     for r in &results {
         any_empty |= r.status == Status::Empty;
         print_leg(r, &data.lines, &a.files.measurements, a.max_outliers);
-        reports.push(LegReport {
-            leg: r.leg + 1,
-            status: format!("{:?}", r.status).to_lowercase(),
-            names: PARAMETER_NAMES.iter().map(|s| s.to_string()).collect(),
-            x0: bounds(&r.x0),
-            x1: r.x1.map(|b| bounds(&b)),
-            x2: r.x2.flatten().map(|b| bounds(&b)),
-            outer: r.outer.map(|b| bounds(&b)),
-            inner: r.inner.map(|b| bounds(&b)),
-            converged: r.converged,
-            conflict: r.conflict.as_ref().map(|c| one_based(c)),
-            outliers: one_based(&r.outliers),
-            witness: r.witness.map(|w| w.to_vec()),
-            iterations: r.iterations,
-            boxes: r.boxes,
-            seconds: r.seconds,
-        });
     }
     println!("total: {} legs in {total:.3} s", results.len());
     if let Some(dir) = &a.plots {
@@ -252,22 +108,12 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("plots written to {}", dir.display());
     }
     if let Some(path) = &a.json {
-        let report = Report {
-            version: 1,
-            legs: reports,
-            seconds: total,
-        };
-        let text = serde_json::to_string_pretty(&report)?;
+        let text = serde_json::to_string_pretty(&report(&results, total))?;
         write_atomically(path, &text)
             .map_err(|e| format!("{}: cannot write the report: {e}", path.display()))?;
         println!("report written to {}", path.display());
     }
     Ok(if any_empty { 2 } else { 0 })
-}
-
-/// 0-based configuration indices as the 1-based configuration numbers users see.
-fn one_based(configs: &[usize]) -> Vec<usize> {
-    configs.iter().map(|k| k + 1).collect()
 }
 
 /// "configurations 4, 8 (measurements.csv lines 5, 9)": configurations named by number and line.

@@ -1,0 +1,254 @@
+//! Certifying every leg of a robot: the work behind `gough certify` (and the Python package),
+//! from parsed data to one [`LegResult`] per leg and the JSON [`Report`].
+
+use crate::files::LegSpec;
+use crate::measurement::{leg_boxes, measured, Configuration, Uncertainty};
+use crate::report::{bounds, LegReport, Report};
+use crate::{GoughLeg, PARAMETER_NAMES};
+use calib_core::{certify, hull, pave, sweep, EmptinessProof, Interval, Settings, Status};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// What to compute per leg (the options of `gough certify`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CertifyOptions {
+    /// Only these legs (1-based); all when `None`.
+    pub legs: Option<Vec<usize>>,
+    /// Only the paper's fixed point x1 instead of the tight hull.
+    pub fast: bool,
+    /// Also the paper's 128-box sweep (x2).
+    pub sweep: bool,
+    /// Also a paving down to this relative width.
+    pub pave: Option<f64>,
+    /// The hull's tolerance: stop at `wid(outer) <= (1 + tol) wid(inner)`.
+    pub tolerance: f64,
+    /// The hull's box budget per leg.
+    pub max_boxes: usize,
+    /// The hull's time budget per leg.
+    pub max_seconds: Option<f64>,
+    /// Tolerated outliers per leg.
+    pub max_outliers: usize,
+}
+
+impl Default for CertifyOptions {
+    fn default() -> Self {
+        CertifyOptions {
+            legs: None,
+            fast: false,
+            sweep: false,
+            pave: None,
+            tolerance: Settings::default().hull_tolerance,
+            max_boxes: Settings::default().hull_max_boxes,
+            max_seconds: None,
+            max_outliers: 0,
+        }
+    }
+}
+
+impl CertifyOptions {
+    /// Checks the options against the data; returns the 0-based legs and the kernel settings.
+    /// Errors name the option, as the command line spells it.
+    pub fn validate(&self, legs: usize, configs: usize) -> Result<(Vec<usize>, Settings), String> {
+        let chosen: Vec<usize> = match &self.legs {
+            Some(list) => {
+                if let Some(l) = list.iter().find(|&&l| l == 0 || l > legs) {
+                    return Err(format!(
+                        "--legs: leg {l} does not exist (robot.toml has {legs} legs)"
+                    ));
+                }
+                list.iter().map(|l| l - 1).collect()
+            }
+            None => (0..legs).collect(),
+        };
+        if let Some(tol) = self.pave {
+            if !(tol > 0.0 && tol < 1.0) {
+                return Err(format!(
+                    "--pave: expected a relative width in (0, 1), found {tol}"
+                ));
+            }
+        }
+        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
+            return Err(format!(
+                "--tolerance: expected a positive number, found {}",
+                self.tolerance
+            ));
+        }
+        if let Some(s) = self.max_seconds {
+            if s.is_nan() || s <= 0.0 {
+                return Err(format!(
+                    "--max-seconds: expected a positive number, found {s}"
+                ));
+            }
+        }
+        if self.max_outliers >= configs {
+            return Err(format!(
+                "--max-outliers {}: must be smaller than the number of configurations ({configs})",
+                self.max_outliers
+            ));
+        }
+        let settings = Settings::default()
+            .with_hull_tolerance(self.tolerance)
+            .with_hull_budget(self.max_boxes, self.max_seconds)
+            .with_max_outliers(self.max_outliers);
+        Ok((chosen, settings))
+    }
+}
+
+/// One leg's certified result, from the tight hull or (with `fast`) from x1 alone.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LegResult {
+    /// 0-based leg.
+    pub leg: usize,
+    /// The initial box: nominal ± radius, decimal values enclosed.
+    pub x0: [Interval; 7],
+    /// The verdict.
+    pub status: Status,
+    /// For `Empty`: what proved it.
+    pub emptiness: Option<EmptinessProof>,
+    /// The paper's fixed point (`None` when x0 was proved empty at once).
+    pub x1: Option<[Interval; 7]>,
+    /// The tightest certified outer box (`None` when empty).
+    pub outer: Option<[Interval; 7]>,
+    /// Certified inner bounds.
+    pub inner: Option<[Interval; 7]>,
+    /// A certified consistent parameter vector.
+    pub witness: Option<[f64; 7]>,
+    /// For an empty leg: a minimal set of configurations (0-based) that cannot be fitted together.
+    pub conflict: Option<Vec<usize>>,
+    /// With outliers tolerated: the configurations (0-based) proved to be outliers.
+    pub outliers: Vec<usize>,
+    /// Newton/LP steps to x1.
+    pub iterations: usize,
+    /// Whether the hull met the tolerance (`None` with `fast`).
+    pub converged: Option<bool>,
+    /// The sweep hull x2 (outer `None` without sweep; inner `None` when empty).
+    pub x2: Option<Option<[Interval; 7]>>,
+    /// With paving: boxes, inner volume, outer volume.
+    pub paving: Option<(usize, f64, f64)>,
+    /// Boxes contracted in total.
+    pub boxes: usize,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+impl LegResult {
+    /// The leg's entry in the JSON report (1-based leg and configuration numbers).
+    pub fn report(&self) -> LegReport {
+        let one_based = |c: &[usize]| c.iter().map(|k| k + 1).collect::<Vec<_>>();
+        LegReport {
+            leg: self.leg + 1,
+            status: format!("{:?}", self.status).to_lowercase(),
+            names: PARAMETER_NAMES.iter().map(|s| s.to_string()).collect(),
+            x0: bounds(&self.x0),
+            x1: self.x1.map(|b| bounds(&b)),
+            x2: self.x2.flatten().map(|b| bounds(&b)),
+            outer: self.outer.map(|b| bounds(&b)),
+            inner: self.inner.map(|b| bounds(&b)),
+            converged: self.converged,
+            conflict: self.conflict.as_deref().map(one_based),
+            outliers: one_based(&self.outliers),
+            witness: self.witness.map(|w| w.to_vec()),
+            iterations: self.iterations,
+            boxes: self.boxes,
+            seconds: self.seconds,
+        }
+    }
+}
+
+/// The JSON report (schema version 1) of a run.
+pub fn report(results: &[LegResult], seconds: f64) -> Report {
+    Report {
+        version: 1,
+        legs: results.iter().map(LegResult::report).collect(),
+        seconds,
+    }
+}
+
+/// Certifies one leg (0-based) of `spec` against the configurations.
+pub fn certify_leg(
+    spec: &LegSpec,
+    leg: usize,
+    configs: &[Configuration],
+    u: &Uncertainty,
+    options: &CertifyOptions,
+    settings: &Settings,
+) -> LegResult {
+    let t = Instant::now();
+    let nominal = spec.nominal.params();
+    let x0: [Interval; 7] = core::array::from_fn(|j| measured(nominal[j], spec.radius[j]));
+    let boxes = leg_boxes(configs, u, leg);
+    let mut r = if options.fast {
+        let c = certify(&GoughLeg, &x0, &boxes, settings);
+        let x1 = (c.status != Status::Empty).then_some(c.outer);
+        LegResult {
+            leg,
+            x0,
+            status: c.status,
+            emptiness: c.emptiness,
+            x1,
+            outer: x1,
+            inner: c.inner,
+            witness: c.witness,
+            conflict: c.conflict,
+            outliers: c.outliers,
+            iterations: c.iterations,
+            converged: None,
+            x2: None,
+            paving: None,
+            boxes: 1,
+            seconds: 0.0,
+        }
+    } else {
+        let h = hull(&GoughLeg, &x0, &boxes, settings);
+        LegResult {
+            leg,
+            x0,
+            status: h.status,
+            emptiness: h.emptiness,
+            x1: h.x1,
+            outer: (h.status != Status::Empty).then_some(h.outer),
+            inner: h.inner,
+            witness: h.witness,
+            conflict: h.conflict,
+            outliers: h.outliers,
+            iterations: h.iterations,
+            converged: Some(h.converged),
+            x2: None,
+            paving: None,
+            boxes: h.boxes_contracted,
+            seconds: 0.0,
+        }
+    };
+    if options.sweep {
+        let s = sweep(&GoughLeg, &x0, &boxes, settings);
+        r.boxes += s.boxes_contracted;
+        r.x2 = Some(s.hull);
+    }
+    if let Some(tol) = options.pave {
+        let p = pave(&GoughLeg, &x0, &boxes, settings, tol, 20_000);
+        r.boxes += p.boxes_contracted;
+        r.paving = Some((p.boxes.len(), p.inner_volume, p.outer_volume));
+    }
+    r.seconds = t.elapsed().as_secs_f64();
+    r
+}
+
+/// Certifies the chosen legs in parallel (in leg order); `done` is called after each leg (for
+/// progress). Errors are option errors (see [`CertifyOptions::validate`]).
+pub fn certify_legs(
+    robot: &[LegSpec],
+    configs: &[Configuration],
+    u: &Uncertainty,
+    options: &CertifyOptions,
+    done: &(dyn Fn() + Sync),
+) -> Result<Vec<LegResult>, String> {
+    let (legs, settings) = options.validate(robot.len(), configs.len())?;
+    Ok(legs
+        .par_iter()
+        .map(|&leg| {
+            let r = certify_leg(&robot[leg], leg, configs, u, options, &settings);
+            done();
+            r
+        })
+        .collect())
+}
