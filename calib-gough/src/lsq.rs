@@ -90,6 +90,31 @@ pub fn fit_leg(start: &[f64; 7], measurements: &[[f64; 7]]) -> Fit {
     }
 }
 
+/// Least squares for every leg of `robot` from its nominal geometry (in parallel, in leg order):
+/// what `gough lsq` prints.
+pub fn fit_legs(robot: &[crate::files::LegSpec], configs: &[crate::Configuration]) -> Vec<Fit> {
+    use rayon::prelude::*;
+    (0..robot.len())
+        .into_par_iter()
+        .map(|leg| {
+            let m: Vec<[f64; 7]> = configs
+                .iter()
+                .map(|c| {
+                    let q = match c.orientation {
+                        crate::Orientation::Rodrigues(q) => q,
+                        crate::Orientation::AxisAngle { axis, angle_deg } => {
+                            let t = (angle_deg.to_radians() / 2.0).tan();
+                            axis.map(|v| v * t)
+                        }
+                    };
+                    [c.p[0], c.p[1], c.p[2], q[0], q[1], q[2], c.lengths[leg]]
+                })
+                .collect();
+            fit_leg(&robot[leg].nominal.params(), &m)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -2,8 +2,11 @@
 
 use crate::geometry::{leg_reading, Leg, Pose};
 use crate::measurement::{Configuration, Orientation, Uncertainty};
+use crate::report::write_atomically;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
+use std::fmt::Write as _;
+use std::path::Path;
 
 /// The built-in hexapod: leg 1 is the paper's Table I, the other legs those of `sample21`.
 pub fn builtin_hexapod() -> Vec<Leg> {
@@ -128,4 +131,79 @@ pub fn simulate(
         measured,
         uncertainty,
     }
+}
+
+/// Simulates the built-in hexapod (the paper's error bounds, nominal geometry within ± 0.1 cm) with
+/// leg readings moved by `outliers` (`(configuration, leg, delta)`, 0-based, delta in cm), and
+/// writes the data set `gough simulate` writes into `dir`: `measurements.csv`, `robot.toml`,
+/// `uncertainty.toml` and `truth.json` (each written atomically). Returns the simulation.
+pub fn write_data_set(
+    dir: &Path,
+    configs: usize,
+    seed: u64,
+    noise_scale: f64,
+    outliers: &[(usize, usize, f64)],
+) -> Result<Simulation, String> {
+    let u = Uncertainty::PAPER;
+    let mut sim = simulate(&builtin_hexapod(), configs, seed, u, noise_scale, 0.1);
+    for &(c, l, d) in outliers {
+        sim.measured[c].lengths[l] += d;
+    }
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
+    let mut csv = String::from("px,py,pz,ax,ay,az,angle_deg,L1,L2,L3,L4,L5,L6\n");
+    for c in &sim.measured {
+        let Orientation::AxisAngle { axis, angle_deg } = c.orientation else {
+            unreachable!("simulated axis-angle")
+        };
+        let mut row: Vec<String> =
+            c.p.iter()
+                .chain(&axis)
+                .chain([&angle_deg])
+                .map(|v| format!("{v:?}"))
+                .collect();
+        row.extend(c.lengths.iter().map(|v| format!("{v:?}")));
+        let _ = writeln!(csv, "{}", row.join(","));
+    }
+    let mut robot =
+        String::from("# nominal geometry (cm); initial box per parameter = value +- radius\n");
+    for leg in &sim.nominal {
+        let _ = writeln!(
+            robot,
+            "[[leg]]\na = {:?}\nb = {:?}\nl = {:?}\nradius = 0.1\n",
+            leg.a, leg.b, leg.l
+        );
+    }
+    let unc = format!(
+        "# half-widths of the measurement boxes (cm, unitless axis components, degrees)\npos = {:?}\nlen = {:?}\naxis = {:?}\nangle_deg = {:?}\n",
+        u.pos, u.len, u.axis, u.angle_deg
+    );
+    let legs = |v: &[Leg]| -> Vec<serde_json::Value> {
+        v.iter()
+            .map(|l| serde_json::json!({ "a": l.a, "b": l.b, "l": l.l }))
+            .collect()
+    };
+    let truth = serde_json::json!({
+        "generator": "gough simulate",
+        "seed": seed,
+        "p": configs,
+        "noise_scale": noise_scale,
+        "param_order": ["a_x", "a_y", "a_z", "b_x", "b_y", "b_z", "l"],
+        "legs": legs(&sim.truth),
+        "nominal": legs(&sim.nominal),
+        "outliers": outliers
+            .iter()
+            .map(|(c, l, d)| serde_json::json!({ "config": c + 1, "leg": l + 1, "delta": d }))
+            .collect::<Vec<_>>(),
+    });
+    for (name, text) in [
+        ("measurements.csv", csv),
+        ("robot.toml", robot),
+        ("uncertainty.toml", unc),
+        ("truth.json", format!("{truth:#}")),
+    ] {
+        let path = dir.join(name);
+        write_atomically(&path, &text)
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    }
+    Ok(sim)
 }

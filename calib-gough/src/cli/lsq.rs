@@ -2,9 +2,8 @@
 
 use super::DataFiles;
 use calib_gough::files::{read_measurements, read_robot};
-use calib_gough::lsq::fit_leg;
-use calib_gough::{Orientation, PARAMETER_NAMES};
-use rayon::prelude::*;
+use calib_gough::lsq::fit_legs;
+use calib_gough::PARAMETER_NAMES;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -15,26 +14,7 @@ pub struct Args {
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let robot = read_robot(&a.files.robot)?;
     let data = read_measurements(&a.files.measurements, robot.len())?;
-    let fits: Vec<_> = (0..robot.len())
-        .into_par_iter()
-        .map(|leg| {
-            let m: Vec<[f64; 7]> = data
-                .configs
-                .iter()
-                .map(|c| {
-                    let q = match c.orientation {
-                        Orientation::Rodrigues(q) => q,
-                        Orientation::AxisAngle { axis, angle_deg } => {
-                            let t = (angle_deg.to_radians() / 2.0).tan();
-                            axis.map(|v| v * t)
-                        }
-                    };
-                    [c.p[0], c.p[1], c.p[2], q[0], q[1], q[2], c.lengths[leg]]
-                })
-                .collect();
-            fit_leg(&robot[leg].nominal.params(), &m)
-        })
-        .collect();
+    let fits = fit_legs(&robot, &data.configs);
     print!("{:<4} {:<9}", "leg", "converged");
     for n in PARAMETER_NAMES {
         print!(" {n:>10}");

@@ -1,8 +1,6 @@
 //! `gough simulate`.
 
-use calib_gough::report::write_atomically;
-use calib_gough::{builtin_hexapod, simulate, Orientation, Uncertainty};
-use std::fmt::Write as _;
+use calib_gough::simulate::write_data_set;
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -58,68 +56,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         .iter()
         .map(|s| parse_outlier(s, a.configs))
         .collect::<Result<Vec<_>, _>>()?;
-    let u = Uncertainty::PAPER;
-    let mut sim = simulate(&builtin_hexapod(), a.configs, a.seed, u, a.noise_scale, 0.1);
-    for &(c, l, d) in &outliers {
-        sim.measured[c].lengths[l] += d;
-    }
-    std::fs::create_dir_all(&a.out)
-        .map_err(|e| format!("{}: cannot create: {e}", a.out.display()))?;
-    let mut csv = String::from("px,py,pz,ax,ay,az,angle_deg,L1,L2,L3,L4,L5,L6\n");
-    for c in &sim.measured {
-        let Orientation::AxisAngle { axis, angle_deg } = c.orientation else {
-            unreachable!("simulated axis-angle")
-        };
-        let mut row: Vec<String> =
-            c.p.iter()
-                .chain(&axis)
-                .chain([&angle_deg])
-                .map(|v| format!("{v:?}"))
-                .collect();
-        row.extend(c.lengths.iter().map(|v| format!("{v:?}")));
-        writeln!(csv, "{}", row.join(","))?;
-    }
-    let mut robot =
-        String::from("# nominal geometry (cm); initial box per parameter = value +- radius\n");
-    for leg in &sim.nominal {
-        writeln!(
-            robot,
-            "[[leg]]\na = {:?}\nb = {:?}\nl = {:?}\nradius = 0.1\n",
-            leg.a, leg.b, leg.l
-        )?;
-    }
-    let unc = format!(
-        "# half-widths of the measurement boxes (cm, unitless axis components, degrees)\npos = {:?}\nlen = {:?}\naxis = {:?}\nangle_deg = {:?}\n",
-        u.pos, u.len, u.axis, u.angle_deg
-    );
-    let legs = |v: &[calib_gough::Leg]| -> Vec<serde_json::Value> {
-        v.iter()
-            .map(|l| serde_json::json!({ "a": l.a, "b": l.b, "l": l.l }))
-            .collect()
-    };
-    let truth = serde_json::json!({
-        "generator": "gough simulate",
-        "seed": a.seed,
-        "p": a.configs,
-        "noise_scale": a.noise_scale,
-        "param_order": ["a_x", "a_y", "a_z", "b_x", "b_y", "b_z", "l"],
-        "legs": legs(&sim.truth),
-        "nominal": legs(&sim.nominal),
-        "outliers": outliers
-            .iter()
-            .map(|(c, l, d)| serde_json::json!({ "config": c + 1, "leg": l + 1, "delta": d }))
-            .collect::<Vec<_>>(),
-    });
-    for (name, text) in [
-        ("measurements.csv", csv),
-        ("robot.toml", robot),
-        ("uncertainty.toml", unc),
-        ("truth.json", serde_json::to_string_pretty(&truth)?),
-    ] {
-        let path = a.out.join(name);
-        write_atomically(&path, &text)
-            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-    }
+    write_data_set(&a.out, a.configs, a.seed, a.noise_scale, &outliers)?;
     println!("wrote {} configurations to {}", a.configs, a.out.display());
     Ok(0)
 }
