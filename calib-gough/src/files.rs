@@ -92,8 +92,12 @@ enum Radius {
 /// Reads `robot.toml`: one `[[leg]]` table per leg with `a = [x, y, z]`, `b = [x, y, z]`,
 /// `l = offset` and `radius = r` or `radius = [7 values]`.
 pub fn read_robot(file: &Path) -> Result<Vec<LegSpec>, DataError> {
-    let text = read(file)?;
-    let parsed: RobotFile = toml::from_str(&text).map_err(|e| {
+    parse_robot(file, &read(file)?)
+}
+
+/// [`read_robot`] on text already in memory; `file` names it in errors (e.g. an array).
+pub fn parse_robot(file: &Path, text: &str) -> Result<Vec<LegSpec>, DataError> {
+    let parsed: RobotFile = toml::from_str(text).map_err(|e| {
         let line = e.span().map(|s| text[..s.start].lines().count().max(1));
         error(file, line, None, format!("{}; expected [[leg]] tables with a = [x, y, z], b = [x, y, z], l = offset, radius = r", e.message()))
     })?;
@@ -148,8 +152,12 @@ struct UncertaintyFile {
 /// Reads `uncertainty.toml`: half-widths `pos`, `len`, and `axis` + `angle_deg` (axis-angle data) or
 /// `q` (Rodrigues data). Missing values are NaN here and rejected by [`check_uncertainty`].
 pub fn read_uncertainty(file: &Path) -> Result<Uncertainty, DataError> {
-    let text = read(file)?;
-    let u: UncertaintyFile = toml::from_str(&text).map_err(|e| {
+    parse_uncertainty(file, &read(file)?)
+}
+
+/// [`read_uncertainty`] on text already in memory; `file` names it in errors (e.g. an array).
+pub fn parse_uncertainty(file: &Path, text: &str) -> Result<Uncertainty, DataError> {
+    let u: UncertaintyFile = toml::from_str(text).map_err(|e| {
         let line = e.span().map(|s| text[..s.start].lines().count().max(1));
         error(
             file,
@@ -225,7 +233,11 @@ pub struct Measurements {
 /// `px,py,pz,q1,q2,q3,L1..Lk`, where `k` must equal `legs`; at least 7 rows (one per unknown of a
 /// leg); axes within 1e-3 of unit length.
 pub fn read_measurements(file: &Path, legs: usize) -> Result<Measurements, DataError> {
-    let text = read(file)?;
+    parse_measurements(file, &read(file)?, legs)
+}
+
+/// [`read_measurements`] on text already in memory; `file` names it in errors (e.g. an array).
+pub fn parse_measurements(file: &Path, text: &str, legs: usize) -> Result<Measurements, DataError> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .from_reader(text.as_bytes());

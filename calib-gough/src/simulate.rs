@@ -144,6 +144,24 @@ pub fn write_data_set(
     noise_scale: f64,
     outliers: &[(usize, usize, f64)],
 ) -> Result<Simulation, String> {
+    if configs < 7 {
+        return Err(format!(
+            "--configs {configs}: at least 7 configurations are needed"
+        ));
+    }
+    if !(noise_scale.is_finite() && noise_scale >= 0.0) {
+        return Err("--noise-scale: expected a finite number >= 0".into());
+    }
+    if let Some((c, l, d)) = outliers
+        .iter()
+        .find(|(c, l, d)| *c >= configs || *l >= 6 || !d.is_finite())
+    {
+        return Err(format!(
+            "--outlier {}:{}:{d}: configuration must be 1..={configs}, leg 1..=6, delta finite",
+            c + 1,
+            l + 1
+        ));
+    }
     let u = Uncertainty::PAPER;
     let mut sim = simulate(&builtin_hexapod(), configs, seed, u, noise_scale, 0.1);
     for &(c, l, d) in outliers {

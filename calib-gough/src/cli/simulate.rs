@@ -41,16 +41,6 @@ fn parse_outlier(s: &str, configs: usize) -> Result<(usize, usize, f64), String>
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
-    if a.configs < 7 {
-        return Err(format!(
-            "--configs {}: at least 7 configurations are needed",
-            a.configs
-        )
-        .into());
-    }
-    if !(a.noise_scale.is_finite() && a.noise_scale >= 0.0) {
-        return Err("--noise-scale: expected a finite number >= 0".into());
-    }
     let outliers = a
         .outlier
         .iter()
