@@ -1,0 +1,294 @@
+"""certicalib: certified calibration of parallel robots, from Python.
+
+For measurements known only within error bounds, certicalib returns per leg of a Gough (Stewart)
+platform an ``outer`` box that provably contains every parameter vector consistent with the data,
+an ``inner`` box spanned by parameter vectors proved consistent (the true range of each parameter
+lies between the two), or a proof that the data are inconsistent, with the configurations to blame.
+It runs the same Rust code as the ``gough`` command-line tool and gives the same results.
+
+>>> import certicalib, tempfile, os
+>>> d = tempfile.mkdtemp()
+>>> truth = certicalib.simulate(d, configs=21, seed=7)
+>>> report = certicalib.certify(os.path.join(d, "robot.toml"),
+...                             os.path.join(d, "measurements.csv"),
+...                             os.path.join(d, "uncertainty.toml"), legs=[1])
+>>> leg = report.legs[0]
+>>> leg.status, leg.outer.shape
+('consistent', (7, 2))
+
+Units are cm and degrees; parameters per leg are ``a_x a_y a_z b_x b_y b_z l``
+(``PARAMETER_NAMES``).
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import os
+from dataclasses import dataclass
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _native
+
+__all__ = ["certify", "simulate", "lsq", "Report", "LegResult", "LeastSquaresFit",
+           "PARAMETER_NAMES", "__version__"]
+
+__version__: str = _native.version()
+
+#: The parameter names of a leg, in order.
+PARAMETER_NAMES: Tuple[str, ...] = tuple(_native.parameter_names())
+
+PathLike = Union[str, "os.PathLike[str]"]
+RobotData = Mapping[str, Any]
+MeasurementData = Union[np.ndarray, Mapping[str, Any]]
+UncertaintyData = Mapping[str, float]
+
+
+def _box(value: Optional[List[List[float]]]) -> Optional[np.ndarray]:
+    """``[[lo, hi], ...]`` as a float64 array of shape (7, 2), or ``None``."""
+    return None if value is None else np.asarray(value, dtype=np.float64).reshape(-1, 2)
+
+
+@dataclass(frozen=True)
+class LegResult:
+    """One leg's certified result. Boxes are float64 arrays of shape (7, 2): (lower, upper) per
+    parameter, in the order of ``names``; ``None`` where the leg was proved empty."""
+
+    #: 1-based leg number.
+    leg: int
+    #: ``"consistent"`` (a certified witness exists), ``"empty"`` (proved: no parameter vector in
+    #: x0 fits the data) or ``"undecided"``.
+    status: str
+    #: Parameter names, in order.
+    names: Tuple[str, ...]
+    #: The initial box (nominal ± radius).
+    x0: np.ndarray
+    #: The tightest certified box: contains every consistent parameter vector.
+    outer: Optional[np.ndarray]
+    #: Spanned by parameter vectors proved consistent (``None`` without a witness).
+    inner: Optional[np.ndarray]
+    #: The paper's fixed point x1, for comparison.
+    x1: Optional[np.ndarray]
+    #: The paper's sweep hull x2 (with ``sweep=True``).
+    x2: Optional[np.ndarray]
+    #: A certified consistent parameter vector (shape (7,)), or ``None``.
+    witness: Optional[np.ndarray]
+    #: For an empty leg: a minimal set of conflicting configurations (1-based), else ``None``.
+    conflict: Optional[List[int]]
+    #: With ``max_outliers``: the configurations (1-based) proved to be outliers.
+    outliers: List[int]
+    #: Whether the tight hull met its tolerance (``None`` with ``fast=True``).
+    converged: Optional[bool]
+    #: Wall-clock seconds for this leg.
+    seconds: float
+
+    @property
+    def ratio(self) -> Optional[np.ndarray]:
+        """``wid(outer) / wid(inner)`` per parameter: the outer box overstates the true range by
+        at most this factor (``None`` without both boxes)."""
+        if self.outer is None or self.inner is None:
+            return None
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return (self.outer[:, 1] - self.outer[:, 0]) / (self.inner[:, 1] - self.inner[:, 0])
+
+
+class Report:
+    """The result of :func:`certify`: ``legs`` (one :class:`LegResult` per certified leg) and
+    ``seconds``; :meth:`to_dict` gives the JSON report of ``gough certify --json`` (schema
+    version 1), so ``json.dump(report.to_dict(), f)`` writes the same file."""
+
+    def __init__(self, text: str) -> None:
+        self._dict: Dict[str, Any] = json.loads(text)
+        self.seconds: float = self._dict["seconds"]
+        self.legs: List[LegResult] = [
+            LegResult(
+                leg=leg["leg"],
+                status=leg["status"],
+                names=tuple(leg["names"]),
+                x0=_box(leg["x0"]),
+                outer=_box(leg.get("outer")),
+                inner=_box(leg.get("inner")),
+                x1=_box(leg.get("x1")),
+                x2=_box(leg.get("x2")),
+                witness=None if leg.get("witness") is None
+                else np.asarray(leg["witness"], dtype=np.float64),
+                conflict=leg.get("conflict"),
+                outliers=list(leg.get("outliers", [])),
+                converged=leg.get("converged"),
+                seconds=leg["seconds"],
+            )
+            for leg in self._dict["legs"]
+        ]
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The JSON report (schema version 1) as plain Python data."""
+        return copy.deepcopy(self._dict)
+
+    def __repr__(self) -> str:
+        verdicts = ", ".join(f"leg {leg.leg}: {leg.status}" for leg in self.legs)
+        return f"<certicalib.Report {verdicts}>"
+
+
+def _options(legs: Optional[Sequence[int]], sweep: bool, max_outliers: int, fast: bool,
+             tolerance: float, max_boxes: int, max_seconds: Optional[float]) -> Dict[str, Any]:
+    return dict(legs=None if legs is None else [int(v) for v in legs], sweep=bool(sweep),
+                max_outliers=int(max_outliers), fast=bool(fast), tolerance=float(tolerance),
+                max_boxes=int(max_boxes), max_seconds=max_seconds)
+
+
+def _is_path(value: Any) -> bool:
+    return isinstance(value, (str, os.PathLike))
+
+
+def _num(v: Any) -> str:
+    """A float in shortest round-trip form (the Rust parser reads it back exactly)."""
+    return repr(float(v))
+
+
+def _vec(values: Any) -> str:
+    return "[" + ", ".join(_num(v) for v in values) + "]"
+
+
+def _robot_text(robot: RobotData) -> str:
+    """``{"a": (n, 3), "b": (n, 3), "l": (n,), "radius": float | (n,) | (n, 7)}`` as robot.toml."""
+    try:
+        a = np.asarray(robot["a"], dtype=np.float64).reshape(-1, 3)
+        b = np.asarray(robot["b"], dtype=np.float64).reshape(-1, 3)
+        l = np.asarray(robot["l"], dtype=np.float64).reshape(-1)
+        radius = np.asarray(robot["radius"], dtype=np.float64)
+    except KeyError as e:
+        raise ValueError(f"robot (in memory): missing key {e}; expected a, b, l, radius") from None
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"robot (in memory): {e}") from None
+    n = len(l)
+    if len(a) != n or len(b) != n:
+        raise ValueError(f"robot (in memory): a, b and l must describe the same number of legs "
+                         f"(found {len(a)}, {len(b)}, {n})")
+    out = []
+    for i in range(n):
+        r = radius if radius.ndim == 0 else radius[i]
+        r_text = _num(r) if np.ndim(r) == 0 else _vec(r)
+        out.append(f"[[leg]]\na = {_vec(a[i])}\nb = {_vec(b[i])}\nl = {_num(l[i])}\n"
+                   f"radius = {r_text}\n")
+    return "\n".join(out)
+
+
+def _measurements_text(measurements: MeasurementData) -> str:
+    """An array (p, 7 + n) with columns px,py,pz,ax,ay,az,angle_deg,L1..Ln, or a dict with "p"
+    (p, 3), "axis" (p, 3) and "angle_deg" (p,) or "q" (p, 3), and "lengths" (p, n), as CSV."""
+    if isinstance(measurements, Mapping):
+        try:
+            p = np.asarray(measurements["p"], dtype=np.float64).reshape(-1, 3)
+            lengths = np.asarray(measurements["lengths"], dtype=np.float64)
+            lengths = lengths.reshape(len(p), -1)
+            if "q" in measurements:
+                orient = np.asarray(measurements["q"], dtype=np.float64).reshape(-1, 3)
+                head = ["px", "py", "pz", "q1", "q2", "q3"]
+            else:
+                axis = np.asarray(measurements["axis"], dtype=np.float64).reshape(-1, 3)
+                angle = np.asarray(measurements["angle_deg"], dtype=np.float64).reshape(-1, 1)
+                orient = np.hstack([axis, angle])
+                head = ["px", "py", "pz", "ax", "ay", "az", "angle_deg"]
+            rows = np.hstack([p, orient, lengths])
+        except KeyError as e:
+            raise ValueError(f"measurements (in memory): missing key {e}") from None
+        except ValueError as e:
+            raise ValueError(f"measurements (in memory): {e}") from None
+    else:
+        rows = np.asarray(measurements, dtype=np.float64)
+        if rows.ndim != 2 or rows.shape[1] < 8:
+            raise ValueError("measurements (in memory): expected an array of shape (p, 7 + legs) "
+                             f"with columns px,py,pz,ax,ay,az,angle_deg,L1..; found {rows.shape}")
+        head = ["px", "py", "pz", "ax", "ay", "az", "angle_deg"]
+    legs = rows.shape[1] - len(head)
+    head = head + [f"L{i + 1}" for i in range(legs)]
+    lines = [",".join(head)] + [",".join(_num(v) for v in row) for row in rows]
+    return "\n".join(lines) + "\n"
+
+
+def _uncertainty_text(u: UncertaintyData) -> str:
+    """``{"pos", "len", "axis", "angle_deg"}`` or ``{"pos", "len", "q"}`` as uncertainty.toml."""
+    if not isinstance(u, Mapping):
+        raise ValueError("uncertainty (in memory): expected a dict of half-widths")
+    return "".join(f"{k} = {_num(v)}\n" for k, v in u.items())
+
+
+def certify(robot: Union[PathLike, RobotData],
+            measurements: Union[PathLike, MeasurementData],
+            uncertainty: Union[PathLike, UncertaintyData], *,
+            legs: Optional[Sequence[int]] = None, sweep: bool = False, max_outliers: int = 0,
+            fast: bool = False, tolerance: float = 0.05, max_boxes: int = 200_000,
+            max_seconds: Optional[float] = None) -> Report:
+    """Certify every leg (or ``legs``, 1-based) of a Gough platform, as ``gough certify`` does.
+
+    Each input is either a path (``str`` or ``os.PathLike``) to the file ``gough certify`` reads,
+    or in-memory data:
+
+    - ``robot``: ``{"a": (n, 3), "b": (n, 3), "l": (n,), "radius": r}``, with ``r`` a float, one
+      per leg ``(n,)`` or one per parameter ``(n, 7)``: the initial box is nominal ± radius.
+    - ``measurements``: an array ``(p, 7 + n)`` with columns ``px,py,pz,ax,ay,az,angle_deg,L1..Ln``
+      (one row per configuration), or a dict with ``"p"`` (p, 3), ``"axis"`` (p, 3) and
+      ``"angle_deg"`` (p,) — or ``"q"`` (p, 3), the Rodrigues vector — and ``"lengths"`` (p, n).
+    - ``uncertainty``: ``{"pos": .., "len": .., "axis": .., "angle_deg": ..}`` (or ``"q"``):
+      half-widths of the measurement errors.
+
+    ``sweep`` adds the paper's 128-box sweep (``x2``); ``max_outliers`` tolerates that many bad
+    configurations per leg; ``fast`` computes only the paper's fixed point x1 (reported as
+    ``outer``); ``tolerance``, ``max_boxes`` and ``max_seconds`` are the tight hull's stop rule.
+    The interpreter is released while the work runs. Malformed input raises ``ValueError`` naming
+    the file (or in-memory input), the line and the field.
+    """
+    opts = _options(legs, sweep, max_outliers, fast, tolerance, max_boxes, max_seconds)
+    if _is_path(robot) and _is_path(measurements) and _is_path(uncertainty):
+        return Report(_native.certify_files(os.fspath(robot), os.fspath(measurements),
+                                            os.fspath(uncertainty), **opts))
+    texts, names = [], []
+    for value, render, name in [(robot, _robot_text, "robot"),
+                                (measurements, _measurements_text, "measurements"),
+                                (uncertainty, _uncertainty_text, "uncertainty")]:
+        if _is_path(value):
+            with open(value, encoding="utf-8") as f:
+                texts.append(f.read())
+            names.append(os.fspath(value))
+        else:
+            texts.append(render(value))
+            names.append(f"{name} (in memory)")
+    return Report(_native.certify_text(texts[0], texts[1], texts[2], tuple(names), **opts))
+
+
+def simulate(out: PathLike, *, configs: int = 21, seed: int = 7, noise_scale: float = 1.0,
+             outliers: Sequence[Tuple[int, int, float]] = ()) -> Dict[str, Any]:
+    """Write a simulated data set of the built-in hexapod into the folder ``out``, as
+    ``gough simulate`` does: ``robot.toml``, ``measurements.csv``, ``uncertainty.toml`` and
+    ``truth.json``. ``outliers`` are ``(configuration, leg, delta_cm)`` with 1-based numbers.
+    Returns the truth (the contents of ``truth.json``) as a dict."""
+    text = _native.simulate(os.fspath(out), int(configs), int(seed), float(noise_scale),
+                            [(int(c), int(l), float(d)) for c, l, d in outliers])
+    return json.loads(text)
+
+
+@dataclass(frozen=True)
+class LeastSquaresFit:
+    """A Levenberg–Marquardt fit of one leg from its nominal geometry."""
+
+    #: 1-based leg number.
+    leg: int
+    #: Whether the solver reported convergence.
+    converged: bool
+    #: The fitted parameters, shape (7,).
+    x: np.ndarray
+    #: Root-mean-square residual.
+    rms: float
+    #: Largest leg-length error of the fit, in cm.
+    max_length_error: float
+
+
+def lsq(robot: PathLike, measurements: PathLike) -> List[LeastSquaresFit]:
+    """Least squares per leg from the nominal geometry, as ``gough lsq`` does (the classical
+    calibration the paper compares against: its solutions need not be consistent with the data)."""
+    fits = json.loads(_native.lsq(os.fspath(robot), os.fspath(measurements)))
+    return [LeastSquaresFit(leg=f["leg"], converged=f["converged"],
+                            x=np.asarray(f["x"], dtype=np.float64), rms=f["rms"],
+                            max_length_error=f["max_length_error"]) for f in fits]

@@ -1,0 +1,237 @@
+//! The native half of the `certicalib` Python package: thin PyO3 wrappers around
+//! `calib_gough::certification`, `calib_gough::simulate` and `calib_gough::lsq`, so that Python
+//! gets exactly what `gough certify`, `gough simulate` and `gough lsq` compute. Results cross the
+//! boundary as JSON text (the CLI's report schema); the Python side turns them into objects with
+//! numpy arrays. Every data error becomes a `ValueError` naming the file, line and field; the long
+//! work runs with the interpreter detached (other Python threads keep running).
+//!
+//! (No `#![deny(unsafe_code)]` here: PyO3's macros expand to the FFI glue, which is unsafe code.)
+
+use calib_gough::certification::{certify_legs, report, CertifyOptions};
+use calib_gough::files::{
+    check_uncertainty, parse_measurements, parse_robot, parse_uncertainty, read_measurements,
+    read_robot, read_uncertainty, LegSpec, Measurements,
+};
+use calib_gough::lsq::fit_legs;
+use calib_gough::Uncertainty;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use std::path::PathBuf;
+use std::time::Instant;
+
+fn value_error(e: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// The parsed inputs of a certification, with the name the uncertainty goes by in errors.
+struct Inputs {
+    robot: Vec<LegSpec>,
+    data: Measurements,
+    uncertainty: Uncertainty,
+    uncertainty_name: PathBuf,
+}
+
+/// Certifies and returns the JSON report.
+fn run(py: Python<'_>, inputs: Inputs, options: CertifyOptions) -> PyResult<String> {
+    check_uncertainty(
+        &inputs.uncertainty_name,
+        &inputs.uncertainty,
+        inputs.data.rodrigues,
+    )
+    .map_err(value_error)?;
+    let start = Instant::now();
+    let results = py
+        .detach(|| {
+            certify_legs(
+                &inputs.robot,
+                &inputs.data.configs,
+                &inputs.uncertainty,
+                &options,
+                &|| {},
+            )
+        })
+        .map_err(value_error)?;
+    serde_json::to_string(&report(&results, start.elapsed().as_secs_f64())).map_err(value_error)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn options(
+    legs: Option<Vec<usize>>,
+    sweep: bool,
+    max_outliers: usize,
+    fast: bool,
+    tolerance: f64,
+    max_boxes: usize,
+    max_seconds: Option<f64>,
+) -> CertifyOptions {
+    CertifyOptions {
+        legs,
+        fast,
+        sweep,
+        pave: None,
+        tolerance,
+        max_boxes,
+        max_seconds,
+        max_outliers,
+    }
+}
+
+/// Certifies from the three files `gough certify` reads; returns the JSON report.
+#[pyfunction]
+#[pyo3(signature = (robot, measurements, uncertainty, legs=None, sweep=false, max_outliers=0,
+                    fast=false, tolerance=0.05, max_boxes=200_000, max_seconds=None))]
+#[allow(clippy::too_many_arguments)]
+fn certify_files(
+    py: Python<'_>,
+    robot: PathBuf,
+    measurements: PathBuf,
+    uncertainty: PathBuf,
+    legs: Option<Vec<usize>>,
+    sweep: bool,
+    max_outliers: usize,
+    fast: bool,
+    tolerance: f64,
+    max_boxes: usize,
+    max_seconds: Option<f64>,
+) -> PyResult<String> {
+    let spec = read_robot(&robot).map_err(value_error)?;
+    let data = read_measurements(&measurements, spec.len()).map_err(value_error)?;
+    let u = read_uncertainty(&uncertainty).map_err(value_error)?;
+    let inputs = Inputs {
+        robot: spec,
+        data,
+        uncertainty: u,
+        uncertainty_name: uncertainty,
+    };
+    let o = options(
+        legs,
+        sweep,
+        max_outliers,
+        fast,
+        tolerance,
+        max_boxes,
+        max_seconds,
+    );
+    run(py, inputs, o)
+}
+
+/// Certifies from the three inputs as text in the files' formats (TOML, CSV, TOML), each with
+/// the name it goes by in error messages; returns the JSON report.
+#[pyfunction]
+#[pyo3(signature = (robot, measurements, uncertainty, names, legs=None, sweep=false,
+                    max_outliers=0, fast=false, tolerance=0.05, max_boxes=200_000,
+                    max_seconds=None))]
+#[allow(clippy::too_many_arguments)]
+fn certify_text(
+    py: Python<'_>,
+    robot: &str,
+    measurements: &str,
+    uncertainty: &str,
+    names: (String, String, String),
+    legs: Option<Vec<usize>>,
+    sweep: bool,
+    max_outliers: usize,
+    fast: bool,
+    tolerance: f64,
+    max_boxes: usize,
+    max_seconds: Option<f64>,
+) -> PyResult<String> {
+    let (rn, mn, un) = (
+        PathBuf::from(names.0),
+        PathBuf::from(names.1),
+        PathBuf::from(names.2),
+    );
+    let spec = parse_robot(&rn, robot).map_err(value_error)?;
+    let data = parse_measurements(&mn, measurements, spec.len()).map_err(value_error)?;
+    let u = parse_uncertainty(&un, uncertainty).map_err(value_error)?;
+    let inputs = Inputs {
+        robot: spec,
+        data,
+        uncertainty: u,
+        uncertainty_name: un,
+    };
+    let o = options(
+        legs,
+        sweep,
+        max_outliers,
+        fast,
+        tolerance,
+        max_boxes,
+        max_seconds,
+    );
+    run(py, inputs, o)
+}
+
+/// Writes the simulated data set of `gough simulate` into `out`; `outliers` are 1-based
+/// `(configuration, leg, delta)`. Returns the contents of `truth.json`.
+#[pyfunction]
+#[pyo3(signature = (out, configs=21, seed=7, noise_scale=1.0, outliers=Vec::new()))]
+fn simulate(
+    py: Python<'_>,
+    out: PathBuf,
+    configs: usize,
+    seed: u64,
+    noise_scale: f64,
+    outliers: Vec<(usize, usize, f64)>,
+) -> PyResult<String> {
+    let zero_based = outliers
+        .iter()
+        .map(|&(c, l, d)| {
+            if c == 0 || l == 0 {
+                Err(value_error(format!(
+                    "outlier ({c}, {l}, {d}): configuration and leg are 1-based"
+                )))
+            } else {
+                Ok((c - 1, l - 1, d))
+            }
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    py.detach(|| {
+        calib_gough::simulate::write_data_set(&out, configs, seed, noise_scale, &zero_based)
+    })
+    .map_err(value_error)?;
+    std::fs::read_to_string(out.join("truth.json")).map_err(value_error)
+}
+
+/// Least squares per leg (what `gough lsq` prints), as JSON: one object per leg with `leg`,
+/// `converged`, `x`, `rms` and `max_length_error`.
+#[pyfunction]
+fn lsq(py: Python<'_>, robot: PathBuf, measurements: PathBuf) -> PyResult<String> {
+    let spec = read_robot(&robot).map_err(value_error)?;
+    let data = read_measurements(&measurements, spec.len()).map_err(value_error)?;
+    let fits = py.detach(|| fit_legs(&spec, &data.configs));
+    let legs: Vec<serde_json::Value> = fits
+        .iter()
+        .enumerate()
+        .map(|(i, f)| {
+            serde_json::json!({
+                "leg": i + 1, "converged": f.converged, "x": f.x.to_vec(),
+                "rms": f.rms, "max_length_error": f.max_length_error,
+            })
+        })
+        .collect();
+    serde_json::to_string(&legs).map_err(value_error)
+}
+
+/// The parameter names, in order.
+#[pyfunction]
+fn parameter_names() -> Vec<&'static str> {
+    calib_gough::PARAMETER_NAMES.to_vec()
+}
+
+/// The certicalib version.
+#[pyfunction]
+fn version() -> &'static str {
+    env!("CARGO_PKG_VERSION")
+}
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(certify_files, m)?)?;
+    m.add_function(wrap_pyfunction!(certify_text, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(lsq, m)?)?;
+    m.add_function(wrap_pyfunction!(parameter_names, m)?)?;
+    m.add_function(wrap_pyfunction!(version, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,169 @@
+"""The Python package against the gough CLI: same results from files and from numpy arrays,
+ValueError naming file/line/field on bad input, outliers named, the JSON report's structure."""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import certicalib
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def gough_binary() -> Path:
+    """The gough CLI: $GOUGH_BIN, else a build in the repository's target folder (built if
+    missing), so the comparison with the CLI always runs."""
+    if os.environ.get("GOUGH_BIN"):
+        return Path(os.environ["GOUGH_BIN"])
+    for profile in ("release", "debug"):
+        path = REPO / "target" / profile / "gough"
+        if path.exists():
+            return path
+    subprocess.run(["cargo", "build", "-p", "calib-gough", "--bin", "gough"], cwd=REPO, check=True)
+    return REPO / "target" / "debug" / "gough"
+
+
+@pytest.fixture(scope="module")
+def data(tmp_path_factory) -> Path:
+    d = tmp_path_factory.mktemp("sim")
+    truth = certicalib.simulate(d, configs=21, seed=7, outliers=[(5, 2, 0.3)])
+    assert truth["outliers"] == [{"config": 5, "leg": 2, "delta": 0.3}]
+    return d
+
+
+def files(d: Path):
+    return d / "robot.toml", d / "measurements.csv", d / "uncertainty.toml"
+
+
+def cli_report(d: Path, *extra: str) -> dict:
+    out = d / "cli.json"
+    robot, meas, unc = files(d)
+    subprocess.run([str(gough_binary()), "certify", "--robot", str(robot), "--measurements",
+                    str(meas), "--uncertainty", str(unc), "--json", str(out), *extra],
+                   check=False, capture_output=True)
+    return json.loads(out.read_text())
+
+
+def same_legs(a: dict, b: dict) -> None:
+    assert len(a["legs"]) == len(b["legs"])
+    for x, y in zip(a["legs"], b["legs"]):
+        for key in ("leg", "status", "names", "x0", "x1", "x2", "outer", "inner", "witness",
+                    "conflict", "outliers", "converged", "iterations", "boxes"):
+            assert x[key] == y[key], f"leg {x['leg']}: {key}"
+
+
+def test_files_give_the_same_report_as_the_cli(data):
+    report = certicalib.certify(*files(data))
+    cli = cli_report(data)
+    same_legs(report.to_dict(), cli)
+    assert set(report.to_dict()) == set(cli) and report.to_dict()["version"] == 1
+    leg1, leg2 = report.legs[0], report.legs[1]
+    assert leg1.status == "consistent" and leg2.status == "empty"
+    assert leg1.outer.shape == (7, 2) and leg1.outer.dtype == np.float64
+    assert leg1.inner.shape == (7, 2) and leg1.x1.shape == (7, 2) and leg1.witness.shape == (7,)
+    assert leg1.names == certicalib.PARAMETER_NAMES
+    assert np.all(leg1.outer[:, 0] <= leg1.inner[:, 0]) and np.all(leg1.inner[:, 1] <= leg1.outer[:, 1])
+    assert np.all(leg1.ratio <= 1.05 + 1e-9)
+    assert leg2.outer is None and 5 in leg2.conflict
+    # json.dumps of to_dict writes the JSON report: it reads back identical.
+    assert json.loads(json.dumps(report.to_dict())) == report.to_dict()
+
+
+def test_sweep_fast_and_paths_as_pathlike(data):
+    robot, meas, unc = files(data)
+    report = certicalib.certify(robot, str(meas), unc, legs=[1], sweep=True, fast=True)
+    same_legs(report.to_dict(), cli_report(data, "--legs", "1", "--sweep", "--fast"))
+    leg = report.legs[0]
+    assert leg.x2.shape == (7, 2) and leg.converged is None
+    assert np.array_equal(leg.outer, leg.x1)
+
+
+def read_uncertainty(path: Path) -> dict:
+    values = {}
+    for line in path.read_text().splitlines():
+        if "=" in line and not line.lstrip().startswith("#"):
+            key, value = line.split("=")
+            values[key.strip()] = float(value)
+    return values
+
+
+def test_numpy_arrays_give_the_same_results_as_files(data):
+    truth = json.loads((data / "truth.json").read_text())
+    nominal = truth["nominal"]
+    robot = {"a": np.array([leg["a"] for leg in nominal]),
+             "b": np.array([leg["b"] for leg in nominal]),
+             "l": np.array([leg["l"] for leg in nominal]), "radius": 0.1}
+    rows = np.loadtxt(data / "measurements.csv", delimiter=",", skiprows=1)
+    u = read_uncertainty(data / "uncertainty.toml")
+    from_arrays = certicalib.certify(robot, rows, u, legs=[1, 3])
+    from_files = certicalib.certify(*files(data), legs=[1, 3])
+    same_legs(from_arrays.to_dict(), from_files.to_dict())
+    as_dict = {"p": rows[:, 0:3], "axis": rows[:, 3:6], "angle_deg": rows[:, 6],
+               "lengths": rows[:, 7:]}
+    same_legs(certicalib.certify(robot, as_dict, u, legs=[1, 3]).to_dict(), from_files.to_dict())
+
+
+def test_outliers_are_named_and_tolerated(data):
+    strict = certicalib.certify(*files(data), legs=[2])
+    assert strict.legs[0].status == "empty" and 5 in strict.legs[0].conflict
+    tolerant = certicalib.certify(*files(data), legs=[2], max_outliers=1)
+    leg = tolerant.legs[0]
+    assert leg.status == "consistent" and leg.outliers == [5]
+    truth = json.loads((data / "truth.json").read_text())["legs"][1]
+    values = np.array(truth["a"] + truth["b"] + [truth["l"]])
+    assert np.all(leg.outer[:, 0] <= values) and np.all(values <= leg.outer[:, 1])
+    same_legs(tolerant.to_dict(), cli_report(data, "--legs", "2", "--max-outliers", "1"))
+
+
+def test_bad_input_raises_value_error_naming_file_line_and_field(data, tmp_path):
+    bad = tmp_path / "measurements.csv"
+    lines = (data / "measurements.csv").read_text().splitlines()
+    cells = lines[3].split(",")
+    cells[8] = "oops"  # the L2 column of the third configuration, on line 4
+    lines[3] = ",".join(cells)
+    bad.write_text("\n".join(lines) + "\n")
+    robot, _, unc = files(data)
+    with pytest.raises(ValueError) as e:
+        certicalib.certify(robot, bad, unc)
+    message = str(e.value)
+    assert "measurements.csv" in message and "line 4" in message and "L2" in message, message
+    with pytest.raises(ValueError, match="robot.toml"):
+        broken = tmp_path / "robot.toml"
+        broken.write_text("[[leg]]\na = [1, 2]\n")
+        certicalib.certify(broken, data / "measurements.csv", unc)
+    with pytest.raises(ValueError, match=r"robot \(in memory\): missing key"):
+        certicalib.certify({"a": [[0, 0, 0]]}, data / "measurements.csv", unc)
+    with pytest.raises(ValueError, match=r"uncertainty \(in memory\)"):
+        certicalib.certify(robot, data / "measurements.csv", {"pos": -1.0, "len": 1e-3,
+                                                              "axis": 1e-5, "angle_deg": 1e-3})
+    with pytest.raises(ValueError, match="--legs"):
+        certicalib.certify(*files(data), legs=[9])
+    with pytest.raises(ValueError, match="--configs"):
+        certicalib.simulate(tmp_path / "x", configs=3)
+
+
+def test_least_squares_mirrors_the_cli(data):
+    fits = certicalib.lsq(data / "robot.toml", data / "measurements.csv")
+    assert [f.leg for f in fits] == [1, 2, 3, 4, 5, 6]
+    truth = json.loads((data / "truth.json").read_text())["legs"][0]
+    assert fits[0].x.shape == (7,) and abs(fits[0].x[0] - truth["a"][0]) < 0.1
+    out = subprocess.run([str(gough_binary()), "lsq", "--robot", str(data / "robot.toml"),
+                          "--measurements", str(data / "measurements.csv")],
+                         check=True, capture_output=True, text=True).stdout
+    row = out.splitlines()[1].split()
+    assert row[0] == "1" and abs(float(row[2]) - fits[0].x[0]) < 1e-4
+
+
+def test_the_example_script_runs(tmp_path):
+    script = REPO / "calib-py" / "examples" / "plot_boxes.py"
+    shutil.copy(script, tmp_path)
+    result = subprocess.run([sys.executable, str(tmp_path / "plot_boxes.py"), str(tmp_path / "b.png")],
+                            capture_output=True, text=True, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "leg 6: consistent" in result.stdout
