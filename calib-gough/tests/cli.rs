@@ -65,6 +65,19 @@ fn report(dir: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap()
 }
 
+/// The seven true parameters of leg `i` (0-based) from truth.json.
+fn truth_values(truth: &serde_json::Value, i: usize) -> Vec<f64> {
+    let t = &truth["legs"][i];
+    t["a"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .chain(t["b"].as_array().unwrap())
+        .map(|v| v.as_f64().unwrap())
+        .chain([t["l"].as_f64().unwrap()])
+        .collect()
+}
+
 #[test]
 fn truth_is_inside_every_leg_for_many_seeds() {
     for seed in [1, 2, 3, 4] {
@@ -84,15 +97,7 @@ fn truth_is_inside_every_leg_for_many_seeds() {
         assert_eq!(rep["version"], 1);
         for (i, leg) in rep["legs"].as_array().unwrap().iter().enumerate() {
             assert_ne!(leg["status"], "empty");
-            let t = &truth["legs"][i];
-            let values: Vec<f64> = t["a"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .chain(t["b"].as_array().unwrap())
-                .map(|v| v.as_f64().unwrap())
-                .chain([t["l"].as_f64().unwrap()])
-                .collect();
+            let values = truth_values(&truth, i);
             let bound = |name: &str, j: usize| {
                 let b = &leg[name][j];
                 (b[0].as_f64().unwrap(), b[1].as_f64().unwrap())
@@ -207,15 +212,7 @@ fn max_outliers_names_every_culprit_and_keeps_the_truth() {
     let leg2 = &rep["legs"][0];
     assert_eq!(leg2["outliers"], serde_json::json!([5, 13]));
     assert_eq!(rep["legs"][1]["outliers"], serde_json::json!([]));
-    let t = &truth["legs"][1];
-    let values: Vec<f64> = t["a"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .chain(t["b"].as_array().unwrap())
-        .map(|v| v.as_f64().unwrap())
-        .chain([t["l"].as_f64().unwrap()])
-        .collect();
+    let values = truth_values(&truth, 1);
     for (j, &v) in values.iter().enumerate() {
         let b = &leg2["outer"][j];
         assert!(b[0].as_f64().unwrap() <= v && v <= b[1].as_f64().unwrap());
