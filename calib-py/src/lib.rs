@@ -54,8 +54,11 @@ fn run(py: Python<'_>, inputs: Inputs, options: CertifyOptions) -> PyResult<Stri
     serde_json::to_string(&report(&results, start.elapsed().as_secs_f64())).map_err(value_error)
 }
 
-#[allow(clippy::too_many_arguments)]
-fn options(
+/// The options of `certify`, passed from Python as one dict (the keyword arguments of
+/// `certicalib.certify`).
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
+struct Options {
     legs: Option<Vec<usize>>,
     sweep: bool,
     max_outliers: usize,
@@ -63,36 +66,31 @@ fn options(
     tolerance: f64,
     max_boxes: usize,
     max_seconds: Option<f64>,
-) -> CertifyOptions {
-    CertifyOptions {
-        legs,
-        fast,
-        sweep,
-        pave: None,
-        tolerance,
-        max_boxes,
-        max_seconds,
-        max_outliers,
+}
+
+impl From<Options> for CertifyOptions {
+    fn from(o: Options) -> Self {
+        CertifyOptions {
+            legs: o.legs,
+            fast: o.fast,
+            sweep: o.sweep,
+            pave: None,
+            tolerance: o.tolerance,
+            max_boxes: o.max_boxes,
+            max_seconds: o.max_seconds,
+            max_outliers: o.max_outliers,
+        }
     }
 }
 
 /// Certifies from the three files `gough certify` reads; returns the JSON report.
 #[pyfunction]
-#[pyo3(signature = (robot, measurements, uncertainty, legs=None, sweep=false, max_outliers=0,
-                    fast=false, tolerance=0.05, max_boxes=200_000, max_seconds=None))]
-#[allow(clippy::too_many_arguments)]
 fn certify_files(
     py: Python<'_>,
     robot: PathBuf,
     measurements: PathBuf,
     uncertainty: PathBuf,
-    legs: Option<Vec<usize>>,
-    sweep: bool,
-    max_outliers: usize,
-    fast: bool,
-    tolerance: f64,
-    max_boxes: usize,
-    max_seconds: Option<f64>,
+    options: Options,
 ) -> PyResult<String> {
     let spec = read_robot(&robot).map_err(value_error)?;
     let data = read_measurements(&measurements, spec.len()).map_err(value_error)?;
@@ -103,38 +101,19 @@ fn certify_files(
         uncertainty: u,
         uncertainty_name: uncertainty,
     };
-    let o = options(
-        legs,
-        sweep,
-        max_outliers,
-        fast,
-        tolerance,
-        max_boxes,
-        max_seconds,
-    );
-    run(py, inputs, o)
+    run(py, inputs, options.into())
 }
 
 /// Certifies from the three inputs as text in the files' formats (TOML, CSV, TOML), each with
 /// the name it goes by in error messages; returns the JSON report.
 #[pyfunction]
-#[pyo3(signature = (robot, measurements, uncertainty, names, legs=None, sweep=false,
-                    max_outliers=0, fast=false, tolerance=0.05, max_boxes=200_000,
-                    max_seconds=None))]
-#[allow(clippy::too_many_arguments)]
 fn certify_text(
     py: Python<'_>,
     robot: &str,
     measurements: &str,
     uncertainty: &str,
     names: (String, String, String),
-    legs: Option<Vec<usize>>,
-    sweep: bool,
-    max_outliers: usize,
-    fast: bool,
-    tolerance: f64,
-    max_boxes: usize,
-    max_seconds: Option<f64>,
+    options: Options,
 ) -> PyResult<String> {
     let (rn, mn, un) = (
         PathBuf::from(names.0),
@@ -150,16 +129,7 @@ fn certify_text(
         uncertainty: u,
         uncertainty_name: un,
     };
-    let o = options(
-        legs,
-        sweep,
-        max_outliers,
-        fast,
-        tolerance,
-        max_boxes,
-        max_seconds,
-    );
-    run(py, inputs, o)
+    run(py, inputs, options.into())
 }
 
 /// Writes the simulated data set of `gough simulate` into `out`; `outliers` are 1-based

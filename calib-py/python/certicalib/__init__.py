@@ -243,7 +243,7 @@ def certify(robot: Union[PathLike, RobotData],
     opts = _options(legs, sweep, max_outliers, fast, tolerance, max_boxes, max_seconds)
     if _is_path(robot) and _is_path(measurements) and _is_path(uncertainty):
         return Report(_native.certify_files(os.fspath(robot), os.fspath(measurements),
-                                            os.fspath(uncertainty), **opts))
+                                            os.fspath(uncertainty), opts))
     texts, names = [], []
     for value, render, name in [(robot, _robot_text, "robot"),
                                 (measurements, _measurements_text, "measurements"),
@@ -255,7 +255,7 @@ def certify(robot: Union[PathLike, RobotData],
         else:
             texts.append(render(value))
             names.append(f"{name} (in memory)")
-    return Report(_native.certify_text(texts[0], texts[1], texts[2], tuple(names), **opts))
+    return Report(_native.certify_text(texts[0], texts[1], texts[2], tuple(names), opts))
 
 
 def simulate(out: PathLike, *, configs: int = 21, seed: int = 7, noise_scale: float = 1.0,

@@ -1,34 +1,22 @@
 """Type stubs of the native extension (JSON text in, JSON text out)."""
 
 from os import PathLike
-from typing import Optional, Sequence, Tuple, Union
+from typing import List, Optional, Sequence, Tuple, TypedDict, Union
 
 _Path = Union[str, PathLike]
 
-def certify_files(
-    robot: _Path,
-    measurements: _Path,
-    uncertainty: _Path,
-    legs: Optional[Sequence[int]] = None,
-    sweep: bool = False,
-    max_outliers: int = 0,
-    fast: bool = False,
-    tolerance: float = 0.05,
-    max_boxes: int = 200_000,
-    max_seconds: Optional[float] = None,
-) -> str: ...
+class _Options(TypedDict):
+    legs: Optional[List[int]]
+    sweep: bool
+    max_outliers: int
+    fast: bool
+    tolerance: float
+    max_boxes: int
+    max_seconds: Optional[float]
+
+def certify_files(robot: _Path, measurements: _Path, uncertainty: _Path, options: _Options) -> str: ...
 def certify_text(
-    robot: str,
-    measurements: str,
-    uncertainty: str,
-    names: Tuple[str, str, str],
-    legs: Optional[Sequence[int]] = None,
-    sweep: bool = False,
-    max_outliers: int = 0,
-    fast: bool = False,
-    tolerance: float = 0.05,
-    max_boxes: int = 200_000,
-    max_seconds: Optional[float] = None,
+    robot: str, measurements: str, uncertainty: str, names: Tuple[str, str, str], options: _Options
 ) -> str: ...
 def simulate(
     out: _Path,
