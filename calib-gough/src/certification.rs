@@ -5,7 +5,7 @@ use crate::files::LegSpec;
 use crate::measurement::{leg_boxes, measured, Configuration, Uncertainty};
 use crate::report::{bounds, LegReport, Report};
 use crate::{GoughLeg, PARAMETER_NAMES};
-use calib_core::{certify, hull, pave, sweep, EmptinessProof, Interval, Settings, Status};
+use calib_core::{certify, hull, pave, sweep, EmptinessProof, Hull, Interval, Settings, Status};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -132,6 +132,28 @@ pub struct LegResult {
 }
 
 impl LegResult {
+    /// The result of the tight hull (`seconds` left at 0 for the caller to set).
+    pub fn from_hull(leg: usize, x0: [Interval; 7], h: Hull<7>) -> LegResult {
+        LegResult {
+            leg,
+            x0,
+            status: h.status,
+            emptiness: h.emptiness,
+            x1: h.x1,
+            outer: (h.status != Status::Empty).then_some(h.outer),
+            inner: h.inner,
+            witness: h.witness,
+            conflict: h.conflict,
+            outliers: h.outliers,
+            iterations: h.iterations,
+            converged: Some(h.converged),
+            x2: None,
+            paving: None,
+            boxes: h.boxes_contracted,
+            seconds: 0.0,
+        }
+    }
+
     /// The leg's entry in the JSON report (1-based leg and configuration numbers).
     pub fn report(&self) -> LegReport {
         let one_based = |c: &[usize]| c.iter().map(|k| k + 1).collect::<Vec<_>>();
@@ -199,25 +221,7 @@ pub fn certify_leg(
             seconds: 0.0,
         }
     } else {
-        let h = hull(&GoughLeg, &x0, &boxes, settings);
-        LegResult {
-            leg,
-            x0,
-            status: h.status,
-            emptiness: h.emptiness,
-            x1: h.x1,
-            outer: (h.status != Status::Empty).then_some(h.outer),
-            inner: h.inner,
-            witness: h.witness,
-            conflict: h.conflict,
-            outliers: h.outliers,
-            iterations: h.iterations,
-            converged: Some(h.converged),
-            x2: None,
-            paving: None,
-            boxes: h.boxes_contracted,
-            seconds: 0.0,
-        }
+        LegResult::from_hull(leg, x0, hull(&GoughLeg, &x0, &boxes, settings))
     };
     if options.sweep {
         let s = sweep(&GoughLeg, &x0, &boxes, settings);

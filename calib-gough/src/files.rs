@@ -53,7 +53,9 @@ fn error(
     }
 }
 
-fn read(file: &Path) -> Result<String, DataError> {
+/// The text of `file`, or an error naming it: for callers that keep the bytes they parse (to hash
+/// them, say) and then use the `parse_*` readers.
+pub fn read_text(file: &Path) -> Result<String, DataError> {
     std::fs::read_to_string(file)
         .map_err(|e| error(file, None, None, format!("cannot read the file: {e}")))
 }
@@ -92,7 +94,7 @@ enum Radius {
 /// Reads `robot.toml`: one `[[leg]]` table per leg with `a = [x, y, z]`, `b = [x, y, z]`,
 /// `l = offset` and `radius = r` or `radius = [7 values]`.
 pub fn read_robot(file: &Path) -> Result<Vec<LegSpec>, DataError> {
-    parse_robot(file, &read(file)?)
+    parse_robot(file, &read_text(file)?)
 }
 
 /// [`read_robot`] on text already in memory; `file` names it in errors (e.g. an array).
@@ -152,7 +154,7 @@ struct UncertaintyFile {
 /// Reads `uncertainty.toml`: half-widths `pos`, `len`, and `axis` + `angle_deg` (axis-angle data) or
 /// `q` (Rodrigues data). Missing values are NaN here and rejected by [`check_uncertainty`].
 pub fn read_uncertainty(file: &Path) -> Result<Uncertainty, DataError> {
-    parse_uncertainty(file, &read(file)?)
+    parse_uncertainty(file, &read_text(file)?)
 }
 
 /// [`read_uncertainty`] on text already in memory; `file` names it in errors (e.g. an array).
@@ -233,7 +235,7 @@ pub struct Measurements {
 /// `px,py,pz,q1,q2,q3,L1..Lk`, where `k` must equal `legs`; at least 7 rows (one per unknown of a
 /// leg); axes within 1e-3 of unit length.
 pub fn read_measurements(file: &Path, legs: usize) -> Result<Measurements, DataError> {
-    parse_measurements(file, &read(file)?, legs)
+    parse_measurements(file, &read_text(file)?, legs)
 }
 
 /// [`read_measurements`] on text already in memory; `file` names it in errors (e.g. an array).

@@ -8,6 +8,7 @@
 // Index loops mirror the paper's notation (legs i, parameters j, configurations k).
 #![allow(clippy::needless_range_loop)]
 
+pub mod certificate;
 pub mod certification;
 pub mod files;
 pub mod geometry;
@@ -17,6 +18,7 @@ pub mod model;
 pub mod plot;
 pub mod report;
 pub mod simulate;
+pub mod verdict;
 
 pub use geometry::{leg_reading, Leg, Pose};
 pub use measurement::{leg_boxes, Configuration, Orientation, Uncertainty};

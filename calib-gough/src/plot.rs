@@ -1,249 +1,753 @@
-//! Small SVG figures (no plotting dependency): histograms, nested boxes in 2-D projections, and a
-//! series on a log scale — the paper's Figs. 3, 4 and 5.
+//! The figures, drawn by `plotters` into SVG strings: nested boxes in 2-D projections (the paper's
+//! Fig. 4), a per-parameter range chart, a histogram against certified bands (Fig. 3) and a series
+//! on a log scale (Fig. 5).
+//!
+//! Every figure has real axes with ticks and labels, and its legend in a strip below the plots, so
+//! that it never covers data. The SVG is self-contained (text, lines and rectangles only), so it can
+//! be written to a file or inlined in the HTML certificate.
 
 use calib_core::Interval;
-use std::fmt::Write as _;
+use plotters::coord::types::RangedCoordf64;
+use plotters::prelude::*;
 
-const W: f64 = 360.0;
-const H: f64 = 280.0;
-const M: f64 = 45.0;
+/// A colour, as red, green, blue bytes.
+pub type Colour = (u8, u8, u8);
 
-fn header(width: f64, title: &str) -> String {
-    format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"11\">\n\
-         <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"16\" text-anchor=\"middle\" font-size=\"13\">{title}</text>\n",
-        H + 20.0,
-        width / 2.0
-    )
+/// The initial box x0.
+pub const X0: Colour = (0x30, 0x30, 0x30);
+/// The paper's fixed point x1.
+pub const X1: Colour = (0x33, 0x66, 0x99);
+/// The paper's sweep hull x2.
+pub const X2: Colour = (0x44, 0x99, 0x33);
+/// The tight certified outer box.
+pub const OUTER: Colour = (0x99, 0x33, 0x99);
+/// The certified inner bounds.
+pub const INNER: Colour = (0xcc, 0x33, 0x33);
+/// Least-squares solutions.
+pub const LEAST_SQUARES: Colour = (0xe0, 0x80, 0x00);
+
+/// A named, coloured box drawn in a figure.
+#[derive(Clone, Debug)]
+pub struct Layer {
+    /// The legend entry.
+    pub label: String,
+    /// Its colour.
+    pub colour: Colour,
+    /// The box (empty components are not drawn).
+    pub boxes: [Interval; 7],
+    /// Whether the box is shaded (used for the inner bounds) rather than outlined.
+    pub filled: bool,
 }
 
-/// A short axis label: integers as integers, others with 4 significant digits.
-fn label(v: f64) -> String {
-    if v == v.round() && v.abs() < 1e6 {
-        format!("{v:.0}")
+impl Layer {
+    /// An outlined box.
+    pub fn outline(label: &str, colour: Colour, boxes: [Interval; 7]) -> Layer {
+        Layer {
+            label: label.into(),
+            colour,
+            boxes,
+            filled: false,
+        }
+    }
+
+    /// A shaded box.
+    pub fn shaded(label: &str, colour: Colour, boxes: [Interval; 7]) -> Layer {
+        Layer {
+            filled: true,
+            ..Layer::outline(label, colour, boxes)
+        }
+    }
+}
+
+/// A leg's boxes as layers, widest first: x0, x1, x2 (with a sweep), the outer box (unless it
+/// is x1 itself, with `--fast`) and the shaded inner bounds.
+pub fn leg_layers(r: &crate::certification::LegResult) -> Vec<Layer> {
+    let mut layers = vec![Layer::outline("x0", X0, r.x0)];
+    layers.extend(r.x1.map(|b| Layer::outline("x1", X1, b)));
+    layers.extend(r.x2.flatten().map(|b| Layer::outline("x2", X2, b)));
+    if r.converged.is_some() {
+        layers.extend(r.outer.map(|b| Layer::outline("outer", OUTER, b)));
+    }
+    layers.extend(r.inner.map(|b| Layer::shaded("inner", INNER, b)));
+    layers
+}
+
+/// The projections of a leg's figures: (ax, ay), (bx, by) and (az, l).
+pub const LEG_PROJECTIONS: [(usize, usize); 3] = [(0, 1), (3, 4), (2, 6)];
+
+/// Named, coloured points (parameter vectors) drawn as dots over the boxes.
+#[derive(Clone, Copy, Debug)]
+pub struct Points<'a> {
+    /// The legend entry.
+    pub label: &'a str,
+    /// Their colour.
+    pub colour: Colour,
+    /// The parameter vectors.
+    pub points: &'a [[f64; 7]],
+}
+
+/// A figure could not be drawn (the SVG backend reported an error).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlotError(pub String);
+
+impl std::fmt::Display for PlotError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "cannot draw the figure: {}", self.0)
+    }
+}
+
+impl std::error::Error for PlotError {}
+
+fn failed<E: std::fmt::Display>(e: E) -> PlotError {
+    PlotError(e.to_string())
+}
+
+const PANEL: (u32, u32) = (400, 340);
+const TITLE_HEIGHT: u32 = 30;
+const LEGEND_HEIGHT: u32 = 34;
+const FONT: &str = "sans-serif";
+
+fn rgb((r, g, b): Colour) -> RGBColor {
+    RGBColor(r, g, b)
+}
+
+/// The smallest interval holding every finite value given, widened by 6% on each side so that
+/// nothing sits on the frame; a degenerate range is given a small width around its value.
+fn axis_range(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if lo > hi {
+        return (0.0, 1.0);
+    }
+    let width = if hi > lo {
+        hi - lo
     } else {
-        let digits = (4 - v.abs().log10().ceil() as i32).clamp(0, 12) as usize;
-        format!("{v:.digits$}")
+        (1e-9 * lo.abs()).max(1e-12)
+    };
+    (lo - 0.06 * width, hi + 0.06 * width)
+}
+
+/// Decimals that tell apart ticks over a span: those of the tick step, taken as span / 5 rounded
+/// down to 1, 2 or 5 times a power of ten (as plotters places at most 5–6 ticks).
+fn decimals(span: f64) -> usize {
+    if !(span > 0.0 && span.is_finite()) {
+        return 3;
     }
-}
-
-/// `[lo, hi]` widened by 5% on each side, so that boxes do not sit on the frame.
-fn padded(i: Interval) -> Interval {
-    let w = 0.05 * (i.sup() - i.inf());
-    Interval::new(i.inf() - w, i.sup() + w)
-}
-
-/// Maps `[lo, hi]` to `[a, b]` pixels.
-fn scale(v: f64, lo: f64, hi: f64, a: f64, b: f64) -> f64 {
-    if hi > lo {
-        a + (v - lo) / (hi - lo) * (b - a)
+    let s = span / 5.0;
+    let p = 10f64.powf(s.log10().floor());
+    let m = s / p;
+    let step = p * if m >= 5.0 {
+        5.0
+    } else if m >= 2.0 {
+        2.0
     } else {
-        0.5 * (a + b)
+        1.0
+    };
+    (-step.log10() - 1e-9).ceil().clamp(0.0, 12.0) as usize
+}
+
+/// A tick label with `digits` decimals; a value that rounds to zero is printed as `0` (not `-0.00`).
+fn tick(v: f64, digits: usize, signed: bool) -> String {
+    let s = format!("{v:.digits$}");
+    if s.chars().all(|c| matches!(c, '-' | '0' | '.')) {
+        return "0".into();
+    }
+    if signed && v > 0.0 {
+        format!("+{s}")
+    } else {
+        s
     }
 }
 
-fn axes(s: &mut String, x0: f64, xlabel: &str, ylabel: &str, xr: (f64, f64), yr: (f64, f64)) {
-    let (l, r, t, b) = (x0 + M, x0 + W - 10.0, 30.0, H - 10.0);
-    let _ = writeln!(
-        s,
-        "<rect x=\"{l}\" y=\"{t}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>",
-        r - l,
-        b - t
-    );
-    let _ = writeln!(
-        s,
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{xlabel}</text>",
-        (l + r) / 2.0,
-        H + 12.0
-    );
-    let _ = writeln!(s, "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 {} {})\">{ylabel}</text>", x0 + 12.0, (t + b) / 2.0, x0 + 12.0, (t + b) / 2.0);
-    for (v, x, anchor) in [(xr.0, l, "start"), (xr.1, r, "end")] {
-        let _ = writeln!(
-            s,
-            "<text x=\"{x}\" y=\"{}\" text-anchor=\"{anchor}\">{}</text>",
-            b + 12.0,
-            label(v)
-        );
+/// The bounds of `v` clamped into `range`, or `None` when `v` is empty or misses it.
+fn clamped(v: Interval, (lo, hi): (f64, f64)) -> Option<(f64, f64)> {
+    if v.is_empty() || v.sup() < lo || v.inf() > hi {
+        return None;
     }
-    for (v, y) in [(yr.0, b), (yr.1, t)] {
-        let _ = writeln!(
-            s,
-            "<text x=\"{}\" y=\"{y}\" text-anchor=\"end\">{}</text>",
-            l - 3.0,
-            label(v)
-        );
-    }
+    Some((v.inf().max(lo), v.sup().min(hi)))
 }
 
-/// Fig. 3: a histogram of `values` with the certified interval drawn as a band.
-pub fn histogram(values: &[f64], certified: Interval, title: &str, xlabel: &str) -> String {
-    let lo = values.iter().copied().fold(certified.inf(), f64::min);
-    let hi = values.iter().copied().fold(certified.sup(), f64::max);
-    let bins = 40;
-    let mut counts = vec![0usize; bins];
-    for v in values {
-        let i = (((v - lo) / (hi - lo).max(f64::MIN_POSITIVE)) * bins as f64) as usize;
-        counts[i.min(bins - 1)] += 1;
-    }
-    let top = counts.iter().copied().max().unwrap_or(1).max(1) as f64;
-    let mut s = header(W, title);
-    let (l, r, t, b) = (M, W - 10.0, 30.0, H - 10.0);
-    let (cl, cr) = (
-        scale(certified.inf(), lo, hi, l, r),
-        scale(certified.sup(), lo, hi, l, r),
-    );
-    let _ = writeln!(
-        s,
-        "<rect x=\"{cl}\" y=\"{t}\" width=\"{}\" height=\"{}\" fill=\"#cde\"/>",
-        (cr - cl).max(1.0),
-        b - t
-    );
-    for (i, c) in counts.iter().enumerate() {
-        let x = l + i as f64 * (r - l) / bins as f64;
-        let h = *c as f64 / top * (b - t);
-        let _ = writeln!(
-            s,
-            "<rect x=\"{x}\" y=\"{}\" width=\"{}\" height=\"{h}\" fill=\"#c33\"/>",
-            b - h,
-            (r - l) / bins as f64 - 1.0
-        );
-    }
-    axes(&mut s, 0.0, xlabel, "count", (lo, hi), (0.0, top));
-    let _ = writeln!(
-        s,
-        "<text x=\"{}\" y=\"44\" fill=\"#369\">certified interval</text>\n</svg>",
-        l + 5.0
-    );
-    s
+/// One legend entry: a swatch (outlined, shaded or a dot) and its label.
+struct Entry {
+    label: String,
+    colour: Colour,
+    kind: Swatch,
 }
 
-/// Fig. 4: nested boxes projected on pairs of parameters, one panel per pair.
+#[derive(Clone, Copy, PartialEq)]
+enum Swatch {
+    Outline,
+    Shaded,
+    Dot,
+}
+
+/// Draws the legend entries left to right in `area` (a strip below the plots).
+fn legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    entries: &[Entry],
+) -> Result<(), PlotError> {
+    let mut x = 50i32;
+    let y = (LEGEND_HEIGHT / 2) as i32;
+    for e in entries {
+        let c = rgb(e.colour);
+        match e.kind {
+            Swatch::Outline => area.draw(&Rectangle::new(
+                [(x, y - 6), (x + 18, y + 6)],
+                c.stroke_width(2),
+            )),
+            Swatch::Shaded => area.draw(&Rectangle::new(
+                [(x, y - 6), (x + 18, y + 6)],
+                c.mix(0.3).filled(),
+            )),
+            Swatch::Dot => area.draw(&Circle::new((x + 9, y), 3, c.mix(0.8).filled())),
+        }
+        .map_err(failed)?;
+        area.draw(&Text::new(
+            e.label.clone(),
+            (x + 24, y - 7),
+            (FONT, 14).into_font().color(&BLACK),
+        ))
+        .map_err(failed)?;
+        x += 24 + 8 * e.label.chars().count() as i32 + 24;
+    }
+    Ok(())
+}
+
+/// Splits a figure into its title, plot and legend areas.
+type Areas<'a> = (
+    DrawingArea<SVGBackend<'a>, plotters::coord::Shift>,
+    DrawingArea<SVGBackend<'a>, plotters::coord::Shift>,
+    DrawingArea<SVGBackend<'a>, plotters::coord::Shift>,
+);
+
+fn frame<'a>(buf: &'a mut String, size: (u32, u32), title: &str) -> Result<Areas<'a>, PlotError> {
+    let root = SVGBackend::with_string(buf, size).into_drawing_area();
+    root.fill(&WHITE).map_err(failed)?;
+    let (head, rest) = root.split_vertically(TITLE_HEIGHT);
+    let (plots, strip) = rest.split_vertically(size.1 - TITLE_HEIGHT - LEGEND_HEIGHT);
+    head.draw(&Text::new(
+        title.to_string(),
+        ((size.0 / 2) as i32, 8),
+        (FONT, 17)
+            .into_font()
+            .color(&BLACK)
+            .pos(plotters::style::text_anchor::Pos::new(
+                plotters::style::text_anchor::HPos::Center,
+                plotters::style::text_anchor::VPos::Top,
+            )),
+    ))
+    .map_err(failed)?;
+    Ok((head, plots, strip))
+}
+
+/// A chart with labelled axes on `area` over the given ranges.
+fn chart<'a, 'b>(
+    area: &'b DrawingArea<SVGBackend<'a>, plotters::coord::Shift>,
+    x: (f64, f64),
+    y: (f64, f64),
+) -> Result<ChartContext<'b, SVGBackend<'a>, Cartesian2d<RangedCoordf64, RangedCoordf64>>, PlotError>
+{
+    let y_digits = decimals(y.1 - y.0);
+    let widest = [y.0, y.1]
+        .iter()
+        .map(|v| format!("{v:.y_digits$}").len())
+        .max()
+        .unwrap_or(4) as u32;
+    ChartBuilder::on(area)
+        .margin(8)
+        .margin_right(16)
+        .x_label_area_size(42)
+        .y_label_area_size(24 + 7 * widest)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(failed)
+}
+
+/// Axes, ticks, tick labels and axis names of a chart.
+fn axes(
+    chart: &mut ChartContext<'_, SVGBackend<'_>, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    x: (f64, f64),
+    y: (f64, f64),
+    x_name: &str,
+    y_name: &str,
+) -> Result<(), PlotError> {
+    let (xd, yd) = (decimals(x.1 - x.0), decimals(y.1 - y.0));
+    let x_fmt = move |v: &f64| tick(*v, xd, false);
+    let y_fmt = move |v: &f64| tick(*v, yd, false);
+    chart
+        .configure_mesh()
+        .x_labels(5)
+        .y_labels(6)
+        .x_label_formatter(&x_fmt)
+        .y_label_formatter(&y_fmt)
+        .light_line_style(RGBColor(0xee, 0xee, 0xee))
+        .bold_line_style(RGBColor(0xdd, 0xdd, 0xdd))
+        .x_desc(x_name)
+        .y_desc(y_name)
+        .label_style((FONT, 12))
+        .axis_desc_style((FONT, 14))
+        .draw()
+        .map_err(failed)
+}
+
+/// The paper's Fig. 4: boxes projected on pairs of parameters, one panel per pair `(i, j)` (the
+/// i-th parameter across, the j-th up), with optional points (least-squares solutions) on top.
 pub fn nested_boxes(
-    boxes: &[(&str, &str, [Interval; 7])],
+    layers: &[Layer],
+    points: Option<Points<'_>>,
     pairs: &[(usize, usize)],
     names: &[&str; 7],
     title: &str,
-) -> String {
-    let width = W * pairs.len() as f64;
-    let mut s = header(width, title);
-    for (p, &(i, j)) in pairs.iter().enumerate() {
-        let x0 = p as f64 * W;
-        let hull = |k: usize| {
-            padded(
-                boxes
-                    .iter()
-                    .fold(Interval::EMPTY, |h, (_, _, b)| h.hull(b[k])),
-            )
-        };
-        let (hi_, hj) = (hull(i), hull(j));
-        let (l, r, t, b) = (x0 + M, x0 + W - 10.0, 30.0, H - 10.0);
-        for (name, colour, bx) in boxes {
-            if bx[i].is_empty() || bx[j].is_empty() {
-                continue;
-            }
-            let (xa, xb) = (
-                scale(bx[i].inf(), hi_.inf(), hi_.sup(), l, r),
-                scale(bx[i].sup(), hi_.inf(), hi_.sup(), l, r),
-            );
-            let (ya, yb) = (
-                scale(bx[j].sup(), hj.inf(), hj.sup(), b, t),
-                scale(bx[j].inf(), hj.inf(), hj.sup(), b, t),
-            );
-            let _ = writeln!(s, "<rect x=\"{xa}\" y=\"{ya}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\"><title>{name}</title></rect>", (xb - xa).max(0.5), (yb - ya).max(0.5));
-        }
-        axes(
-            &mut s,
-            x0,
-            names[i],
-            names[j],
-            (hi_.inf(), hi_.sup()),
-            (hj.inf(), hj.sup()),
-        );
-    }
-    let legend: Vec<String> = boxes
-        .iter()
-        .map(|(l, c, _)| format!("<tspan fill=\"{c}\">{l}</tspan>"))
-        .collect();
-    let _ = writeln!(
-        s,
-        "<text x=\"{}\" y=\"{}\">{}</text>\n</svg>",
-        M,
-        H + 18.0,
-        legend.join("  ")
+) -> Result<String, PlotError> {
+    let size = (
+        PANEL.0 * pairs.len().max(1) as u32,
+        PANEL.1 + TITLE_HEIGHT + LEGEND_HEIGHT,
     );
-    s
+    let mut buf = String::new();
+    {
+        let (_, plots, strip) = frame(&mut buf, size, title)?;
+        let panels = plots.split_evenly((1, pairs.len().max(1)));
+        let dots = points.map_or(&[][..], |p| p.points);
+        let mut hidden = vec![false; dots.len()];
+        for (panel, &(i, j)) in panels.iter().zip(pairs) {
+            let range = |k: usize| {
+                let boxes = axis_range(
+                    layers
+                        .iter()
+                        .flat_map(|l| [l.boxes[k].inf(), l.boxes[k].sup()])
+                        .filter(|v| !v.is_nan()),
+                );
+                if layers.is_empty() {
+                    return axis_range(dots.iter().map(|p| p[k]));
+                }
+                // Points far from every box (a diverged fit) would shrink the boxes to dots:
+                // the frame takes in only points within one box-width of the boxes.
+                let near = |v: f64| {
+                    (v - boxes.0).abs().min((v - boxes.1).abs()) <= boxes.1 - boxes.0
+                        || (boxes.0..=boxes.1).contains(&v)
+                };
+                axis_range(
+                    [boxes.0, boxes.1]
+                        .into_iter()
+                        .chain(dots.iter().map(|p| p[k]).filter(|v| near(*v))),
+                )
+            };
+            let (xr, yr) = (range(i), range(j));
+            let mut c = chart(panel, xr, yr)?;
+            axes(&mut c, xr, yr, names[i], names[j])?;
+            for l in layers {
+                let (Some((x0, x1)), Some((y0, y1))) =
+                    (clamped(l.boxes[i], xr), clamped(l.boxes[j], yr))
+                else {
+                    continue;
+                };
+                let colour = rgb(l.colour);
+                let style = if l.filled {
+                    colour.mix(0.25).filled()
+                } else {
+                    colour.stroke_width(2)
+                };
+                c.draw_series(std::iter::once(Rectangle::new([(x0, y0), (x1, y1)], style)))
+                    .map_err(failed)?;
+                if l.filled {
+                    c.draw_series(std::iter::once(Rectangle::new(
+                        [(x0, y0), (x1, y1)],
+                        colour.stroke_width(1),
+                    )))
+                    .map_err(failed)?;
+                }
+            }
+            if let Some(p) = points {
+                let colour = rgb(p.colour).mix(0.5).filled();
+                let inside = |v: f64, r: (f64, f64)| (r.0..=r.1).contains(&v);
+                c.draw_series(
+                    p.points
+                        .iter()
+                        .filter(|v| inside(v[i], xr) && inside(v[j], yr))
+                        .map(|v| Circle::new((v[i], v[j]), 2, colour)),
+                )
+                .map_err(failed)?;
+                for (h, v) in hidden.iter_mut().zip(p.points) {
+                    *h |= !(inside(v[i], xr) && inside(v[j], yr));
+                }
+            }
+        }
+        let mut entries: Vec<Entry> = layers
+            .iter()
+            .map(|l| Entry {
+                label: l.label.clone(),
+                colour: l.colour,
+                kind: if l.filled {
+                    Swatch::Shaded
+                } else {
+                    Swatch::Outline
+                },
+            })
+            .collect();
+        let outside = hidden.iter().filter(|h| **h).count();
+        entries.extend(points.map(|p| Entry {
+            label: if outside > 0 {
+                format!("{} ({outside} outside the frames)", p.label)
+            } else {
+                p.label.into()
+            },
+            colour: p.colour,
+            kind: Swatch::Dot,
+        }));
+        legend(&strip, &entries)?;
+        strip.present().map_err(failed)?;
+    }
+    Ok(buf)
 }
 
-/// Fig. 5: a positive series on a log scale (total box volume per sweep step).
-pub fn log_series(values: &[f64], title: &str, xlabel: &str, ylabel: &str) -> String {
-    let positive: Vec<f64> = values.iter().map(|v| v.max(f64::MIN_POSITIVE)).collect();
-    let (lo, hi) = positive
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-            (a.min(v.log10()), b.max(v.log10()))
+/// Each parameter's range in every layer, as horizontal bars on one axis: the value minus
+/// `centre` (the nominal value), so that parameters of different sizes share the scale.
+pub fn parameter_ranges(
+    layers: &[Layer],
+    centre: &[f64; 7],
+    names: &[&str; 7],
+    title: &str,
+) -> Result<String, PlotError> {
+    let size = (820, 360 + TITLE_HEIGHT + LEGEND_HEIGHT);
+    let mut buf = String::new();
+    {
+        let (_, plots, strip) = frame(&mut buf, size, title)?;
+        let xr = axis_range(layers.iter().flat_map(|l| {
+            (0..7).flat_map(move |j| [l.boxes[j].inf() - centre[j], l.boxes[j].sup() - centre[j]])
+        }));
+        let xd = decimals(xr.1 - xr.0);
+        let x_fmt = move |v: &f64| tick(*v, xd, true);
+        let name_of = |v: &f64| {
+            let k = v.round();
+            if (v - k).abs() < 1e-6 && (0.0..7.0).contains(&k) {
+                names[6 - k as usize].to_string()
+            } else {
+                String::new()
+            }
+        };
+        let mut c = ChartBuilder::on(&plots)
+            .margin(8)
+            .margin_right(20)
+            .x_label_area_size(42)
+            .y_label_area_size(48)
+            .build_cartesian_2d(xr.0..xr.1, -0.6f64..6.6f64)
+            .map_err(failed)?;
+        c.configure_mesh()
+            .x_labels(7)
+            .y_labels(15)
+            .x_label_formatter(&x_fmt)
+            .y_label_formatter(&name_of)
+            .disable_y_mesh()
+            .light_line_style(RGBColor(0xee, 0xee, 0xee))
+            .bold_line_style(RGBColor(0xdd, 0xdd, 0xdd))
+            .x_desc("value − nominal (cm)")
+            .label_style((FONT, 12))
+            .axis_desc_style((FONT, 14))
+            .draw()
+            .map_err(failed)?;
+        let n = layers.len().max(1) as f64;
+        let band = 0.8 / n;
+        for (k, l) in layers.iter().enumerate() {
+            let colour = rgb(l.colour);
+            let bars = (0..7).filter_map(|j| {
+                let (lo, hi) = clamped(l.boxes[j] - Interval::point(centre[j]), xr)?;
+                let y = (6 - j) as f64 + 0.4 - band * (k as f64 + 0.5);
+                Some(Rectangle::new(
+                    [(lo, y - 0.4 * band), (hi, y + 0.4 * band)],
+                    colour.mix(if k == 0 { 0.3 } else { 0.7 }).filled(),
+                ))
+            });
+            c.draw_series(bars).map_err(failed)?;
+        }
+        c.draw_series(LineSeries::new(
+            [(0.0, -0.6), (0.0, 6.6)],
+            BLACK.mix(0.5).stroke_width(1),
+        ))
+        .map_err(failed)?;
+        let entries: Vec<Entry> = layers
+            .iter()
+            .map(|l| Entry {
+                label: l.label.clone(),
+                colour: l.colour,
+                kind: Swatch::Shaded,
+            })
+            .collect();
+        legend(&strip, &entries)?;
+        strip.present().map_err(failed)?;
+    }
+    Ok(buf)
+}
+
+/// The paper's Fig. 3: a histogram of `values` with certified intervals drawn as shaded bands.
+pub fn histogram(
+    values: &[f64],
+    bands: &[(&str, Colour, Interval)],
+    title: &str,
+    x_name: &str,
+) -> Result<String, PlotError> {
+    let finite: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+    let xr = axis_range(
+        finite
+            .iter()
+            .copied()
+            .chain(bands.iter().flat_map(|(_, _, b)| [b.inf(), b.sup()])),
+    );
+    let bins = 40;
+    let step = (xr.1 - xr.0) / bins as f64;
+    let mut counts = vec![0usize; bins];
+    for v in &finite {
+        let i = ((v - xr.0) / step) as usize;
+        counts[i.min(bins - 1)] += 1;
+    }
+    let top = counts.iter().copied().max().unwrap_or(0).max(1) as f64 * 1.1;
+    let size = (PANEL.0 + 160, PANEL.1 + TITLE_HEIGHT + LEGEND_HEIGHT);
+    let mut buf = String::new();
+    {
+        let (_, plots, strip) = frame(&mut buf, size, title)?;
+        let yr = (0.0, top);
+        let mut c = chart(&plots, xr, yr)?;
+        axes(&mut c, xr, yr, x_name, "count")?;
+        for (_, colour, b) in bands {
+            if let Some((lo, hi)) = clamped(*b, xr) {
+                c.draw_series(std::iter::once(Rectangle::new(
+                    [(lo, 0.0), (hi, top)],
+                    rgb(*colour).mix(0.2).filled(),
+                )))
+                .map_err(failed)?;
+            }
+        }
+        c.draw_series(
+            counts
+                .iter()
+                .enumerate()
+                .filter(|(_, n)| **n > 0)
+                .map(|(i, n)| {
+                    let x = xr.0 + i as f64 * step;
+                    Rectangle::new(
+                        [(x + 0.05 * step, 0.0), (x + 0.95 * step, *n as f64)],
+                        rgb(LEAST_SQUARES).filled(),
+                    )
+                }),
+        )
+        .map_err(failed)?;
+        let mut entries: Vec<Entry> = bands
+            .iter()
+            .map(|(label, colour, _)| Entry {
+                label: label.to_string(),
+                colour: *colour,
+                kind: Swatch::Shaded,
+            })
+            .collect();
+        entries.push(Entry {
+            label: format!("least-squares solutions ({})", finite.len()),
+            colour: LEAST_SQUARES,
+            kind: Swatch::Shaded,
         });
-    let (lo, hi) = if hi > lo {
-        (lo, hi)
-    } else {
-        (lo - 1.0, hi + 1.0)
-    };
-    let mut s = header(W, title);
-    let (l, r, t, b) = (M, W - 10.0, 30.0, H - 10.0);
-    let n = positive.len().max(2) - 1;
-    let points: Vec<String> = positive
+        legend(&strip, &entries)?;
+        strip.present().map_err(failed)?;
+    }
+    Ok(buf)
+}
+
+/// The paper's Fig. 5: a positive series on a log scale (the total box volume per sweep step).
+pub fn log_series(
+    values: &[f64],
+    title: &str,
+    x_name: &str,
+    y_name: &str,
+) -> Result<String, PlotError> {
+    let positive: Vec<(f64, f64)> = values
         .iter()
         .enumerate()
-        .map(|(i, v)| {
-            format!(
-                "{},{}",
-                scale(i as f64, 0.0, n as f64, l, r),
-                scale(v.log10(), lo, hi, b, t)
-            )
-        })
+        .filter(|(_, v)| **v > 0.0 && v.is_finite())
+        .map(|(i, v)| (i as f64, *v))
         .collect();
-    let _ = writeln!(
-        s,
-        "<polyline points=\"{}\" fill=\"none\" stroke=\"#c33\" stroke-width=\"2\"/>",
-        points.join(" ")
-    );
-    axes(
-        &mut s,
-        0.0,
-        xlabel,
-        &format!("log10 {ylabel}"),
-        (0.0, n as f64),
-        (lo, hi),
-    );
-    s.push_str("</svg>\n");
-    s
+    let (lo, hi) = positive
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (_, v)| {
+            (lo.min(*v), hi.max(*v))
+        });
+    let (lo, hi) = if lo <= hi {
+        (lo / 2.0, hi * 2.0)
+    } else {
+        (1e-3, 1.0)
+    };
+    let n = values.len().max(2) as f64 - 1.0;
+    let size = (PANEL.0 + 160, PANEL.1 + TITLE_HEIGHT + LEGEND_HEIGHT);
+    let mut buf = String::new();
+    {
+        let (_, plots, strip) = frame(&mut buf, size, title)?;
+        let mut c = ChartBuilder::on(&plots)
+            .margin(8)
+            .margin_right(16)
+            .x_label_area_size(42)
+            .y_label_area_size(70)
+            .build_cartesian_2d(-0.2..n + 0.2, (lo..hi).log_scale())
+            .map_err(failed)?;
+        let x_fmt = |v: &f64| tick(*v, 0, false);
+        let y_fmt = |v: &f64| format!("{v:.0e}");
+        c.configure_mesh()
+            .x_labels(values.len().clamp(2, 12))
+            .x_label_formatter(&x_fmt)
+            .y_label_formatter(&y_fmt)
+            .light_line_style(RGBColor(0xee, 0xee, 0xee))
+            .bold_line_style(RGBColor(0xdd, 0xdd, 0xdd))
+            .x_desc(x_name)
+            .y_desc(y_name)
+            .label_style((FONT, 12))
+            .axis_desc_style((FONT, 14))
+            .draw()
+            .map_err(failed)?;
+        let colour = rgb(X1);
+        c.draw_series(LineSeries::new(
+            positive.iter().copied(),
+            colour.stroke_width(2),
+        ))
+        .map_err(failed)?;
+        c.draw_series(positive.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+            .map_err(failed)?;
+        legend(
+            &strip,
+            &[Entry {
+                label: y_name.into(),
+                colour: X1,
+                kind: Swatch::Dot,
+            }],
+        )?;
+        strip.present().map_err(failed)?;
+    }
+    Ok(buf)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn boxes(shift: f64) -> [Interval; 7] {
+        core::array::from_fn(|j| Interval::new(j as f64 + shift, j as f64 + 1.0 - shift))
+    }
+
+    fn well_formed(svg: &str) -> roxmltree::Document<'_> {
+        let doc = roxmltree::Document::parse(svg).unwrap_or_else(|e| panic!("{e}\n{svg}"));
+        assert_eq!(doc.root_element().tag_name().name(), "svg");
+        assert!(!svg.contains("NaN") && !svg.contains("inf"), "{svg}");
+        doc
+    }
+
+    fn texts(doc: &roxmltree::Document<'_>) -> Vec<String> {
+        doc.descendants()
+            .filter(|n| n.has_tag_name("text"))
+            .filter_map(|n| n.text().map(|t| t.trim().to_string()))
+            .collect()
+    }
+
     #[test]
-    fn figures_are_well_formed_svg() {
-        let b: [Interval; 7] = core::array::from_fn(|j| Interval::new(j as f64, j as f64 + 1.0));
-        for svg in [
-            histogram(&[1.0, 1.5, 2.0, 2.0], Interval::new(1.2, 1.8), "t", "x"),
-            nested_boxes(
-                &[("x0", "black", b)],
-                &[(0, 1), (0, 2)],
-                &crate::PARAMETER_NAMES,
-                "t",
-            ),
-            log_series(&[1.0, 0.5, 0.25], "t", "step", "volume"),
+    fn nested_boxes_have_axes_ticks_and_a_legend() {
+        let layers = [
+            Layer::outline("x0", X0, boxes(0.0)),
+            Layer::shaded("inner", INNER, boxes(0.3)),
+        ];
+        let near = |d: f64| core::array::from_fn(|j| j as f64 + d);
+        // Two points inside the boxes and one far away (a diverged fit) that must not squash
+        // the frames: it is left out and counted in the legend.
+        let dots: [[f64; 7]; 3] = [near(0.5), near(0.6), [1e3; 7]];
+        let svg = nested_boxes(
+            &layers,
+            Some(Points {
+                label: "least squares",
+                colour: LEAST_SQUARES,
+                points: &dots,
+            }),
+            &[(0, 1), (3, 4)],
+            &crate::PARAMETER_NAMES,
+            "leg 1",
+        )
+        .unwrap();
+        let doc = well_formed(&svg);
+        let t = texts(&doc);
+        for want in [
+            "leg 1",
+            "ax",
+            "ay",
+            "bx",
+            "by",
+            "x0",
+            "inner",
+            "least squares (1 outside the frames)",
         ] {
-            assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
-            assert!(!svg.contains("NaN") && !svg.contains("inf"));
+            assert!(t.iter().any(|s| s == want), "{want} missing from {t:?}");
         }
-        // The log scale spans the data: first point at the top, last at the bottom of the frame.
-        let svg = log_series(&[1e-8, 1e-9], "t", "step", "volume");
-        assert!(svg.contains("points=\"45,30 350,270\""), "{svg}");
+        // Ticks: more numeric labels than the two ends of each axis.
+        let numbers = t.iter().filter(|s| s.parse::<f64>().is_ok()).count();
+        assert!(numbers >= 4 * 4, "{t:?}");
+        // Two circles per panel for the two points near the boxes, one in the legend.
         assert_eq!(
-            (label(8.0), label(-9.0104), label(52.36512)),
-            ("8".into(), "-9.010".into(), "52.37".into())
+            doc.descendants()
+                .filter(|n| n.has_tag_name("circle"))
+                .count(),
+            2 * 2 + 1
         );
+    }
+
+    #[test]
+    fn the_legend_lies_below_every_plot() {
+        let svg = nested_boxes(
+            &[Layer::outline("x0", X0, boxes(0.0))],
+            None,
+            &[(0, 1)],
+            &crate::PARAMETER_NAMES,
+            "t",
+        )
+        .unwrap();
+        let doc = well_formed(&svg);
+        let label = doc
+            .descendants()
+            .find(|n| n.has_tag_name("text") && n.text().map(str::trim) == Some("x0"))
+            .expect("legend entry");
+        let y: f64 = label.attribute("y").and_then(|v| v.parse().ok()).unwrap();
+        assert!(y > (PANEL.1 + TITLE_HEIGHT) as f64, "legend at y = {y}");
+    }
+
+    #[test]
+    fn other_figures_are_well_formed() {
+        let t = boxes(0.0);
+        for svg in [
+            parameter_ranges(
+                &[
+                    Layer::outline("x0", X0, t),
+                    Layer::shaded("inner", INNER, boxes(0.4)),
+                ],
+                &t.map(|v| v.mid()),
+                &crate::PARAMETER_NAMES,
+                "ranges",
+            ),
+            histogram(
+                &[1.0, 1.5, 2.0, 2.0, f64::NAN],
+                &[("x1", X1, Interval::new(1.2, 1.8))],
+                "t",
+                "l (cm)",
+            ),
+            log_series(&[1.0, 0.5, 0.25, 0.0], "t", "step", "volume"),
+            log_series(&[], "t", "step", "volume"),
+            nested_boxes(&[], None, &[(0, 1)], &crate::PARAMETER_NAMES, "nothing"),
+        ] {
+            let svg = svg.unwrap();
+            well_formed(&svg);
+        }
+    }
+
+    #[test]
+    fn tick_labels_tell_ticks_apart() {
+        assert_eq!(decimals(0.2), 2);
+        assert_eq!(decimals(0.04), 3);
+        assert_eq!(decimals(20.0), 0);
+        assert_eq!(decimals(2e-9), 10);
+        // A degenerate range still gets a positive width around its value.
+        let (lo, hi) = axis_range([52.3, 52.3]);
+        assert!(lo < 52.3 && 52.3 < hi);
+        assert_eq!(axis_range([f64::NAN]), (0.0, 1.0));
     }
 }

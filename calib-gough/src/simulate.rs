@@ -168,6 +168,24 @@ pub fn write_data_set(
         sim.measured[c].lengths[l] += d;
     }
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
+    for (name, text) in data_set_files(&sim, seed, noise_scale, outliers) {
+        let path = dir.join(name);
+        write_atomically(&path, &text)
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    }
+    Ok(sim)
+}
+
+/// The files of a simulated data set, as `(name, text)`: `measurements.csv`, `robot.toml`,
+/// `uncertainty.toml` and `truth.json` — what [`write_data_set`] writes, byte for byte (so their
+/// SHA-256 identify the data of `gough reproduce` too).
+pub fn data_set_files(
+    sim: &Simulation,
+    seed: u64,
+    noise_scale: f64,
+    outliers: &[(usize, usize, f64)],
+) -> [(&'static str, String); 4] {
+    let (u, configs) = (sim.uncertainty, sim.measured.len());
     let mut csv = String::from("px,py,pz,ax,ay,az,angle_deg,L1,L2,L3,L4,L5,L6\n");
     for c in &sim.measured {
         let Orientation::AxisAngle { axis, angle_deg } = c.orientation else {
@@ -213,15 +231,10 @@ pub fn write_data_set(
             .map(|(c, l, d)| serde_json::json!({ "config": c + 1, "leg": l + 1, "delta": d }))
             .collect::<Vec<_>>(),
     });
-    for (name, text) in [
+    [
         ("measurements.csv", csv),
         ("robot.toml", robot),
         ("uncertainty.toml", unc),
         ("truth.json", format!("{truth:#}")),
-    ] {
-        let path = dir.join(name);
-        write_atomically(&path, &text)
-            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-    }
-    Ok(sim)
+    ]
 }

@@ -1,11 +1,16 @@
 //! `gough certify`.
 
 use super::DataFiles;
-use calib_core::{EmptinessProof, Status};
+use calib_core::Status;
+use calib_gough::certificate::{self, Certificate, Input, LegEntry};
 use calib_gough::certification::{certify_legs, report, CertifyOptions, LegResult};
-use calib_gough::files::{check_uncertainty, read_measurements, read_robot, read_uncertainty};
+use calib_gough::files::{
+    check_uncertainty, parse_measurements, parse_robot, parse_uncertainty, read_text,
+};
+use calib_gough::lsq::fit_legs;
 use calib_gough::plot;
 use calib_gough::report::{ratios, table, write_atomically};
+use calib_gough::verdict::{self, ConfigurationNames};
 use calib_gough::PARAMETER_NAMES;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -48,6 +53,12 @@ pub struct Args {
     /// Write the JSON report (schema version 1) to this file.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
+    /// Write the calibration certificate to this file: one self-contained HTML page (figures
+    /// inline, nothing fetched; open it in any browser, print it to PDF) with the verdicts and
+    /// their evidence in words, the input files' SHA-256, the settings, a table and figures per
+    /// leg, and each leg's least-squares solution against its certified box.
+    #[arg(long, value_name = "FILE")]
+    report: Option<PathBuf>,
     /// Write one SVG per leg into this folder: x0, x1, x2, the outer and the inner box in the
     /// projections (ax, ay), (bx, by) and (az, l).
     #[arg(long, value_name = "DIR")]
@@ -55,9 +66,13 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
-    let robot = read_robot(&a.files.robot)?;
-    let data = read_measurements(&a.files.measurements, robot.len())?;
-    let u = read_uncertainty(&a.uncertainty)?;
+    // Each file is read once: what is hashed for the certificate is what is parsed.
+    let texts = [&a.files.robot, &a.files.measurements, &a.uncertainty].map(|p| read_text(p));
+    let [robot_text, data_text, u_text] = texts;
+    let (robot_text, data_text, u_text) = (robot_text?, data_text?, u_text?);
+    let robot = parse_robot(&a.files.robot, &robot_text)?;
+    let data = parse_measurements(&a.files.measurements, &data_text, robot.len())?;
+    let u = parse_uncertainty(&a.uncertainty, &u_text)?;
     check_uncertainty(&a.uncertainty, &u, data.rodrigues)?;
     let options = CertifyOptions {
         legs: a.legs.clone(),
@@ -81,31 +96,86 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let results = certify_legs(&robot, &data.configs, &u, &options, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let total = start.elapsed().as_secs_f64();
+    let file = file_name(&a.files.measurements);
+    let names = ConfigurationNames {
+        file: &file,
+        lines: &data.lines,
+    };
     let mut any_empty = false;
     for r in &results {
         any_empty |= r.status == Status::Empty;
-        print_leg(r, &data.lines, &a.files.measurements, a.max_outliers);
+        print_leg(r, &names, a.max_outliers);
     }
     println!("total: {} legs in {total:.3} s", results.len());
     if let Some(dir) = &a.plots {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
         for r in &results {
-            let mut boxes = vec![("x0", "black", r.x0)];
-            boxes.extend(r.x1.map(|b| ("x1", "#369", b)));
-            boxes.extend(r.x2.flatten().map(|b| ("x2", "#693", b)));
-            if !a.fast {
-                boxes.extend(r.outer.map(|b| ("outer", "#939", b)));
-            }
-            boxes.extend(r.inner.map(|b| ("inner", "#c33", b)));
-            let title = format!("leg {}: {:?}", r.leg + 1, r.status);
-            let svg =
-                plot::nested_boxes(&boxes, &[(0, 1), (3, 4), (2, 6)], &PARAMETER_NAMES, &title);
+            let title = format!("leg {}: {}", r.leg + 1, verdict::short_verdict(r.status));
+            let svg = plot::nested_boxes(
+                &plot::leg_layers(r),
+                None,
+                &plot::LEG_PROJECTIONS,
+                &PARAMETER_NAMES,
+                &title,
+            )?;
             let path = dir.join(format!("leg{}.svg", r.leg + 1));
             write_atomically(&path, &svg)
                 .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
         }
         println!("plots written to {}", dir.display());
+    }
+    if let Some(path) = &a.report {
+        let fits: Vec<[f64; 7]> = fit_legs(&robot, &data.configs)
+            .iter()
+            .map(|f| f.x)
+            .collect();
+        let inputs = vec![
+            Input::new(
+                "robot geometry",
+                &a.files.robot.display().to_string(),
+                robot_text.as_bytes(),
+            ),
+            Input::new(
+                "measurements",
+                &a.files.measurements.display().to_string(),
+                data_text.as_bytes(),
+            ),
+            Input::new(
+                "error bounds",
+                &a.uncertainty.display().to_string(),
+                u_text.as_bytes(),
+            ),
+        ];
+        let page = Certificate {
+            title: format!(
+                "{}-leg parallel robot, {} configurations",
+                robot.len(),
+                data.configs.len()
+            ),
+            command: certificate::command_line(),
+            date: certificate::now(),
+            inputs,
+            configurations: data.configs.len(),
+            error_bounds: certificate::error_bounds(&u, data.rodrigues),
+            settings: settings(&a),
+            seconds: total,
+            legs: results
+                .iter()
+                .map(|r| LegEntry {
+                    result: r,
+                    nominal: robot[r.leg].nominal.params(),
+                    least_squares: std::slice::from_ref(&fits[r.leg]),
+                })
+                .collect(),
+            names,
+            max_outliers: a.max_outliers,
+            sections: Vec::new(),
+        }
+        .to_html()?;
+        write_atomically(path, &page)
+            .map_err(|e| format!("{}: cannot write the certificate: {e}", path.display()))?;
+        println!("certificate written to {}", path.display());
     }
     if let Some(path) = &a.json {
         let text = serde_json::to_string_pretty(&report(&results, total))?;
@@ -116,54 +186,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     Ok(if any_empty { 2 } else { 0 })
 }
 
-/// "configurations 4, 8 (measurements.csv lines 5, 9)": configurations named by number and line.
-fn name_configurations(configs: &[usize], lines: &[usize], file: &Path) -> String {
-    let file = file
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let numbers: Vec<String> = configs.iter().map(|k| (k + 1).to_string()).collect();
-    let at: Vec<String> = configs
-        .iter()
-        .map(|&k| lines.get(k).map_or("?".into(), |l| l.to_string()))
-        .collect();
-    let (noun, line) = if configs.len() == 1 {
-        ("configuration", "line")
-    } else {
-        ("configurations", "lines")
-    };
-    format!(
-        "{noun} {} ({file} {line} {})",
-        numbers.join(", "),
-        at.join(", ")
-    )
-}
-
-/// What proved a leg empty, in words.
-fn proof_in_words(proof: Option<EmptinessProof>) -> String {
-    match proof {
-        Some(EmptinessProof::CheapRejection { measurement }) => format!(
-            "configuration {} fits no parameter vector left after contraction",
-            measurement + 1
-        ),
-        Some(EmptinessProof::LpInfeasible) => {
-            "the linear relaxation of the data has no solution (checked Farkas certificate)".into()
-        }
-        Some(EmptinessProof::EmptyIntersection { parameter }) => format!(
-            "the certified lower and upper bounds of {} crossed",
-            PARAMETER_NAMES.get(parameter).unwrap_or(&"a parameter")
-        ),
-        Some(EmptinessProof::Subdivision) => {
-            "every piece of a subdivision of x0 was proved empty".into()
-        }
-        Some(EmptinessProof::EverySubset) => {
-            "whichever configurations are dropped, the rest was proved inconsistent".into()
-        }
-        None => "no proof recorded".into(),
-    }
-}
-
-fn print_leg(r: &LegResult, lines: &[usize], file: &Path, max_outliers: usize) {
+fn print_leg(r: &LegResult, names: &ConfigurationNames<'_>, max_outliers: usize) {
     println!(
         "== leg {} — {:?} ({} iterations to x1, {} boxes, {:.3} s)",
         r.leg + 1,
@@ -183,79 +206,70 @@ fn print_leg(r: &LegResult, lines: &[usize], file: &Path, max_outliers: usize) {
         rows.push(("inner", Some(inner)));
     }
     print!("{}", table(&rows));
-    match r.status {
-        Status::Empty => {
-            let tolerated = if max_outliers > 0 {
-                format!(", even with {max_outliers} of them tolerated as outliers")
-            } else {
-                String::new()
-            };
-            println!(
-                "verdict: no parameter vector in x0 fits the measurements within their error \
-                 bounds{tolerated} — proved: {}",
-                proof_in_words(r.emptiness)
-            );
-            if let Some(conflict) = &r.conflict {
-                let named = name_configurations(conflict, lines, file);
-                if conflict.len() == 1 {
-                    println!("conflict: {named} alone fits no parameter vector of x0.");
-                } else {
-                    println!(
-                        "conflict: {named} cannot be fitted together; with any one of them \
-                         removed the rest is not proved inconsistent."
-                    );
-                }
-                println!(
-                    "  re-measure them, or run with --max-outliers {} to tolerate {} bad \
-                     configuration{}",
-                    max_outliers + 1,
-                    max_outliers + 1,
-                    if max_outliers == 0 { "" } else { "s" }
-                );
-            } else {
-                println!("  run with a larger --max-outliers, or check the model and error bounds");
-            }
-        }
-        Status::Consistent => {
-            println!("verdict: consistent (a certified witness satisfies every measurement box)")
-        }
-        Status::Undecided => println!(
-            "verdict: undecided (no certified witness found; the outer box is still a certified \
-             enclosure)"
-        ),
+    for (k, sentence) in verdict::verdict(r, names, max_outliers).iter().enumerate() {
+        // The verdict, then its evidence indented under it.
+        let indent = if k >= 2 { "  " } else { "" };
+        println!("{indent}{sentence}");
     }
-    if let (Some(outer), Some(inner)) = (r.outer, r.inner) {
-        let ratio: [f64; 7] = core::array::from_fn(|j| outer[j].wid() / inner[j].wid());
+    if let (Some(ratio), Some(meaning)) = (verdict::width_ratios(r), verdict::tightness(r)) {
         let which = if r.converged.is_some() { "outer" } else { "x1" };
         println!("{which}/inner width: {}", ratios(&ratio));
-        match r.converged {
-            Some(true) => println!(
-                "  the true range of each parameter lies between inner and outer: outer overstates \
-                 it by at most the ratio"
-            ),
-            Some(false) => println!(
-                "  budget spent before every ratio reached the tolerance (--max-boxes, \
-                 --max-seconds); both boxes are still certified"
-            ),
-            None => println!("  (--fast: the paper's x1 only; drop --fast for the tight hull)"),
-        }
+        println!("  {meaning}");
     }
-    if max_outliers > 0 && r.status != Status::Empty {
-        if r.outliers.is_empty() {
-            println!(
-                "outliers (at most {max_outliers} tolerated): no configuration is proved to be one"
-            );
-        } else {
-            println!(
-                "outliers (at most {max_outliers} tolerated): {} — every parameter vector that \
-                 fits the rest misfits {}",
-                name_configurations(&r.outliers, lines, file),
-                if r.outliers.len() == 1 { "it" } else { "them" }
-            );
-        }
+    if let Some(line) = verdict::touching_x0(r) {
+        println!("note: {line}");
+    }
+    if let Some(line) = verdict::outliers(r, names, max_outliers) {
+        println!("{line}");
     }
     if let Some((n, inner, outer)) = r.paving {
         println!("paving: {n} boxes, inner volume {inner:.3e}, outer volume {outer:.3e}");
     }
     println!();
+}
+
+/// The last component of a path, as shown in messages ("measurements.csv").
+fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+/// The settings of the run, in words, for the certificate.
+fn settings(a: &Args) -> Vec<(String, String)> {
+    let legs = a.legs.as_ref().map_or("all".into(), |l| {
+        l.iter()
+            .map(|k| k.to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    });
+    let mode = if a.fast {
+        "the paper's fixed point x1 only (--fast)".to_string()
+    } else {
+        format!(
+            "tight hull: refine until outer width <= {} x inner width (--tolerance {}), at most {} \
+             boxes{} per leg",
+            1.0 + a.tolerance,
+            a.tolerance,
+            a.max_boxes,
+            a.max_seconds
+                .map_or(String::new(), |s| format!(" and {s} s"))
+        )
+    };
+    let yes_no = |b: bool| if b { "yes" } else { "no" }.to_string();
+    vec![
+        ("legs".into(), legs),
+        ("outer box".into(), mode),
+        (
+            "outliers tolerated per leg".into(),
+            a.max_outliers.to_string(),
+        ),
+        ("128-box sweep (x2)".into(), yes_no(a.sweep)),
+        (
+            "paving".into(),
+            a.pave
+                .map_or("no".into(), |t| format!("to relative width {t}")),
+        ),
+        ("threads".into(), rayon::current_num_threads().to_string()),
+    ]
 }
