@@ -1,82 +1,10 @@
 //! End-to-end tests of the `gough` binary on simulated data: truth containment, outliers proved
 //! inconsistent (exit 2), every malformed input rejected with file/line/field (exit 1), reproduce.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod support;
 
-fn gough(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gough"))
-        .args(args)
-        .output()
-        .expect("the gough binary runs")
-}
-
-fn tempdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("gough-test-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn simulate(dir: &Path, seed: u64, extra: &[&str]) {
-    let seed = seed.to_string();
-    let mut args = vec![
-        "simulate",
-        "--configs",
-        "21",
-        "--seed",
-        &seed,
-        "--out",
-        dir.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    let out = gough(&args);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-}
-
-fn certify(dir: &Path, extra: &[&str]) -> Output {
-    let f = |n: &str| dir.join(n).to_str().unwrap().to_string();
-    let (r, m, u, j) = (
-        f("robot.toml"),
-        f("measurements.csv"),
-        f("uncertainty.toml"),
-        f("report.json"),
-    );
-    let mut args = vec![
-        "certify",
-        "--robot",
-        &r,
-        "--measurements",
-        &m,
-        "--uncertainty",
-        &u,
-        "--json",
-        &j,
-    ];
-    args.extend_from_slice(extra);
-    gough(&args)
-}
-
-fn report(dir: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap()
-}
-
-/// The seven true parameters of leg `i` (0-based) from truth.json.
-fn truth_values(truth: &serde_json::Value, i: usize) -> Vec<f64> {
-    let t = &truth["legs"][i];
-    t["a"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .chain(t["b"].as_array().unwrap())
-        .map(|v| v.as_f64().unwrap())
-        .chain([t["l"].as_f64().unwrap()])
-        .collect()
-}
+use std::path::Path;
+use support::{certify, gough, report, simulate, tempdir, truth_values};
 
 #[test]
 fn truth_is_inside_every_leg_for_many_seeds() {
