@@ -13,7 +13,7 @@
 use crate::certification::LegResult;
 use crate::measurement::Uncertainty;
 use crate::plot::{self, PlotError, Points};
-use crate::verdict::{self, ConfigurationNames};
+use crate::verdict::{self, ConfigurationNames, Standing};
 use crate::PARAMETER_NAMES;
 use calib_core::{Interval, Status};
 use sha2::{Digest, Sha256};
@@ -362,7 +362,7 @@ impl Certificate<'_> {
             .legs
             .iter()
             .filter_map(|l| {
-                let n = outside_outer(l);
+                let (_, n, _) = tally(l);
                 (n > 0).then(|| {
                     format!(
                         "leg {} ({n} of {})",
@@ -375,8 +375,8 @@ impl Certificate<'_> {
         if !outside.is_empty() {
             let _ = writeln!(
                 h,
-                "<li>Least-squares solutions outside the certified box, hence not consistent with \
-                 the data: {}.</li>",
+                "<li>Least-squares solutions in x0 but outside the certified box, hence proved \
+                 not to fit the measurements within their error bounds: {}.</li>",
                 outside.join(", ")
             );
         }
@@ -576,59 +576,76 @@ fn widest_index(b: &[Interval; 7]) -> usize {
         .unwrap_or(0)
 }
 
-/// How many least-squares solutions of a leg lie outside its certified outer box (all of them
-/// when the leg was proved empty).
-fn outside_outer(leg: &LegEntry<'_>) -> usize {
-    match leg.result.outer {
-        Some(b) => leg
-            .least_squares
-            .iter()
-            .filter(|x| (0..7).any(|j| !b[j].contains(x[j])))
-            .count(),
-        None if leg.result.status == Status::Empty => leg.least_squares.len(),
-        None => 0,
-    }
+/// A leg's least-squares solutions counted by standing: inside the certified box, refuted (in x0,
+/// outside the certified box), beyond x0.
+fn tally(leg: &LegEntry<'_>) -> (usize, usize, usize) {
+    leg.least_squares.iter().fold((0, 0, 0), |(i, r, b), x| {
+        match verdict::leg_standing(leg.result, x) {
+            Standing::Inside => (i + 1, r, b),
+            Standing::Refuted(_) => (i, r + 1, b),
+            Standing::BeyondX0(_) => (i, r, b + 1),
+        }
+    })
+}
+
+fn names_of(params: &[usize]) -> String {
+    params
+        .iter()
+        .map(|&j| PARAMETER_NAMES[j])
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 fn least_squares_in_words(h: &mut String, leg: &LegEntry<'_>) {
-    let n = leg.least_squares.len();
-    if n == 0 {
-        return;
-    }
-    let outside = outside_outer(leg);
-    let what = if n == 1 {
-        "The least-squares solution (Levenberg–Marquardt from the nominal geometry)".to_string()
-    } else {
-        format!("Of {n} least-squares solutions,")
-    };
-    let text = match (leg.result.outer, n, outside) {
-        (None, _, _) => format!(
-            "{what} {} no parameter vector is consistent with the data, so no least-squares \
-             solution is either.",
-            if n == 1 { "exists, yet" } else { "" }
-        ),
-        (Some(_), 1, 0) => format!(
-            "{what} lies inside the certified outer box (which alone does not prove it consistent)."
-        ),
-        (Some(b), 1, _) => {
-            let x = leg.least_squares[0];
-            let params: Vec<&str> = (0..7)
-                .filter(|&j| !b[j].contains(x[j]))
-                .map(|j| PARAMETER_NAMES[j])
-                .collect();
+    let text = match leg.least_squares {
+        [] => return,
+        [x] => {
+            let what = "The least-squares solution (Levenberg–Marquardt from the nominal geometry)";
+            match verdict::leg_standing(leg.result, x) {
+                Standing::Inside => format!(
+                    "{what} lies inside the certified outer box (which alone does not prove it \
+                     consistent)."
+                ),
+                Standing::Refuted(p) if p.is_empty() => format!(
+                    "{what} lies in x0, where no parameter vector fits the measurements: it does \
+                     not fit them within their error bounds."
+                ),
+                Standing::Refuted(p) => format!(
+                    "{what} lies in x0 but outside the certified outer box (in {}): it does not \
+                     fit the measurements within their error bounds.",
+                    names_of(&p)
+                ),
+                Standing::BeyondX0(p) => format!(
+                    "{what} lies outside x0 (in {}), where this certificate proves nothing.",
+                    names_of(&p)
+                ),
+            }
+        }
+        all => {
+            let (inside, refuted, beyond) = tally(leg);
+            let mut parts = Vec::new();
+            if inside > 0 {
+                parts.push(format!("{inside} lie inside the certified outer box"));
+            }
+            if refuted > 0 {
+                parts.push(format!(
+                    "{refuted} lie in x0 but outside the certified box: they do not fit the \
+                     measurements within their error bounds"
+                ));
+            }
+            if beyond > 0 {
+                parts.push(format!(
+                    "{beyond} lie outside x0, where this certificate proves nothing"
+                ));
+            }
             format!(
-                "{what} lies outside the certified outer box (in {}): it does not fit the \
-                 measurements within their error bounds.",
-                params.join(", ")
+                "Of {} least-squares solutions, {}.",
+                all.len(),
+                parts.join("; ")
             )
         }
-        (Some(_), _, 0) => format!("{what} all lie inside the certified outer box."),
-        (Some(_), _, k) => format!(
-            "{what} {k} lie outside the certified outer box: they do not fit the measurements \
-             within their error bounds."
-        ),
     };
-    let _ = writeln!(h, "<p class=\"evidence\">{}</p>", escape(text.trim()));
+    let _ = writeln!(h, "<p class=\"evidence\">{}</p>", escape(&text));
 }
 
 fn badge(status: Status) -> String {

@@ -3,7 +3,7 @@
 
 use crate::certification::LegResult;
 use crate::PARAMETER_NAMES;
-use calib_core::{EmptinessProof, Status};
+use calib_core::{EmptinessProof, Interval, Status};
 
 /// Names configurations by number and by their line in the measurement file.
 #[derive(Clone, Copy, Debug)]
@@ -178,6 +178,49 @@ pub fn touching_x0(r: &LegResult) -> Option<String> {
     })
 }
 
+/// What a certificate proves about a parameter vector found by other means (a least-squares fit).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Standing {
+    /// Inside the certified box: not refuted (which alone does not prove it consistent).
+    Inside,
+    /// Inside x0 but outside the certified box (in these parameters), or anywhere in x0 when x0
+    /// was proved empty: it does not fit the measurements within their error bounds.
+    Refuted(Vec<usize>),
+    /// Outside x0 (in these parameters): the certificate covers x0 only and proves nothing here.
+    BeyondX0(Vec<usize>),
+}
+
+/// Where `x` stands against a certificate over `x0`: `certified` is the certified box, `None` when
+/// x0 was proved to hold no consistent parameter vector.
+pub fn standing(x0: &[Interval; 7], certified: Option<&[Interval; 7]>, x: &[f64; 7]) -> Standing {
+    let outside =
+        |b: &[Interval; 7]| -> Vec<usize> { (0..7).filter(|&j| !b[j].contains(x[j])).collect() };
+    let beyond = outside(x0);
+    if !beyond.is_empty() {
+        return Standing::BeyondX0(beyond);
+    }
+    match certified {
+        None => Standing::Refuted(Vec::new()),
+        Some(b) => {
+            let refuted = outside(b);
+            if refuted.is_empty() {
+                Standing::Inside
+            } else {
+                Standing::Refuted(refuted)
+            }
+        }
+    }
+}
+
+/// [`standing`] against a leg's result: its outer box, or none when it was proved empty.
+pub fn leg_standing(r: &LegResult, x: &[f64; 7]) -> Standing {
+    let certified = match r.status {
+        Status::Empty => None,
+        _ => Some(r.outer.as_ref().unwrap_or(&r.x0)),
+    };
+    standing(&r.x0, certified, x)
+}
+
 /// With outliers tolerated (`max_outliers > 0`) on a leg that is not empty: which configurations
 /// were proved to be outliers.
 pub fn outliers(
@@ -247,6 +290,20 @@ mod tests {
             ..r
         };
         assert_eq!(touching_x0(&inside), None);
+    }
+
+    #[test]
+    fn only_vectors_inside_x0_are_refuted() {
+        let x0 = [Interval::new(-1.0, 1.0); 7];
+        let outer = [Interval::new(-0.5, 0.5); 7];
+        let mut x = [0.0; 7];
+        assert_eq!(standing(&x0, Some(&outer), &x), Standing::Inside);
+        assert_eq!(standing(&x0, None, &x), Standing::Refuted(vec![]));
+        x[6] = 0.75;
+        assert_eq!(standing(&x0, Some(&outer), &x), Standing::Refuted(vec![6]));
+        x[2] = 3.0;
+        assert_eq!(standing(&x0, Some(&outer), &x), Standing::BeyondX0(vec![2]));
+        assert_eq!(standing(&x0, None, &x), Standing::BeyondX0(vec![2]));
     }
 
     #[test]

@@ -10,7 +10,7 @@ use calib_gough::lsq::fit_leg;
 use calib_gough::plot::{self, Layer, PlotError, Points};
 use calib_gough::report::{ratios, write_atomically};
 use calib_gough::simulate::data_set_files;
-use calib_gough::verdict::{self, ConfigurationNames};
+use calib_gough::verdict::{self, ConfigurationNames, Standing};
 use calib_gough::{
     builtin_hexapod, leg_boxes, simulate, Orientation, Simulation, Uncertainty, PARAMETER_NAMES,
 };
@@ -251,30 +251,35 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         ));
     }
     for (name, certified) in [("x1", x1), ("outer", leg.outer)] {
-        let (Some(b), Some(xs)) = (certified, xs) else {
-            continue;
-        };
+        // Only fits inside x0 can be refuted: the certificate says nothing beyond x0.
+        let (mut refuted, mut beyond) = (0, 0);
+        let mut params = [false; 7];
+        for f in &fits {
+            match verdict::standing(&x0, certified.as_ref(), f) {
+                Standing::Inside => {}
+                Standing::Refuted(p) => {
+                    refuted += 1;
+                    p.iter().for_each(|&j| params[j] = true);
+                }
+                Standing::BeyondX0(_) => beyond += 1,
+            }
+        }
         let sticking: Vec<&str> = (0..7)
-            .filter(|&j| !xs[j].is_subset_of(b[j]))
+            .filter(|&j| params[j])
             .map(|j| PARAMETER_NAMES[j])
             .collect();
-        let count = fits
-            .iter()
-            .filter(|f| (0..7).any(|j| !b[j].contains(f[j])))
-            .count();
-        say(if sticking.is_empty() {
-            format!(
-                "all {} least-squares solutions lie inside {name}",
-                fits.len()
-            )
-        } else {
-            format!(
-                "{count} of {} least-squares solutions stick out of the certified {name} (in {}): \
-                 they are not consistent with the measurements and their error bounds",
-                fits.len(),
-                sticking.join(", ")
-            )
-        });
+        say(format!(
+            "{name}: of {} least-squares solutions, {} lie inside it, {refuted} in x0 but outside \
+             it{} (proved not to fit the measurements within their error bounds), {beyond} \
+             outside x0 (where nothing is certified)",
+            fits.len(),
+            fits.len() - refuted - beyond,
+            if sticking.is_empty() {
+                String::new()
+            } else {
+                format!(", in {}", sticking.join(", "))
+            }
+        ));
     }
     println!();
     say(format!(
