@@ -104,7 +104,6 @@ fn failed<E: std::fmt::Display>(e: E) -> PlotError {
 
 const PANEL: (u32, u32) = (400, 340);
 const TITLE_HEIGHT: u32 = 30;
-const LEGEND_HEIGHT: u32 = 34;
 const FONT: &str = "sans-serif";
 
 fn rgb((r, g, b): Colour) -> RGBColor {
@@ -185,14 +184,33 @@ enum Swatch {
     Dot,
 }
 
-/// Draws the legend entries left to right in `area` (a strip below the plots).
+/// Height of one legend row.
+const LEGEND_ROW: u32 = 24;
+
+/// The legend laid out in rows that fit `width`: each entry with its row and x position. Text
+/// width is estimated at 8 px per character (14 px sans-serif averages less).
+fn legend_layout(entries: &[Entry], width: u32) -> Vec<(u32, i32, &Entry)> {
+    let (mut row, mut x) = (0u32, 40i32);
+    let mut out = Vec::with_capacity(entries.len());
+    for e in entries {
+        let w = 24 + 8 * e.label.chars().count() as i32 + 24;
+        if x > 40 && x + w > width as i32 {
+            row += 1;
+            x = 40;
+        }
+        out.push((row, x, e));
+        x += w;
+    }
+    out
+}
+
+/// Draws the legend in `area` (a strip below the plots).
 fn legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
-    entries: &[Entry],
+    layout: &[(u32, i32, &Entry)],
 ) -> Result<(), PlotError> {
-    let mut x = 50i32;
-    let y = (LEGEND_HEIGHT / 2) as i32;
-    for e in entries {
+    for &(row, x, e) in layout {
+        let y = (row * LEGEND_ROW + LEGEND_ROW / 2 + 4) as i32;
         let c = rgb(e.colour);
         match e.kind {
             Swatch::Outline => area.draw(&Rectangle::new(
@@ -212,26 +230,32 @@ fn legend<DB: DrawingBackend>(
             (FONT, 14).into_font().color(&BLACK),
         ))
         .map_err(failed)?;
-        x += 24 + 8 * e.label.chars().count() as i32 + 24;
     }
     Ok(())
 }
 
-/// Splits a figure into its title, plot and legend areas.
-type Areas<'a> = (
-    DrawingArea<SVGBackend<'a>, plotters::coord::Shift>,
-    DrawingArea<SVGBackend<'a>, plotters::coord::Shift>,
-    DrawingArea<SVGBackend<'a>, plotters::coord::Shift>,
-);
+/// The drawing area of a figure's plots.
+type Plots<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
 
-fn frame<'a>(buf: &'a mut String, size: (u32, u32), title: &str) -> Result<Areas<'a>, PlotError> {
-    let root = SVGBackend::with_string(buf, size).into_drawing_area();
+/// A figure `width` wide: the title on top, then `plot_height` for the plots (returned, to draw
+/// on), then the legend in as many rows as it needs. Call `present` on the plots when done.
+fn frame<'a>(
+    buf: &'a mut String,
+    width: u32,
+    plot_height: u32,
+    title: &str,
+    entries: &[Entry],
+) -> Result<Plots<'a>, PlotError> {
+    let layout = legend_layout(entries, width);
+    let rows = layout.last().map_or(0, |(row, _, _)| row + 1);
+    let height = TITLE_HEIGHT + plot_height + rows * LEGEND_ROW + 10;
+    let root = SVGBackend::with_string(buf, (width, height)).into_drawing_area();
     root.fill(&WHITE).map_err(failed)?;
     let (head, rest) = root.split_vertically(TITLE_HEIGHT);
-    let (plots, strip) = rest.split_vertically(size.1 - TITLE_HEIGHT - LEGEND_HEIGHT);
+    let (plots, strip) = rest.split_vertically(plot_height);
     head.draw(&Text::new(
         title.to_string(),
-        ((size.0 / 2) as i32, 8),
+        ((width / 2) as i32, 8),
         (FONT, 17)
             .into_font()
             .color(&BLACK)
@@ -241,7 +265,8 @@ fn frame<'a>(buf: &'a mut String, size: (u32, u32), title: &str) -> Result<Areas
             )),
     ))
     .map_err(failed)?;
-    Ok((head, plots, strip))
+    legend(&strip, &layout)?;
+    Ok(plots)
 }
 
 /// A chart with labelled axes on `area` over the given ranges.
@@ -293,8 +318,50 @@ fn axes(
         .map_err(failed)
 }
 
+/// The frame of one projection panel: boxes only, then points within one box-width of the boxes
+/// (a diverged fit far away would shrink the boxes to dots).
+fn panel_range(layers: &[Layer], dots: &[[f64; 7]], k: usize) -> (f64, f64) {
+    if layers.is_empty() {
+        return axis_range(dots.iter().map(|p| p[k]));
+    }
+    let boxes = axis_range(
+        layers
+            .iter()
+            .flat_map(|l| [l.boxes[k].inf(), l.boxes[k].sup()])
+            .filter(|v| !v.is_nan()),
+    );
+    let width = boxes.1 - boxes.0;
+    let near = |v: f64| v >= boxes.0 - width && v <= boxes.1 + width;
+    axis_range(
+        [boxes.0, boxes.1]
+            .into_iter()
+            .chain(dots.iter().map(|p| p[k]).filter(|v| near(*v))),
+    )
+}
+
+fn within(v: f64, (lo, hi): (f64, f64)) -> bool {
+    lo <= v && v <= hi
+}
+
+/// Legend entries of layers: outlined or shaded swatches.
+fn layer_entries(layers: &[Layer], all_shaded: bool) -> Vec<Entry> {
+    layers
+        .iter()
+        .map(|l| Entry {
+            label: l.label.clone(),
+            colour: l.colour,
+            kind: if l.filled || all_shaded {
+                Swatch::Shaded
+            } else {
+                Swatch::Outline
+            },
+        })
+        .collect()
+}
+
 /// The paper's Fig. 4: boxes projected on pairs of parameters, one panel per pair `(i, j)` (the
 /// i-th parameter across, the j-th up), with optional points (least-squares solutions) on top.
+/// Points far outside every box are left out of the frames and counted in the legend.
 pub fn nested_boxes(
     layers: &[Layer],
     points: Option<Points<'_>>,
@@ -302,40 +369,37 @@ pub fn nested_boxes(
     names: &[&str; 7],
     title: &str,
 ) -> Result<String, PlotError> {
-    let size = (
-        PANEL.0 * pairs.len().max(1) as u32,
-        PANEL.1 + TITLE_HEIGHT + LEGEND_HEIGHT,
-    );
+    let dots = points.map_or(&[][..], |p| p.points);
+    let frames: Vec<((f64, f64), (f64, f64))> = pairs
+        .iter()
+        .map(|&(i, j)| (panel_range(layers, dots, i), panel_range(layers, dots, j)))
+        .collect();
+    let shown = |v: &[f64; 7]| {
+        pairs
+            .iter()
+            .zip(&frames)
+            .all(|(&(i, j), &(xr, yr))| within(v[i], xr) && within(v[j], yr))
+    };
+    let outside = dots.iter().filter(|v| !shown(v)).count();
+    let mut entries = layer_entries(layers, false);
+    entries.extend(points.map(|p| Entry {
+        label: if outside > 0 {
+            format!("{} ({outside} outside the frames)", p.label)
+        } else {
+            p.label.into()
+        },
+        colour: p.colour,
+        kind: Swatch::Dot,
+    }));
+    let columns = pairs.len().max(1);
     let mut buf = String::new();
     {
-        let (_, plots, strip) = frame(&mut buf, size, title)?;
-        let panels = plots.split_evenly((1, pairs.len().max(1)));
-        let dots = points.map_or(&[][..], |p| p.points);
-        let mut hidden = vec![false; dots.len()];
-        for (panel, &(i, j)) in panels.iter().zip(pairs) {
-            let range = |k: usize| {
-                let boxes = axis_range(
-                    layers
-                        .iter()
-                        .flat_map(|l| [l.boxes[k].inf(), l.boxes[k].sup()])
-                        .filter(|v| !v.is_nan()),
-                );
-                if layers.is_empty() {
-                    return axis_range(dots.iter().map(|p| p[k]));
-                }
-                // Points far from every box (a diverged fit) would shrink the boxes to dots:
-                // the frame takes in only points within one box-width of the boxes.
-                let near = |v: f64| {
-                    (v - boxes.0).abs().min((v - boxes.1).abs()) <= boxes.1 - boxes.0
-                        || (boxes.0..=boxes.1).contains(&v)
-                };
-                axis_range(
-                    [boxes.0, boxes.1]
-                        .into_iter()
-                        .chain(dots.iter().map(|p| p[k]).filter(|v| near(*v))),
-                )
-            };
-            let (xr, yr) = (range(i), range(j));
+        let plots = frame(&mut buf, PANEL.0 * columns as u32, PANEL.1, title, &entries)?;
+        for (panel, (&(i, j), &(xr, yr))) in plots
+            .split_evenly((1, columns))
+            .iter()
+            .zip(pairs.iter().zip(&frames))
+        {
             let mut c = chart(panel, xr, yr)?;
             axes(&mut c, xr, yr, names[i], names[j])?;
             for l in layers {
@@ -345,60 +409,32 @@ pub fn nested_boxes(
                     continue;
                 };
                 let colour = rgb(l.colour);
-                let style = if l.filled {
-                    colour.mix(0.25).filled()
-                } else {
-                    colour.stroke_width(2)
-                };
-                c.draw_series(std::iter::once(Rectangle::new([(x0, y0), (x1, y1)], style)))
-                    .map_err(failed)?;
                 if l.filled {
                     c.draw_series(std::iter::once(Rectangle::new(
                         [(x0, y0), (x1, y1)],
-                        colour.stroke_width(1),
+                        colour.mix(0.25).filled(),
                     )))
                     .map_err(failed)?;
                 }
+                let width = if l.filled { 1 } else { 2 };
+                c.draw_series(std::iter::once(Rectangle::new(
+                    [(x0, y0), (x1, y1)],
+                    colour.stroke_width(width),
+                )))
+                .map_err(failed)?;
             }
             if let Some(p) = points {
                 let colour = rgb(p.colour).mix(0.5).filled();
-                let inside = |v: f64, r: (f64, f64)| (r.0..=r.1).contains(&v);
                 c.draw_series(
                     p.points
                         .iter()
-                        .filter(|v| inside(v[i], xr) && inside(v[j], yr))
+                        .filter(|v| within(v[i], xr) && within(v[j], yr))
                         .map(|v| Circle::new((v[i], v[j]), 2, colour)),
                 )
                 .map_err(failed)?;
-                for (h, v) in hidden.iter_mut().zip(p.points) {
-                    *h |= !(inside(v[i], xr) && inside(v[j], yr));
-                }
             }
         }
-        let mut entries: Vec<Entry> = layers
-            .iter()
-            .map(|l| Entry {
-                label: l.label.clone(),
-                colour: l.colour,
-                kind: if l.filled {
-                    Swatch::Shaded
-                } else {
-                    Swatch::Outline
-                },
-            })
-            .collect();
-        let outside = hidden.iter().filter(|h| **h).count();
-        entries.extend(points.map(|p| Entry {
-            label: if outside > 0 {
-                format!("{} ({outside} outside the frames)", p.label)
-            } else {
-                p.label.into()
-            },
-            colour: p.colour,
-            kind: Swatch::Dot,
-        }));
-        legend(&strip, &entries)?;
-        strip.present().map_err(failed)?;
+        plots.present().map_err(failed)?;
     }
     Ok(buf)
 }
@@ -411,23 +447,22 @@ pub fn parameter_ranges(
     names: &[&str; 7],
     title: &str,
 ) -> Result<String, PlotError> {
-    let size = (820, 360 + TITLE_HEIGHT + LEGEND_HEIGHT);
+    let xr = axis_range(layers.iter().flat_map(|l| {
+        (0..7).flat_map(move |j| [l.boxes[j].inf() - centre[j], l.boxes[j].sup() - centre[j]])
+    }));
+    let xd = decimals(xr.1 - xr.0);
+    let x_fmt = move |v: &f64| tick(*v, xd, true);
+    let name_of = |v: &f64| {
+        let k = v.round();
+        if (v - k).abs() < 1e-6 && (0.0..7.0).contains(&k) {
+            names[6 - k as usize].to_string()
+        } else {
+            String::new()
+        }
+    };
     let mut buf = String::new();
     {
-        let (_, plots, strip) = frame(&mut buf, size, title)?;
-        let xr = axis_range(layers.iter().flat_map(|l| {
-            (0..7).flat_map(move |j| [l.boxes[j].inf() - centre[j], l.boxes[j].sup() - centre[j]])
-        }));
-        let xd = decimals(xr.1 - xr.0);
-        let x_fmt = move |v: &f64| tick(*v, xd, true);
-        let name_of = |v: &f64| {
-            let k = v.round();
-            if (v - k).abs() < 1e-6 && (0.0..7.0).contains(&k) {
-                names[6 - k as usize].to_string()
-            } else {
-                String::new()
-            }
-        };
+        let plots = frame(&mut buf, 820, 360, title, &layer_entries(layers, true))?;
         let mut c = ChartBuilder::on(&plots)
             .margin(8)
             .margin_right(20)
@@ -448,16 +483,15 @@ pub fn parameter_ranges(
             .axis_desc_style((FONT, 14))
             .draw()
             .map_err(failed)?;
-        let n = layers.len().max(1) as f64;
-        let band = 0.8 / n;
+        let band = 0.8 / layers.len().max(1) as f64;
         for (k, l) in layers.iter().enumerate() {
-            let colour = rgb(l.colour);
+            let colour = rgb(l.colour).mix(if k == 0 { 0.3 } else { 0.7 });
             let bars = (0..7).filter_map(|j| {
                 let (lo, hi) = clamped(l.boxes[j] - Interval::point(centre[j]), xr)?;
                 let y = (6 - j) as f64 + 0.4 - band * (k as f64 + 0.5);
                 Some(Rectangle::new(
                     [(lo, y - 0.4 * band), (hi, y + 0.4 * band)],
-                    colour.mix(if k == 0 { 0.3 } else { 0.7 }).filled(),
+                    colour.filled(),
                 ))
             });
             c.draw_series(bars).map_err(failed)?;
@@ -467,21 +501,13 @@ pub fn parameter_ranges(
             BLACK.mix(0.5).stroke_width(1),
         ))
         .map_err(failed)?;
-        let entries: Vec<Entry> = layers
-            .iter()
-            .map(|l| Entry {
-                label: l.label.clone(),
-                colour: l.colour,
-                kind: Swatch::Shaded,
-            })
-            .collect();
-        legend(&strip, &entries)?;
-        strip.present().map_err(failed)?;
+        plots.present().map_err(failed)?;
     }
     Ok(buf)
 }
 
-/// The paper's Fig. 3: a histogram of `values` with certified intervals drawn as shaded bands.
+/// The paper's Fig. 3: a histogram of `values` with intervals (x0, the certified boxes) drawn as
+/// shaded bands behind it.
 pub fn histogram(
     values: &[f64],
     bands: &[(&str, Colour, Interval)],
@@ -503,10 +529,22 @@ pub fn histogram(
         counts[i.min(bins - 1)] += 1;
     }
     let top = counts.iter().copied().max().unwrap_or(0).max(1) as f64 * 1.1;
-    let size = (PANEL.0 + 160, PANEL.1 + TITLE_HEIGHT + LEGEND_HEIGHT);
+    let mut entries: Vec<Entry> = bands
+        .iter()
+        .map(|(label, colour, _)| Entry {
+            label: label.to_string(),
+            colour: *colour,
+            kind: Swatch::Shaded,
+        })
+        .collect();
+    entries.push(Entry {
+        label: format!("least squares ({})", finite.len()),
+        colour: LEAST_SQUARES,
+        kind: Swatch::Shaded,
+    });
     let mut buf = String::new();
     {
-        let (_, plots, strip) = frame(&mut buf, size, title)?;
+        let plots = frame(&mut buf, PANEL.0 + 260, PANEL.1, title, &entries)?;
         let yr = (0.0, top);
         let mut c = chart(&plots, xr, yr)?;
         axes(&mut c, xr, yr, x_name, "count")?;
@@ -514,7 +552,7 @@ pub fn histogram(
             if let Some((lo, hi)) = clamped(*b, xr) {
                 c.draw_series(std::iter::once(Rectangle::new(
                     [(lo, 0.0), (hi, top)],
-                    rgb(*colour).mix(0.2).filled(),
+                    rgb(*colour).mix(0.18).filled(),
                 )))
                 .map_err(failed)?;
             }
@@ -533,21 +571,7 @@ pub fn histogram(
                 }),
         )
         .map_err(failed)?;
-        let mut entries: Vec<Entry> = bands
-            .iter()
-            .map(|(label, colour, _)| Entry {
-                label: label.to_string(),
-                colour: *colour,
-                kind: Swatch::Shaded,
-            })
-            .collect();
-        entries.push(Entry {
-            label: format!("least-squares solutions ({})", finite.len()),
-            colour: LEAST_SQUARES,
-            kind: Swatch::Shaded,
-        });
-        legend(&strip, &entries)?;
-        strip.present().map_err(failed)?;
+        plots.present().map_err(failed)?;
     }
     Ok(buf)
 }
@@ -571,15 +595,19 @@ pub fn log_series(
             (lo.min(*v), hi.max(*v))
         });
     let (lo, hi) = if lo <= hi {
-        (lo / 2.0, hi * 2.0)
+        (lo / 1.5, hi * 1.5)
     } else {
         (1e-3, 1.0)
     };
     let n = values.len().max(2) as f64 - 1.0;
-    let size = (PANEL.0 + 160, PANEL.1 + TITLE_HEIGHT + LEGEND_HEIGHT);
+    let entries = [Entry {
+        label: y_name.into(),
+        colour: X1,
+        kind: Swatch::Dot,
+    }];
     let mut buf = String::new();
     {
-        let (_, plots, strip) = frame(&mut buf, size, title)?;
+        let plots = frame(&mut buf, PANEL.0 + 160, PANEL.1, title, &entries)?;
         let mut c = ChartBuilder::on(&plots)
             .margin(8)
             .margin_right(16)
@@ -591,9 +619,11 @@ pub fn log_series(
         let y_fmt = |v: &f64| format!("{v:.0e}");
         c.configure_mesh()
             .x_labels(values.len().clamp(2, 12))
+            .y_labels(6)
+            .max_light_lines(2)
             .x_label_formatter(&x_fmt)
             .y_label_formatter(&y_fmt)
-            .light_line_style(RGBColor(0xee, 0xee, 0xee))
+            .light_line_style(RGBColor(0xf2, 0xf2, 0xf2))
             .bold_line_style(RGBColor(0xdd, 0xdd, 0xdd))
             .x_desc(x_name)
             .y_desc(y_name)
@@ -609,15 +639,7 @@ pub fn log_series(
         .map_err(failed)?;
         c.draw_series(positive.iter().map(|&p| Circle::new(p, 3, colour.filled())))
             .map_err(failed)?;
-        legend(
-            &strip,
-            &[Entry {
-                label: y_name.into(),
-                colour: X1,
-                kind: Swatch::Dot,
-            }],
-        )?;
-        strip.present().map_err(failed)?;
+        plots.present().map_err(failed)?;
     }
     Ok(buf)
 }
@@ -709,6 +731,27 @@ mod tests {
             .expect("legend entry");
         let y: f64 = label.attribute("y").and_then(|v| v.parse().ok()).unwrap();
         assert!(y > (PANEL.1 + TITLE_HEIGHT) as f64, "legend at y = {y}");
+    }
+
+    #[test]
+    fn a_long_legend_wraps_into_rows_within_the_figure() {
+        let entries: Vec<Entry> = (0..6)
+            .map(|k| Entry {
+                label: format!("a rather long legend entry number {k}"),
+                colour: X0,
+                kind: Swatch::Outline,
+            })
+            .collect();
+        let layout = legend_layout(&entries, 600);
+        assert!(
+            layout.last().unwrap().0 >= 2,
+            "rows: {}",
+            layout.last().unwrap().0
+        );
+        for (_, x, e) in &layout {
+            let right = x + 24 + 8 * e.label.chars().count() as i32;
+            assert!(right <= 600, "{} ends at {right}", e.label);
+        }
     }
 
     #[test]
