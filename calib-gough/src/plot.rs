@@ -291,6 +291,16 @@ fn chart<'a, 'b>(
         .map_err(failed)
 }
 
+/// The house style of every chart's grid: light lines, label and axis-name fonts.
+fn house_style<'m, 'a, 'b, X: Ranged, Y: Ranged, DB: DrawingBackend>(
+    mesh: &'m mut plotters::chart::MeshStyle<'a, 'b, X, Y, DB>,
+) -> &'m mut plotters::chart::MeshStyle<'a, 'b, X, Y, DB> {
+    mesh.light_line_style(RGBColor(0xee, 0xee, 0xee))
+        .bold_line_style(RGBColor(0xdd, 0xdd, 0xdd))
+        .label_style((FONT, 12))
+        .axis_desc_style((FONT, 14))
+}
+
 /// Axes, ticks, tick labels and axis names of a chart.
 fn axes(
     chart: &mut ChartContext<'_, SVGBackend<'_>, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
@@ -302,18 +312,14 @@ fn axes(
     let (xd, yd) = (decimals(x.1 - x.0), decimals(y.1 - y.0));
     let x_fmt = move |v: &f64| tick(*v, xd, false);
     let y_fmt = move |v: &f64| tick(*v, yd, false);
-    chart
-        .configure_mesh()
+    let mut mesh = chart.configure_mesh();
+    house_style(&mut mesh)
         .x_labels(5)
         .y_labels(6)
         .x_label_formatter(&x_fmt)
         .y_label_formatter(&y_fmt)
-        .light_line_style(RGBColor(0xee, 0xee, 0xee))
-        .bold_line_style(RGBColor(0xdd, 0xdd, 0xdd))
         .x_desc(x_name)
         .y_desc(y_name)
-        .label_style((FONT, 12))
-        .axis_desc_style((FONT, 14))
         .draw()
         .map_err(failed)
 }
@@ -470,17 +476,14 @@ pub fn parameter_ranges(
             .y_label_area_size(48)
             .build_cartesian_2d(xr.0..xr.1, -0.6f64..6.6f64)
             .map_err(failed)?;
-        c.configure_mesh()
+        let mut mesh = c.configure_mesh();
+        house_style(&mut mesh)
             .x_labels(7)
             .y_labels(15)
             .x_label_formatter(&x_fmt)
             .y_label_formatter(&name_of)
             .disable_y_mesh()
-            .light_line_style(RGBColor(0xee, 0xee, 0xee))
-            .bold_line_style(RGBColor(0xdd, 0xdd, 0xdd))
             .x_desc("value − nominal (cm)")
-            .label_style((FONT, 12))
-            .axis_desc_style((FONT, 14))
             .draw()
             .map_err(failed)?;
         let band = 0.8 / layers.len().max(1) as f64;
@@ -617,18 +620,15 @@ pub fn log_series(
             .map_err(failed)?;
         let x_fmt = |v: &f64| tick(*v, 0, false);
         let y_fmt = |v: &f64| format!("{v:.0e}");
-        c.configure_mesh()
+        let mut mesh = c.configure_mesh();
+        house_style(&mut mesh)
             .x_labels(values.len().clamp(2, 12))
             .y_labels(6)
             .max_light_lines(2)
             .x_label_formatter(&x_fmt)
             .y_label_formatter(&y_fmt)
-            .light_line_style(RGBColor(0xf2, 0xf2, 0xf2))
-            .bold_line_style(RGBColor(0xdd, 0xdd, 0xdd))
             .x_desc(x_name)
             .y_desc(y_name)
-            .label_style((FONT, 12))
-            .axis_desc_style((FONT, 14))
             .draw()
             .map_err(failed)?;
         let colour = rgb(X1);

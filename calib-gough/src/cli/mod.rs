@@ -26,7 +26,11 @@ enum Command {
     ///
     /// Example:
     ///   gough certify --robot robot.toml --measurements measurements.csv \
-    ///                 --uncertainty uncertainty.toml --json report.json
+    ///                 --uncertainty uncertainty.toml --json report.json \
+    ///                 --report certificate.html
+    ///
+    /// --report writes the calibration certificate: one self-contained HTML page (summary in
+    /// words, inputs with SHA-256, settings, per-leg tables and figures) to archive or print.
     ///
     /// What the boxes mean, per leg parameter (a = base point, b = platform point, l = offset):
     ///   outer  every parameter vector that fits all measurements within their error bounds lies
@@ -63,7 +67,10 @@ enum Command {
     /// Tables II–IV, and the tight certified hull (outer, inner) of this run.
     ///
     /// Example:
-    ///   gough reproduce --samples 1000
+    ///   gough reproduce --samples 1000 --out results/
+    ///
+    /// --out writes results/report.html (the certificate of the run, with the paper's tables and
+    /// Figs. 3-5) and the figures as SVG files.
     #[command(verbatim_doc_comment)]
     Reproduce(reproduce::Args),
 }
