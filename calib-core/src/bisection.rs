@@ -293,13 +293,14 @@ pub fn pave<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
         .iter()
         .map(|b| is_certified_consistent(model, b, measurements))
         .collect();
-    let outer_volume = done.iter().map(volume).sum();
+    // Folded from +0.0: `sum` of no terms is -0.0, printed as "-0".
+    let outer_volume = done.iter().map(volume).fold(0.0, |s, v| s + v);
     let inner_volume = done
         .iter()
         .zip(&inside)
         .filter(|(_, i)| **i)
         .map(|(b, _)| volume(b))
-        .sum();
+        .fold(0.0, |s, v| s + v);
     let hull = hull_of(&done);
     Paving {
         boxes: done,

@@ -473,8 +473,16 @@ impl Certificate<'_> {
         if let Some(w) = r.witness {
             let _ = writeln!(
                 h,
-                "<p class=\"evidence\">A certified consistent parameter vector (witness): <code>{}</code></p>",
-                w.map(|v| format!("{v:.6}")).join(", ")
+                "<p class=\"evidence\">A certified consistent parameter vector (witness, exact \
+                 digits): <code>{}</code></p>",
+                w.map(|v| format!("{v:?}")).join(", ")
+            );
+        }
+        if let Some((n, inner, outer)) = r.paving {
+            let _ = writeln!(
+                h,
+                "<p class=\"evidence\">Paving: {n} boxes; volume certified inside the solution set \
+                 {inner:.3e}, volume of the boxes that may hold solutions {outer:.3e} (cm^7).</p>"
             );
         }
         least_squares_in_words(h, leg);
@@ -542,7 +550,11 @@ impl Certificate<'_> {
         for (name, _, _) in &columns {
             let _ = write!(h, "<th>{name}</th>");
         }
-        h.push_str("<th>outer/inner width</th></tr>\n");
+        let _ = writeln!(
+            h,
+            "<th>{}/inner width</th></tr>",
+            if r.converged.is_some() { "outer" } else { "x1" }
+        );
         let ratio = verdict::width_ratios(r);
         for j in 0..7 {
             let _ = write!(
