@@ -17,7 +17,7 @@ use crate::certificate::is_certified_consistent;
 use crate::certify::MAX_SUBSETS;
 use crate::contract::{contract, Workspace};
 use crate::outliers::{drop_sets, keep_all_but};
-use crate::{Interval, Model, Settings};
+use crate::{Interval, Settings, VectorModel};
 use rayon::prelude::*;
 
 /// The volume `Π wid(x_j)` (0 for an empty box).
@@ -80,7 +80,12 @@ fn split_all<const NX: usize>(
 }
 
 /// Contracts every box (in parallel when asked) and keeps the non-empty results.
-fn contract_all<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
+fn contract_all<
+    M: VectorModel<NX, NM, NR> + Sync,
+    const NX: usize,
+    const NM: usize,
+    const NR: usize,
+>(
     model: &M,
     boxes: &[[Interval; NX]],
     measurements: &[[Interval; NM]],
@@ -105,7 +110,12 @@ fn contract_all<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
 ///
 /// # Panics
 /// If `NX > 16` (the sweep contracts `2^NX` boxes per step).
-pub fn sweep<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
+pub fn sweep<
+    M: VectorModel<NX, NM, NR> + Sync,
+    const NX: usize,
+    const NM: usize,
+    const NR: usize,
+>(
     model: &M,
     x0: &[Interval; NX],
     measurements: &[[Interval; NM]],
@@ -179,7 +189,12 @@ pub fn sweep<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
 /// The sweep with `q` outliers tolerated: the union of the sweeps of every subset of `p - q`
 /// measurements (see [`crate::outliers`]); volumes are added step by step (an outer volume of the
 /// union). Beyond the subset limit, `x0` is kept whole.
-fn sweep_relaxed<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
+fn sweep_relaxed<
+    M: VectorModel<NX, NM, NR> + Sync,
+    const NX: usize,
+    const NM: usize,
+    const NR: usize,
+>(
     model: &M,
     x0: &[Interval; NX],
     measurements: &[[Interval; NM]],
@@ -250,7 +265,12 @@ pub struct Paving<const NX: usize> {
 /// Branch-and-prune paving of the solution set (see the module documentation): stops splitting a
 /// box when every width is below `tolerance` times the corresponding width of `x0`, and contracts at
 /// most `max_boxes` boxes.
-pub fn pave<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
+pub fn pave<
+    M: VectorModel<NX, NM, NR> + Sync,
+    const NX: usize,
+    const NM: usize,
+    const NR: usize,
+>(
     model: &M,
     x0: &[Interval; NX],
     measurements: &[[Interval; NM]],

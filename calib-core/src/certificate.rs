@@ -6,50 +6,68 @@
 //! solution set `S(M)` of paper eq. (5). Interior contraction alone is not used as a proof: the
 //! paper's square-system argument does not carry over to over-determined systems.
 //!
-//! The same test with an interval `x` instead of a point proves that a whole box lies in `S(M)`
+//! For a [`crate::VectorModel`] with `NR >= 2` residuals per configuration the two-corner test
+//! cannot be applied row by row: each row would be allowed its own reading. A point is then
+//! certified by the coupled existence proof of [`crate::existence`] (a parametric Krawczyk test on
+//! `NR` of the measured quantities), which exhibits one reading per configuration at which every
+//! row vanishes.
+//!
+//! The same tests with an interval `x` instead of a point prove that a whole box lies in `S(M)`
 //! (used by the paver for inner volume). Inner bounds come from certified points near the extremes
 //! of each parameter: the hull of `S(M)` lies between the hull of certified points and the outer
 //! box.
 
+use crate::coupling::for_each_linearised_row;
+use crate::existence::configuration_fits;
 use crate::linalg::gauss_jordan_inverse;
 use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
-use crate::{Interval, Model};
+use crate::{Interval, Model, VectorModel};
 
 /// Whether every `x` in the box `x` (a point when the box is degenerate) is consistent with every
-/// measurement box, by the sign test described in the module documentation.
-pub fn is_certified_consistent<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+/// measurement box: by the sign test described in the module documentation for one residual per
+/// configuration, by the coupled existence test of [`crate::existence`] for several.
+pub fn is_certified_consistent<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x: &[Interval; NX],
     measurements: &[[Interval; NM]],
-) -> bool {
+) -> bool
+where
+    M: VectorModel<NX, NM, NR>,
+{
     let xm = x.map(|v| v.mid());
     let bounded = |b: &[Interval]| b.iter().all(|v| v.is_bounded());
     if !bounded(x) || !measurements.iter().all(|m| bounded(m)) {
         // The corners of an unbounded box are not points: no certificate (and no panic).
         return false;
     }
+    if NR != 1 {
+        return measurements.iter().all(|m| configuration_fits(model, x, m));
+    }
     measurements.iter().all(|m| {
         // The linearisation in M at the centre picks the corners most likely to change the sign.
         let mm = m.map(|v| v.mid());
-        let g = model.jacobian_m(&xm, &mm);
+        let g = model.jacobians_m(&xm, &mm)[0];
         let corner = |up: bool| -> [Interval; NM] {
             core::array::from_fn(|i| {
                 let (lo, hi) = (m[i].inf(), m[i].sup());
                 Interval::point(if (g[i] > 0.0) == up { hi } else { lo })
             })
         };
-        let below = model.residual_interval(x, &corner(false));
-        let above = model.residual_interval(x, &corner(true));
+        let below = model.residuals_interval(x, &corner(false))[0];
+        let above = model.residuals_interval(x, &corner(true))[0];
         below.sup() <= 0.0 && above.inf() >= 0.0
     })
 }
 
 /// Whether the point `x` is certified consistent.
-pub fn is_consistent_point<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+pub fn is_consistent_point<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x: &[f64; NX],
     measurements: &[[Interval; NM]],
-) -> bool {
+) -> bool
+where
+    M: VectorModel<NX, NM, NR>,
+{
     x.iter().all(|v| v.is_finite())
         && is_certified_consistent(model, &x.map(Interval::point), measurements)
 }
@@ -92,11 +110,14 @@ pub fn is_consistent_by_corners<M: Model<NX, NM>, const NX: usize, const NM: usi
 
 /// A Gauss–Newton (Levenberg-damped) least-squares point of `Σ_k f(x, mid M_k)²` started at the
 /// box centre and kept inside the box: a good candidate for a witness.
-pub(crate) fn least_squares_point<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+pub(crate) fn least_squares_point<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x: &[Interval; NX],
     measurements: &[[Interval; NM]],
-) -> [f64; NX] {
+) -> [f64; NX]
+where
+    M: VectorModel<NX, NM, NR>,
+{
     let mut p = x.map(|v| v.mid());
     let mut normal = vec![0.0; NX * NX];
     let mut inv = vec![0.0; NX * NX];
@@ -105,11 +126,12 @@ pub(crate) fn least_squares_point<M: Model<NX, NM>, const NX: usize, const NM: u
         normal.iter_mut().for_each(|v| *v = 0.0);
         for m in measurements {
             let mm = m.map(|v| v.mid());
-            let e = model.evaluate(&p, &mm);
-            for i in 0..NX {
-                rhs[i] -= e.dx[i] * e.value;
-                for j in 0..NX {
-                    normal[i * NX + j] += e.dx[i] * e.dx[j];
+            for e in model.evaluate_rows(&p, &mm) {
+                for i in 0..NX {
+                    rhs[i] -= e.dx[i] * e.value;
+                    for j in 0..NX {
+                        normal[i * NX + j] += e.dx[i] * e.dx[j];
+                    }
                 }
             }
         }
@@ -138,12 +160,15 @@ pub(crate) fn least_squares_point<M: Model<NX, NM>, const NX: usize, const NM: u
 /// `max_k |f(p, mid M_k)| / w_k`, where `w_k` is the first-order half-range of `f(p, ·)` over `M_k`
 /// (a Chebyshev fit, by successive linearisation and an LP in `(δ, t)`): the point most likely to
 /// pass the sign test, since the sign test needs `|f(p, mid M_k)| <= ~w_k` for every `k`.
-pub(crate) fn chebyshev_point<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+pub(crate) fn chebyshev_point<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x: &[Interval; NX],
     measurements: &[[Interval; NM]],
     start: [f64; NX],
-) -> [f64; NX] {
+) -> [f64; NX]
+where
+    M: VectorModel<NX, NM, NR>,
+{
     let mut p = start;
     let mut poly = Polyhedron::default();
     let mut lp = DenseSimplex::default();
@@ -168,17 +193,17 @@ pub(crate) fn chebyshev_point<M: Model<NX, NM>, const NX: usize, const NM: usize
         poly.reset(&lo, &hi);
         for m in measurements {
             let mm = m.map(|v| v.mid());
-            let e = model.evaluate(&p, &mm);
-            let w: f64 = (0..NM)
-                .map(|i| e.dm[i].abs() * m[i].rad())
-                .sum::<f64>()
-                .max(1e-300);
-            // f + J δ <= w t  and  -(f + J δ) <= w t
-            row[..NX].copy_from_slice(&e.dx);
-            row[NX] = -w;
-            poly.push_row(&row, -e.value);
-            row[..NX].iter_mut().for_each(|v| *v = -*v);
-            poly.push_row(&row, e.value);
+            let rad = m.map(|v| v.rad());
+            let e = model.evaluate_rows(&p, &mm);
+            for_each_linearised_row(&e, &rad, |value, dx, w| {
+                let w = w.max(1e-300);
+                // f + J δ <= w t  and  -(f + J δ) <= w t
+                row[..NX].copy_from_slice(dx);
+                row[NX] = -w;
+                poly.push_row(&row, -value);
+                row[..NX].iter_mut().for_each(|v| *v = -*v);
+                poly.push_row(&row, value);
+            });
         }
         dual.resize(poly.rows(), 0.0);
         if lp.minimize(&poly, &objective, &mut dual, &mut primal) != LpStatus::Optimal {
@@ -193,12 +218,15 @@ pub(crate) fn chebyshev_point<M: Model<NX, NM>, const NX: usize, const NM: usize
 
 /// A certified consistent point of the box, if one of the candidates passes: the least-squares
 /// point, its Chebyshev refinement, the centre, and the given extra candidates.
-pub(crate) fn find_witness<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+pub(crate) fn find_witness<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x: &[Interval; NX],
     measurements: &[[Interval; NM]],
     extra: &[[f64; NX]],
-) -> Option<[f64; NX]> {
+) -> Option<[f64; NX]>
+where
+    M: VectorModel<NX, NM, NR>,
+{
     let lsq = least_squares_point(model, x, measurements);
     let centre = x.map(|v| v.mid());
     let chebyshev = chebyshev_point(model, x, measurements, lsq);
@@ -214,14 +242,17 @@ pub(crate) fn find_witness<M: Model<NX, NM>, const NX: usize, const NM: usize>(
 /// (the LP extreme points, clamped into `outer`) by bisection on the segment, keeping the farthest
 /// certified point, and returns the hull of all certified points found. Every point tried lies in
 /// `outer` (a convex box containing the witness), so the inner box lies in the outer one.
-pub(crate) fn inner_box<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+pub(crate) fn inner_box<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     witness: &[f64; NX],
     outer: &[Interval; NX],
     targets: &[[f64; NX]],
     measurements: &[[Interval; NM]],
     bisections: usize,
-) -> [Interval; NX] {
+) -> [Interval; NX]
+where
+    M: VectorModel<NX, NM, NR>,
+{
     let mut inner = witness.map(Interval::point);
     for target in targets {
         let target: &[f64; NX] =

@@ -3,7 +3,7 @@
 use crate::certificate::{find_witness, inner_box};
 use crate::contract::{contract, EmptinessProof, Workspace};
 use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
-use crate::{Interval, Model, Settings};
+use crate::{Interval, Settings, VectorModel};
 
 /// The verdict on a box of parameters.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -69,7 +69,7 @@ impl<const NX: usize> Certification<NX> {
 /// [`Settings::max_outliers`] `= q`, for all but at most `q` of the `k` (the union over every choice
 /// of `q` dropped measurements; see the `outliers` section of the crate documentation). An `Empty`
 /// verdict comes with a minimal conflict set ([`Certification::conflict`]).
-pub fn certify<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+pub fn certify<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x0: &[Interval; NX],
     measurements: &[[Interval; NM]],
@@ -80,7 +80,12 @@ pub fn certify<M: Model<NX, NM>, const NX: usize, const NM: usize>(
 }
 
 /// [`certify`] with a caller-provided workspace (no allocation in the contraction after warm-up).
-pub fn certify_with<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+pub fn certify_with<
+    M: VectorModel<NX, NM, NR>,
+    const NX: usize,
+    const NM: usize,
+    const NR: usize,
+>(
     model: &M,
     x0: &[Interval; NX],
     measurements: &[[Interval; NM]],
@@ -110,7 +115,12 @@ pub(crate) const MAX_SUBSETS: usize = 20_000;
 
 /// The q-relaxed certification: every subset of `p - q` measurements certified on its own, the
 /// hulls of the results (see [`crate::outliers`]).
-fn certify_relaxed<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+fn certify_relaxed<
+    M: VectorModel<NX, NM, NR>,
+    const NX: usize,
+    const NM: usize,
+    const NR: usize,
+>(
     model: &M,
     x0: &[Interval; NX],
     measurements: &[[Interval; NM]],
@@ -185,7 +195,7 @@ pub(crate) fn hull_box<const NX: usize>(
 }
 
 /// [`certify_with`] without outliers and without the conflict search.
-fn certify_plain<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x0: &[Interval; NX],
     measurements: &[[Interval; NM]],

@@ -23,8 +23,9 @@
 //! The step is repeated until `‖rad(x_j)‖₁ - ‖rad(x_{j+1})‖₁ < Δ` or the iteration cap. Nothing is
 //! lost: every step keeps all solutions of the box it started from (paper Section IV-A).
 
+use crate::coupling::coupling_directions;
 use crate::lp::{proves_infeasible, safe_lower_bound, LpBackend, LpStatus, Polyhedron};
-use crate::{Interval, Model, Relaxation, Settings};
+use crate::{Interval, Relaxation, Settings, VectorModel};
 
 /// Which test proved a box empty.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -107,13 +108,16 @@ pub(crate) fn radius_sum<const NX: usize>(x: &[Interval; NX]) -> f64 {
 
 /// Contracts `x` to a fixed point (see the module documentation). The result contains every
 /// solution in `x`; an `Err` is a proof that there is none.
-pub fn contract<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+pub fn contract<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x: &[Interval; NX],
     measurements: &[[Interval; NM]],
     settings: &Settings,
     ws: &mut Workspace<NX>,
-) -> Contraction<NX> {
+) -> Contraction<NX>
+where
+    M: VectorModel<NX, NM, NR>,
+{
     let mut current = *x;
     let mut iterations = 0;
     if current.iter().any(|v| v.is_empty()) {
@@ -160,17 +164,16 @@ pub fn contract<M: Model<NX, NM>, const NX: usize, const NM: usize>(
     }
 }
 
-/// An enclosure of `{f(v, M) : M ∈ m}` for a point `v` of the box `x`: the centred form
-/// `f(v, mid m) + B (m - mid m)` (paper eq. 6), where `B = ∂f/∂M (x, m)` was already computed over the
-/// whole box (valid for `v` by the mean-value theorem in `M`, since `v ∈ x`).
-fn value_over_measurement<M: Model<NX, NM>, const NX: usize, const NM: usize>(
-    model: &M,
-    v: &[Interval; NX],
+/// `f(v, mid m) + B (m - mid m)`: the centred form of a residual over the measurement box `m`
+/// (paper eq. 6), from its value at `(v, mid m)` and `B = ∂f/∂M (x, m)` computed over the whole box
+/// (valid for any `v ∈ x` by the mean-value theorem in `M`).
+fn centred_over_measurement<const NM: usize>(
+    at_mid: Interval,
     m: &[Interval; NM],
     m_mid: &[Interval; NM],
     b: &[Interval; NM],
 ) -> Interval {
-    let mut centred = model.residual_interval(v, m_mid);
+    let mut centred = at_mid;
     for i in 0..NM {
         centred += b[i] * (m[i] - m_mid[i]);
     }
@@ -189,73 +192,160 @@ fn corner_mask(i: usize) -> u64 {
     z ^ (z >> 27)
 }
 
+/// One scalar equation `φ(x, M) = 0` of a configuration, as the relaxation needs it: `a ⊇ ∂φ/∂x`
+/// over the box, and enclosures of `φ` over the measurement box at the box centre and at the two
+/// corners (each only where the relaxation uses it).
+struct ScalarRow<const NX: usize> {
+    a: [Interval; NX],
+    at_centre: Interval,
+    at_corners: [Interval; 2],
+}
+
+/// The geometry of one Newton step: the centre, the box relative to it and the two corners.
+struct StepFrame<const NX: usize> {
+    relaxation: Relaxation,
+    xm_iv: [Interval; NX],
+    y_box: [Interval; NX],
+    sides: [[bool; NX]; 2],
+    corner_iv: [[Interval; NX]; 2],
+    delta: [[Interval; NX]; 2],
+}
+
+impl<const NX: usize> StepFrame<NX> {
+    fn new(x: &[Interval; NX], relaxation: Relaxation, iteration: usize) -> Self {
+        let xm_iv: [Interval; NX] = core::array::from_fn(|j| Interval::point(x[j].mid()));
+        // y = x - xm, enclosed by a float box.
+        let y_box: [Interval; NX] = core::array::from_fn(|j| x[j] - xm_iv[j]);
+        // Two opposite corners: bit j of `mask` puts the first corner at sup(x_j).
+        let mask = corner_mask(iteration);
+        let first: [bool; NX] = core::array::from_fn(|j| (mask >> (j % 64)) & 1 == 1);
+        let sides = [first, first.map(|b| !b)];
+        let corner_iv: [[Interval; NX]; 2] = core::array::from_fn(|c| {
+            core::array::from_fn(|j| {
+                Interval::point(if sides[c][j] { x[j].sup() } else { x[j].inf() })
+            })
+        });
+        // delta_j = v_j - xm_j for each corner, enclosed.
+        let delta = core::array::from_fn(|c| core::array::from_fn(|j| corner_iv[c][j] - xm_iv[j]));
+        StepFrame {
+            relaxation,
+            xm_iv,
+            y_box,
+            sides,
+            corner_iv,
+            delta,
+        }
+    }
+
+    fn krawczyk(&self) -> bool {
+        matches!(self.relaxation, Relaxation::Krawczyk | Relaxation::Both)
+    }
+
+    fn corners(&self) -> bool {
+        matches!(self.relaxation, Relaxation::Corners | Relaxation::Both)
+    }
+
+    /// Adds the rows of the relaxation of one scalar equation to the polyhedron.
+    fn push_rows(&self, poly: &mut Polyhedron, row: &mut [f64; NX], eq: &ScalarRow<NX>) {
+        let a = &eq.a;
+        if self.krawczyk() {
+            let mut c = -eq.at_centre;
+            for j in 0..NX {
+                row[j] = a[j].mid();
+                c -= (a[j] - Interval::point(row[j])) * self.y_box[j];
+            }
+            poly.push_row(row, c.sup());
+            row.iter_mut().for_each(|v| *v = -*v);
+            poly.push_row(row, -c.inf());
+        }
+        if self.corners() {
+            for corner in 0..2 {
+                let fv = eq.at_corners[corner];
+                // d_j = x_j - v_j is >= 0 where the corner is at inf(x_j), <= 0 where at sup(x_j).
+                // The coefficient bounding A'_j d_j from below is then inf(A_j), resp. sup(A_j).
+                let up = &self.sides[corner];
+                let low = |j: usize| if up[j] { a[j].sup() } else { a[j].inf() };
+                let high = |j: usize| if up[j] { a[j].inf() } else { a[j].sup() };
+                // 0 >= inf f(v, M) + Σ low_j d_j
+                push_shifted_row(poly, row, low, -fv.inf(), &self.delta[corner]);
+                // 0 <= sup f(v, M) + Σ high_j d_j
+                push_shifted_row(poly, row, |j| -high(j), fv.sup(), &self.delta[corner]);
+            }
+        }
+    }
+}
+
 /// One Newton/LP step. `Ok` holds a sub-box of `x` containing every solution in `x`.
-pub(crate) fn newton_step<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+///
+/// Each configuration contributes the relaxation rows of each of its `NR` residuals and, for
+/// `NR >= 2`, of the combinations `λ·f` along its coupling directions ([`crate::coupling`]), so
+/// that the polyhedron encloses the coupled solution set, not only the decoupled one.
+pub(crate) fn newton_step<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x: &[Interval; NX],
     measurements: &[[Interval; NM]],
     relaxation: Relaxation,
     iteration: usize,
     ws: &mut Workspace<NX>,
-) -> Result<[Interval; NX], EmptinessProof> {
-    let xm: [f64; NX] = core::array::from_fn(|j| x[j].mid());
-    let xm_iv = xm.map(Interval::point);
-    // y = x - xm, enclosed by a float box.
-    let y_box: [Interval; NX] = core::array::from_fn(|j| x[j] - xm_iv[j]);
-    let ylo = y_box.map(|v| v.inf());
-    let yhi = y_box.map(|v| v.sup());
+) -> Result<[Interval; NX], EmptinessProof>
+where
+    M: VectorModel<NX, NM, NR>,
+{
+    let frame = StepFrame::new(x, relaxation, iteration);
+    let ylo = frame.y_box.map(|v| v.inf());
+    let yhi = frame.y_box.map(|v| v.sup());
     ws.poly.reset(&ylo, &yhi);
-    // Two opposite corners: bit j of `mask` puts the first corner at sup(x_j).
-    let mask = corner_mask(iteration);
-    let first: [bool; NX] = core::array::from_fn(|j| (mask >> (j % 64)) & 1 == 1);
-    let sides = [first, first.map(|b| !b)];
-    let corner_iv: [[Interval; NX]; 2] = core::array::from_fn(|c| {
-        core::array::from_fn(|j| Interval::point(if sides[c][j] { x[j].sup() } else { x[j].inf() }))
-    });
-    // delta_j = v_j - xm_j for each corner, enclosed.
-    let delta: [[Interval; NX]; 2] =
-        core::array::from_fn(|c| core::array::from_fn(|j| corner_iv[c][j] - xm_iv[j]));
     let mut row = [0.0; NX];
+    let unused = [Interval::ZERO; NR];
     for (k, m) in measurements.iter().enumerate() {
-        let e = model.evaluate_interval(x, m);
-        if !e.value.contains(0.0) {
+        let e = model.evaluate_rows_interval(x, m);
+        if e.iter().any(|r| !r.value.contains(0.0)) {
             return Err(EmptinessProof::CheapRejection { measurement: k });
         }
-        let a = e.dx;
         let m_mid: [Interval; NM] = core::array::from_fn(|i| Interval::point(m[i].mid()));
-        if matches!(relaxation, Relaxation::Krawczyk | Relaxation::Both) {
-            let b = -value_over_measurement(model, &xm_iv, m, &m_mid, &e.dm);
-            let mut c = b;
-            for j in 0..NX {
-                row[j] = a[j].mid();
-                c -= (a[j] - Interval::point(row[j])) * y_box[j];
-            }
-            ws.poly.push_row(&row, c.sup());
-            row.iter_mut().for_each(|v| *v = -*v);
-            ws.poly.push_row(&row, -c.inf());
+        // Values at (centre, mid M) and (corner, mid M), every row at once.
+        let at_centre = if frame.krawczyk() {
+            model.residuals_interval(&frame.xm_iv, &m_mid)
+        } else {
+            unused
+        };
+        let at_corners: [[Interval; NR]; 2] = if frame.corners() {
+            core::array::from_fn(|c| model.residuals_interval(&frame.corner_iv[c], &m_mid))
+        } else {
+            [unused; 2]
+        };
+        for r in 0..NR {
+            let over = |v: Interval| centred_over_measurement(v, m, &m_mid, &e[r].dm);
+            let eq = ScalarRow {
+                a: e[r].dx,
+                at_centre: over(at_centre[r]),
+                at_corners: [over(at_corners[0][r]), over(at_corners[1][r])],
+            };
+            frame.push_rows(&mut ws.poly, &mut row, &eq);
         }
-        if matches!(relaxation, Relaxation::Corners | Relaxation::Both) {
-            for corner in 0..2 {
-                let fv = value_over_measurement(model, &corner_iv[corner], m, &m_mid, &e.dm);
-                // d_j = x_j - v_j is >= 0 where the corner is at inf(x_j), <= 0 where at sup(x_j).
-                // The coefficient bounding A'_j d_j from below is then inf(A_j), resp. sup(A_j).
-                let up = &sides[corner];
-                let low = |j: usize| if up[j] { a[j].sup() } else { a[j].inf() };
-                let high = |j: usize| if up[j] { a[j].inf() } else { a[j].sup() };
-                // 0 >= inf f(v, M) + Σ low_j d_j
-                push_shifted_row(&mut ws.poly, &mut row, low, -fv.inf(), &delta[corner]);
-                // 0 <= sup f(v, M) + Σ high_j d_j
-                push_shifted_row(
-                    &mut ws.poly,
-                    &mut row,
-                    |j| -high(j),
-                    fv.sup(),
-                    &delta[corner],
-                );
+        if NR >= 2 {
+            let b_mid: [[f64; NM]; NR] = core::array::from_fn(|r| e[r].dm.map(|v| v.mid()));
+            let rad = m.map(|v| v.rad());
+            for lambda in coupling_directions(&b_mid, &rad).as_slice() {
+                let l = lambda.map(Interval::point);
+                let combine =
+                    |v: &[Interval; NR]| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * v[r]);
+                let b: [Interval; NM] = core::array::from_fn(|i| {
+                    (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dm[i])
+                });
+                let over = |v: &[Interval; NR]| centred_over_measurement(combine(v), m, &m_mid, &b);
+                let eq = ScalarRow {
+                    a: core::array::from_fn(|j| {
+                        (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dx[j])
+                    }),
+                    at_centre: over(&at_centre),
+                    at_corners: [over(&at_corners[0]), over(&at_corners[1])],
+                };
+                frame.push_rows(&mut ws.poly, &mut row, &eq);
             }
         }
     }
-    bound_by_linear_programs(x, &xm_iv, ws)
+    bound_by_linear_programs(x, &frame.xm_iv, ws)
 }
 
 /// Adds `Σ a_j (y_j - delta_j) <= r`, i.e. `Σ a_j y_j <= r + Σ a_j delta_j` rounded up.

@@ -40,10 +40,12 @@
 use crate::certificate::{find_witness, is_consistent_point};
 use crate::certify::{certify, hull_box, MAX_SUBSETS};
 use crate::contract::{contract, EmptinessProof, Workspace};
+use crate::coupling::for_each_linearised_row;
 use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
 use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
-use crate::{Interval, Model, Settings, Status};
+use crate::{Interval, Settings, Status, VectorModel};
 use rayon::prelude::*;
+use std::marker::PhantomData;
 use std::time::Instant;
 
 /// The result of [`hull`].
@@ -153,7 +155,12 @@ impl Face {
 /// }
 /// assert!(h.outer[2].contains(1.0));
 /// ```
-pub fn hull<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
+pub fn hull<
+    M: VectorModel<NX, NM, NR> + Sync,
+    const NX: usize,
+    const NM: usize,
+    const NR: usize,
+>(
     model: &M,
     x0: &[Interval; NX],
     measurements: &[[Interval; NM]],
@@ -166,7 +173,7 @@ pub fn hull<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize>(
 /// thread). Any engine is safe: its answers are hints that only decide how tight the rigorous
 /// bounds are. (The inner-point search uses its own dense simplex: its points are certified by the
 /// sign test, whatever produced them.)
-pub fn hull_with<M, const NX: usize, const NM: usize>(
+pub fn hull_with<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x0: &[Interval; NX],
     measurements: &[[Interval; NM]],
@@ -174,7 +181,7 @@ pub fn hull_with<M, const NX: usize, const NM: usize>(
     engine: &(dyn Fn() -> Box<dyn LpBackend> + Sync),
 ) -> Hull<NX>
 where
-    M: Model<NX, NM> + Sync,
+    M: VectorModel<NX, NM, NR> + Sync,
 {
     let mut out = hull_core(model, x0, measurements, settings, engine);
     if out.status == Status::Empty && settings.max_outliers == 0 {
@@ -196,7 +203,7 @@ where
 }
 
 /// [`hull_with`] without the conflict search.
-fn hull_core<M, const NX: usize, const NM: usize>(
+fn hull_core<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x0: &[Interval; NX],
     measurements: &[[Interval; NM]],
@@ -204,7 +211,7 @@ fn hull_core<M, const NX: usize, const NM: usize>(
     engine: &(dyn Fn() -> Box<dyn LpBackend> + Sync),
 ) -> Hull<NX>
 where
-    M: Model<NX, NM> + Sync,
+    M: VectorModel<NX, NM, NR> + Sync,
 {
     let start = Instant::now();
     let mut out = Hull {
@@ -306,6 +313,7 @@ where
         inner_points: Vec::new(),
         witness: None,
         contracted: sets.len(),
+        rows: PhantomData,
     };
     let pieces = refiner.cover.clone();
     for piece in &pieces {
@@ -368,7 +376,7 @@ where
 }
 
 /// The state of the refinement: the cover of the solution set and the certified points.
-struct Refiner<'a, M, const NX: usize, const NM: usize> {
+struct Refiner<'a, M, const NX: usize, const NM: usize, const NR: usize> {
     model: &'a M,
     x0: &'a [Interval; NX],
     /// The measurement subsets (one, all measurements, without outliers).
@@ -391,9 +399,14 @@ struct Refiner<'a, M, const NX: usize, const NM: usize> {
     witness: Option<[f64; NX]>,
     /// Boxes contracted so far.
     contracted: usize,
+    /// The number of residuals per configuration.
+    rows: PhantomData<[(); NR]>,
 }
 
-impl<M: Model<NX, NM> + Sync, const NX: usize, const NM: usize> Refiner<'_, M, NX, NM> {
+impl<M, const NX: usize, const NM: usize, const NR: usize> Refiner<'_, M, NX, NM, NR>
+where
+    M: VectorModel<NX, NM, NR> + Sync,
+{
     /// The hull of the cover, the retired boxes and the inner box (`None` when all are empty).
     /// Sound: every solution lies in a cover box or a retired box, and the inner box is made of
     /// solutions, so adding it changes nothing but keeps the outer box around it.
@@ -659,7 +672,7 @@ fn split<const NX: usize>(
 /// programs move towards the face (see the module documentation) inside `region`; each step is
 /// kept only when the new point is certified consistent. Returns the most extreme certified point
 /// found (`None` when no point was certified).
-fn push_outward<M: Model<NX, NM>, const NX: usize, const NM: usize>(
+fn push_outward<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     lp: &mut DenseSimplex,
     start: &[f64; NX],
@@ -692,13 +705,16 @@ fn push_outward<M: Model<NX, NM>, const NX: usize, const NM: usize>(
         poly.reset(&lo, &hi);
         for m in measurements {
             let mm = m.map(|v| v.mid());
-            let e = model.evaluate(&p, &mm);
-            let w: f64 = (1.0 - margin) * (0..NM).map(|i| e.dm[i].abs() * m[i].rad()).sum::<f64>();
-            // f + g·d <= θw  and  -(f + g·d) <= θw
-            row.copy_from_slice(&e.dx);
-            poly.push_row(&row, w - e.value);
-            row.iter_mut().for_each(|v| *v = -*v);
-            poly.push_row(&row, w + e.value);
+            let rad = m.map(|v| v.rad());
+            let e = model.evaluate_rows(&p, &mm);
+            for_each_linearised_row(&e, &rad, |value, dx, w| {
+                let w = (1.0 - margin) * w;
+                // f + g·d <= θw  and  -(f + g·d) <= θw
+                row.copy_from_slice(dx);
+                poly.push_row(&row, w - value);
+                row.iter_mut().for_each(|v| *v = -*v);
+                poly.push_row(&row, w + value);
+            });
         }
         dual.resize(poly.rows(), 0.0);
         if lp.minimize(&poly, &objective, &mut dual, &mut primal) != LpStatus::Optimal {

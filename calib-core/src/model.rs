@@ -92,3 +92,62 @@ impl<T: Model<NX, NM> + ?Sized, const NX: usize, const NM: usize> Model<NX, NM> 
         (**self).evaluate_interval(x, m)
     }
 }
+
+/// `NR` residuals `f(x, M) = 0` of one configuration that share its measured quantities `M`: the
+/// x, y and z of a tracked point, the `u, v` of an image point, a pose. The solution set is
+/// `{x : for every configuration k there is ONE M in M_k with f(x, M) = 0 in all NR components}`
+/// — a point that fits one row with one reading and another row with another reading of the same
+/// configuration is not a solution (see [`crate::certificate`] for how the kernel proves it).
+///
+/// `#[interval_model]` implements it for a function returning `[S; NR]`; every scalar [`Model`]
+/// is a `VectorModel<NX, NM, 1>`, so every kernel entry point takes both. The interval methods must
+/// enclose, row by row, as for [`Model`].
+pub trait VectorModel<const NX: usize, const NM: usize, const NR: usize> {
+    /// `f(x, M)` in floating point, one entry per row.
+    fn residuals(&self, x: &[f64; NX], m: &[f64; NM]) -> [f64; NR];
+
+    /// Row by row, an enclosure of `{f_r(x, M) : x in x, M in m}`.
+    fn residuals_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [Interval; NR];
+
+    /// Value and both Jacobians of every row in floating point.
+    fn evaluate_rows(&self, x: &[f64; NX], m: &[f64; NM]) -> [Evaluation<f64, NX, NM>; NR];
+
+    /// Enclosures of value and both Jacobians of every row over the boxes.
+    fn evaluate_rows_interval(
+        &self,
+        x: &[Interval; NX],
+        m: &[Interval; NM],
+    ) -> [Evaluation<Interval, NX, NM>; NR];
+
+    /// `∂f_r/∂M (x, M)` of every row in floating point.
+    fn jacobians_m(&self, x: &[f64; NX], m: &[f64; NM]) -> [[f64; NM]; NR] {
+        self.evaluate_rows(x, m).map(|e| e.dm)
+    }
+}
+
+impl<T: Model<NX, NM> + ?Sized, const NX: usize, const NM: usize> VectorModel<NX, NM, 1> for T {
+    #[inline]
+    fn residuals(&self, x: &[f64; NX], m: &[f64; NM]) -> [f64; 1] {
+        [self.residual(x, m)]
+    }
+    #[inline]
+    fn residuals_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [Interval; 1] {
+        [self.residual_interval(x, m)]
+    }
+    #[inline]
+    fn evaluate_rows(&self, x: &[f64; NX], m: &[f64; NM]) -> [Evaluation<f64, NX, NM>; 1] {
+        [self.evaluate(x, m)]
+    }
+    #[inline]
+    fn evaluate_rows_interval(
+        &self,
+        x: &[Interval; NX],
+        m: &[Interval; NM],
+    ) -> [Evaluation<Interval, NX, NM>; 1] {
+        [self.evaluate_interval(x, m)]
+    }
+    #[inline]
+    fn jacobians_m(&self, x: &[f64; NX], m: &[f64; NM]) -> [[f64; NM]; 1] {
+        [self.jacobian_m(x, m)]
+    }
+}

@@ -4,7 +4,9 @@
 //!
 //! Applied to `fn name<S: Scalar>(x: &[S; NX], m: &[S; NM]) -> S`, it keeps the function and emits a
 //! unit struct `Name` implementing `calib_core::Model<NX, NM>` with point, interval and Jacobian
-//! evaluators, all straight-line code generated at compile time. The stages, one file each:
+//! evaluators, all straight-line code generated at compile time. Applied to a function returning
+//! `[S; NR]` (several residuals of one configuration sharing its measurements, `NR >= 2`), the
+//! struct implements `calib_core::VectorModel<NX, NM, NR>` instead (`[S; 1]` gives a `Model`). The stages, one file each:
 //! `parse.rs` (signature), `lower.rs` (body to an expression graph, rejecting unsupported syntax with
 //! spanned errors), `diff.rs` (symbolic reverse-mode differentiation on the graph, sharing common
 //! subexpressions), `rewrite.rs` (enclosing the literals of the kept function) and `expand.rs`
@@ -34,13 +36,16 @@ pub fn interval_model(attr: TokenStream, item: TokenStream) -> TokenStream {
         return error_with_stub(&item, err);
     }
     let result = parse::signature(&item).and_then(|sig| {
-        let (mut graph, out) = lower::lower(&sig, &item.block)?;
-        let grad = diff::gradient(&mut graph, out, sig.x.1, sig.m.1);
-        Ok((sig, graph, out, grad))
+        let (mut graph, outputs) = lower::lower(&sig, &item.block)?;
+        let grads: Vec<_> = outputs
+            .iter()
+            .map(|&out| diff::gradient(&mut graph, out, sig.x.1, sig.m.1))
+            .collect();
+        Ok((sig, graph, outputs, grads))
     });
     match result {
-        Ok((sig, graph, out, grad)) => {
-            let generated = expand::model(&item, &sig, &graph, out, &grad);
+        Ok((sig, graph, outputs, grads)) => {
+            let generated = expand::model(&item, &sig, &graph, &outputs, &grads);
             rewrite::enclose_literals(&mut item.block, &sig.scalar);
             quote!(#item #generated).into()
         }

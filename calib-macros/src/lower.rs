@@ -28,8 +28,9 @@ fn unsupported(tokens: &dyn quote::ToTokens, what: &str) -> Error {
     Error::new_spanned(tokens, format!("{what} is not supported\n{SUPPORTED}"))
 }
 
-/// Lowers the body; returns the graph and the output node.
-pub fn lower(sig: &Signature, body: &Block) -> syn::Result<(Graph, Id)> {
+/// Lowers the body; returns the graph and the output nodes (one for a scalar residual, `NR` for an
+/// array of residuals).
+pub fn lower(sig: &Signature, body: &Block) -> syn::Result<(Graph, Vec<Id>)> {
     let mut lowering = Lowering {
         graph: Graph::default(),
         env: HashMap::new(),
@@ -41,13 +42,32 @@ pub fn lower(sig: &Signature, body: &Block) -> syn::Result<(Graph, Id)> {
         lowering.env.insert(name.to_string(), Value::Array(items));
     }
     let out = lowering.block(body)?;
-    match out {
-        Value::Scalar(id) => Ok((lowering.graph, id)),
-        _ => Err(Error::new_spanned(
-            body,
-            "the body must evaluate to a scalar, not an array or a tuple",
-        )),
-    }
+    let outputs = match (sig.rows, out) {
+        (None, Value::Scalar(id)) => vec![id],
+        (None, _) => {
+            return Err(Error::new_spanned(
+                body,
+                "the body must evaluate to a scalar, not an array or a tuple",
+            ))
+        }
+        (Some(n), Value::Array(items)) if items.len() == n => items
+            .into_iter()
+            .map(|v| match v {
+                Value::Scalar(id) => Ok(id),
+                _ => Err(Error::new_spanned(
+                    body,
+                    "every element of the returned array must be a scalar",
+                )),
+            })
+            .collect::<syn::Result<_>>()?,
+        (Some(n), _) => {
+            return Err(Error::new_spanned(
+                body,
+                format!("the body must evaluate to an array of {n} scalars, as the signature says"),
+            ))
+        }
+    };
+    Ok((lowering.graph, outputs))
 }
 
 struct Lowering {
@@ -364,7 +384,7 @@ impl Lowering {
         let [arg] = c.args.iter().collect::<Vec<_>>()[..] else {
             return Err(Error::new_spanned(c, "`S::cst` takes one literal argument"));
         };
-        let (negative, lit) = match arg {
+        let (negative, lit) = match without_groups(arg) {
             Expr::Lit(l) => (false, &l.lit),
             Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => match &*u.expr {
                 Expr::Lit(l) => (true, &l.lit),
@@ -384,8 +404,17 @@ fn cst_argument(arg: &Expr) -> Error {
     )
 }
 
+/// `e` without the invisible groups `macro_rules!` puts around substituted fragments (so that a
+/// literal passed through a declarative macro is still a literal).
+pub fn without_groups(mut e: &Expr) -> &Expr {
+    while let Expr::Group(g) = e {
+        e = &g.expr;
+    }
+    e
+}
+
 fn integer_literal(e: &Expr) -> syn::Result<i64> {
-    match e {
+    match without_groups(e) {
         Expr::Lit(syn::ExprLit {
             lit: Lit::Int(i), ..
         }) => i.base10_parse::<i64>(),
@@ -399,7 +428,7 @@ fn integer_literal(e: &Expr) -> syn::Result<i64> {
 }
 
 fn constant_index(e: &Expr) -> syn::Result<usize> {
-    match e {
+    match without_groups(e) {
         Expr::Lit(syn::ExprLit {
             lit: Lit::Int(i), ..
         }) => i.base10_parse::<usize>(),

@@ -1,4 +1,5 @@
-//! Parsing and checking the signature `fn name<S: Scalar>(x: &[S; NX], m: &[S; NM]) -> S`.
+//! Parsing and checking the signature `fn name<S: Scalar>(x: &[S; NX], m: &[S; NM]) -> S` (or
+//! `-> [S; NR]`).
 
 use proc_macro2::Span;
 use syn::spanned::Spanned;
@@ -12,11 +13,13 @@ pub struct Signature {
     pub x: (Ident, usize),
     /// Name and length of the measurement array `M`.
     pub m: (Ident, usize),
+    /// `None` for a scalar residual (`-> S`), `Some(NR)` for `-> [S; NR]`.
+    pub rows: Option<usize>,
 }
 
 const EXPECTED: &str =
     "#[interval_model] expects `fn name<S: Scalar>(x: &[S; NX], m: &[S; NM]) -> S` \
-     with integer literals NX and NM";
+     (or `-> [S; NR]` for NR residuals sharing the measurements) with integer literals NX, NM, NR";
 
 fn err(span: Span, what: &str) -> Error {
     Error::new(span, format!("{what}; {EXPECTED}"))
@@ -60,16 +63,42 @@ pub fn signature(item: &ItemFn) -> syn::Result<Signature> {
     }
     let x = array_arg(&sig.inputs[0], &scalar)?;
     let m = array_arg(&sig.inputs[1], &scalar)?;
-    match &sig.output {
-        ReturnType::Type(_, ty) if is_scalar(ty, &scalar) => {}
-        other => {
-            return Err(err(
-                other.span(),
-                "the function must return the scalar type parameter",
-            ))
-        }
+    let rows = match &sig.output {
+        ReturnType::Type(_, ty) if is_scalar(ty, &scalar) => None,
+        ReturnType::Type(_, ty) => match &**ty {
+            Type::Array(a) if is_scalar(&a.elem, &scalar) => Some(literal_length(&a.len)?),
+            _ => return Err(bad_return(ty.span())),
+        },
+        other => return Err(bad_return(other.span())),
+    };
+    Ok(Signature { scalar, x, m, rows })
+}
+
+fn bad_return(span: Span) -> Error {
+    err(
+        span,
+        "the function must return the scalar type parameter or an array `[S; NR]` of it",
+    )
+}
+
+/// A positive integer literal array length.
+fn literal_length(len: &syn::Expr) -> syn::Result<usize> {
+    let len = crate::lower::without_groups(len);
+    let syn::Expr::Lit(syn::ExprLit {
+        lit: syn::Lit::Int(n),
+        ..
+    }) = len
+    else {
+        return Err(err(
+            len.span(),
+            "the array length must be an integer literal",
+        ));
+    };
+    let n = n.base10_parse::<usize>()?;
+    if n == 0 {
+        return Err(err(len.span(), "the array length must be positive"));
     }
-    Ok(Signature { scalar, x, m })
+    Ok(n)
 }
 
 fn is_scalar(ty: &Type, scalar: &Ident) -> bool {
@@ -97,19 +126,5 @@ fn array_arg(arg: &FnArg, scalar: &Ident) -> syn::Result<(Ident, usize)> {
     if !is_scalar(&a.elem, scalar) {
         return Err(bad());
     }
-    let syn::Expr::Lit(syn::ExprLit {
-        lit: syn::Lit::Int(n),
-        ..
-    }) = &a.len
-    else {
-        return Err(err(
-            a.len.span(),
-            "the array length must be an integer literal",
-        ));
-    };
-    let n = n.base10_parse::<usize>()?;
-    if n == 0 {
-        return Err(err(a.len.span(), "the array length must be positive"));
-    }
-    Ok((name.ident.clone(), n))
+    Ok((name.ident.clone(), literal_length(&a.len)?))
 }

@@ -1,0 +1,8 @@
+use calib_core::{interval_model, Scalar};
+
+#[interval_model]
+fn rows<S: Scalar>(x: &[S; 2], m: &[S; 1]) -> Vec<S> {
+    [x[0] - m[0], x[1] - m[0]]
+}
+
+fn main() {}
