@@ -15,7 +15,7 @@ use calib_core::{
 };
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use support::{random_box, random_point};
+use support::{fits_with_one_reading_all, random_box, random_point};
 
 /// Two equations sharing the reading `m0`: `a = m0` and `a = 1 + m1 - m0`. Row by row, every
 /// `a ∈ [0, 1]` fits (each row with its own `m0`); with one reading, `a = (1 + m1) / 2`.
@@ -50,92 +50,6 @@ pub fn pointer<S: Scalar>(x: &[S; 6], m: &[S; 5]) -> [S; 3] {
         oy + reach * pan.sin() - py,
         oz + r * tilt.sin() - pz,
     ]
-}
-
-/// Numerically, independently of the kernel's proof: is there one reading in `m` at which every
-/// row vanishes at `x`? Tries every choice of `NR` free quantities, the others on a grid of their
-/// intervals, and Newton's method on the square system; accepts a reading inside the box with
-/// residuals at rounding level.
-fn fits_with_one_reading<
-    M: VectorModel<NX, NM, NR>,
-    const NX: usize,
-    const NM: usize,
-    const NR: usize,
->(
-    model: &M,
-    x: &[f64; NX],
-    m: &[Interval; NM],
-) -> bool {
-    let grid: usize = 17;
-    let subsets: Vec<Vec<usize>> = (0..1usize << NM)
-        .filter(|mask| mask.count_ones() as usize == NR)
-        .map(|mask| (0..NM).filter(|i| mask >> i & 1 == 1).collect())
-        .collect();
-    for free in &subsets {
-        let fixed: Vec<usize> = (0..NM).filter(|i| !free.contains(i)).collect();
-        for cell in 0..grid.pow(fixed.len() as u32) {
-            let mut reading = m.map(|v| v.mid());
-            let mut c = cell;
-            for &i in &fixed {
-                let t = (c % grid) as f64 / (grid - 1) as f64;
-                c /= grid;
-                reading[i] = m[i].inf() + t * (m[i].sup() - m[i].inf());
-            }
-            if newton_on(model, x, m, free, &mut reading) {
-                return true;
-            }
-        }
-    }
-    false
-}
-
-/// Newton's method in the `free` quantities (Gaussian elimination, no pivoting shortcuts).
-fn newton_on<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, const NR: usize>(
-    model: &M,
-    x: &[f64; NX],
-    m: &[Interval; NM],
-    free: &[usize],
-    reading: &mut [f64; NM],
-) -> bool {
-    for _ in 0..30 {
-        let e = model.evaluate_rows(x, reading);
-        let scale = 1.0 + reading.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        if e.iter().all(|r| r.value.abs() <= 1e-11 * scale) {
-            return (0..NM).all(|i| m[i].contains(reading[i]));
-        }
-        // Solve J_free d = -f by elimination with partial pivoting.
-        let mut a: Vec<Vec<f64>> = (0..NR)
-            .map(|r| {
-                let mut row: Vec<f64> = free.iter().map(|&i| e[r].dm[i]).collect();
-                row.push(-e[r].value);
-                row
-            })
-            .collect();
-        for col in 0..NR {
-            let p = (col..NR)
-                .max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))
-                .unwrap();
-            a.swap(col, p);
-            if a[col][col].abs() < 1e-300 {
-                return false;
-            }
-            for r in 0..NR {
-                if r != col {
-                    let f = a[r][col] / a[col][col];
-                    for k in col..=NR {
-                        a[r][k] -= f * a[col][k];
-                    }
-                }
-            }
-        }
-        for (k, &i) in free.iter().enumerate() {
-            reading[i] += a[k][NR] / a[k][k];
-        }
-        if reading.iter().any(|v| !v.is_finite()) {
-            return false;
-        }
-    }
-    false
 }
 
 fn contains<const N: usize>(b: &[Interval; N], p: &[f64; N]) -> bool {
@@ -379,19 +293,6 @@ fn assert_sound<M, const NX: usize, const NM: usize, const NR: usize>(
             "{what}: truth in no paving box"
         );
     }
-}
-
-fn fits_with_one_reading_all<
-    M: VectorModel<NX, NM, NR>,
-    const NX: usize,
-    const NM: usize,
-    const NR: usize,
->(
-    model: &M,
-    x: &[f64; NX],
-    data: &[[Interval; NM]],
-) -> bool {
-    data.iter().all(|m| fits_with_one_reading(model, x, m))
 }
 
 #[test]

@@ -4,40 +4,9 @@
 use crate::geometry::Leg;
 use crate::measurement::{Configuration, Orientation, Uncertainty};
 use serde::Deserialize;
-use std::fmt;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-/// Largest accepted magnitude of any value in the data files (cm, degrees): far beyond any robot,
-/// far below overflow in the interval evaluations.
-pub const MAX_MAGNITUDE: f64 = 1e100;
-
-/// A malformed input file: where and what was expected.
-#[derive(Debug, Clone, PartialEq)]
-pub struct DataError {
-    /// The file.
-    pub file: PathBuf,
-    /// The 1-based line, when known.
-    pub line: Option<usize>,
-    /// The field (column or key), when known.
-    pub field: Option<String>,
-    /// What is wrong and what was expected.
-    pub message: String,
-}
-
-impl fmt::Display for DataError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.file.display())?;
-        if let Some(l) = self.line {
-            write!(f, ", line {l}")?;
-        }
-        if let Some(field) = &self.field {
-            write!(f, ", field `{field}`")?;
-        }
-        write!(f, ": {}", self.message)
-    }
-}
-
-impl std::error::Error for DataError {}
+pub use calib_pipeline::{read_text, DataError, MAX_MAGNITUDE};
 
 fn error(
     file: &Path,
@@ -45,19 +14,7 @@ fn error(
     field: Option<&str>,
     message: impl Into<String>,
 ) -> DataError {
-    DataError {
-        file: file.to_path_buf(),
-        line,
-        field: field.map(str::to_string),
-        message: message.into(),
-    }
-}
-
-/// The text of `file`, or an error naming it: for callers that keep the bytes they parse (to hash
-/// them, say) and then use the `parse_*` readers.
-pub fn read_text(file: &Path) -> Result<String, DataError> {
-    std::fs::read_to_string(file)
-        .map_err(|e| error(file, None, None, format!("cannot read the file: {e}")))
+    DataError::new(file, line, field, message)
 }
 
 /// One leg of `robot.toml`: nominal geometry and the radius of the initial box per parameter.
@@ -380,6 +337,7 @@ pub fn parse_measurements(file: &Path, text: &str, legs: usize) -> Result<Measur
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::PathBuf;
 
     fn write(name: &str, text: &str) -> PathBuf {
         let dir = std::env::temp_dir().join(format!("calib-files-{}", std::process::id()));

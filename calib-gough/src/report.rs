@@ -114,22 +114,7 @@ pub fn ratios(ratio: &[f64; 7]) -> String {
     cells.join("  ")
 }
 
-/// Writes `text` to `path` atomically: to a temporary file beside it, then renamed.
-pub fn write_atomically(path: &std::path::Path, text: &str) -> std::io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(std::path::Path::new("."));
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    std::fs::write(&tmp, text)?;
-    std::fs::rename(&tmp, path).inspect_err(|_| {
-        let _ = std::fs::remove_file(&tmp);
-    })
-}
+pub use calib_pipeline::write_atomically;
 
 #[cfg(test)]
 mod tests {

@@ -193,12 +193,11 @@ fn vector_model(
     let iv = quote!(::calib_core::Interval);
     quote! {
         #[allow(clippy::all, clippy::pedantic, unused_variables, non_snake_case)]
+        // Not `#[inline]`: a chain of rotations differentiated in every parameter is a large body,
+        // and inlining it into every call site of the kernel multiplies compile time for no gain.
         impl #name {
-            #[inline]
             fn __values<#bound>(#args) -> [#s; #nr] { #values }
-            #[inline]
             fn __jacobians_m<#bound>(#args) -> [[#s; #nm]; #nr] { #jacobians_m }
-            #[inline]
             fn __rows<#bound>(#args) -> [::calib_core::Evaluation<#s, #nx, #nm>; #nr] { #rows }
         }
 

@@ -1,0 +1,280 @@
+//! Reading the arm's files (mm and degrees): `robot.toml`, `measurements.csv`,
+//! `uncertainty.toml`. Every malformed input is a [`DataError`] naming the file, the line and the
+//! field.
+
+use crate::robot::{Arm, Joint};
+use crate::simulate::{Reading, Uncertainty};
+use calib_pipeline::{parse_number_table, read_text, toml_error, DataError, MAX_MAGNITUDE};
+use serde::Deserialize;
+use std::path::Path;
+use toml::Spanned;
+
+/// Fewest and most joints an arm may have.
+pub const JOINTS: std::ops::RangeInclusive<usize> = 3..=7;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RobotFile {
+    joint: Vec<JointEntry>,
+    base: BaseEntry,
+    tool: ToolEntry,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JointEntry {
+    theta_deg: Spanned<f64>,
+    d: Spanned<f64>,
+    a: Spanned<f64>,
+    alpha_deg: Spanned<f64>,
+    #[serde(default)]
+    beta_deg: Option<Spanned<f64>>,
+    radius: Spanned<Radius<5>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BaseEntry {
+    xyz: Spanned<[f64; 3]>,
+    rpy_deg: Spanned<[f64; 3]>,
+    radius: Spanned<Radius<6>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ToolEntry {
+    xyz: Spanned<[f64; 3]>,
+    radius: Spanned<Radius<3>>,
+}
+
+/// One half-width for all, or one per parameter.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum Radius<const N: usize> {
+    One(f64),
+    #[serde(with = "serde_arrays")]
+    Each([f64; N]),
+}
+
+/// Serde for const-generic arrays (serde implements arrays only up to 32 by macro, not for a
+/// generic `N`).
+mod serde_arrays {
+    use serde::{Deserialize, Deserializer};
+
+    pub fn deserialize<'de, D: Deserializer<'de>, const N: usize>(
+        d: D,
+    ) -> Result<[f64; N], D::Error> {
+        let v = Vec::<f64>::deserialize(d)?;
+        let len = v.len();
+        v.try_into()
+            .map_err(|_| serde::de::Error::invalid_length(len, &format!("{N} numbers").as_str()))
+    }
+}
+
+impl<const N: usize> Radius<N> {
+    fn each(&self) -> [f64; N] {
+        match self {
+            Radius::One(r) => [*r; N],
+            Radius::Each(r) => *r,
+        }
+    }
+}
+
+const ROBOT_FORMAT: &str = "expected [[joint]] tables (base to flange) with theta_deg, d, a, \
+alpha_deg, optional beta_deg and radius (one half-width or five: theta°, d mm, a mm, alpha°, \
+beta°), then [base] with xyz, rpy_deg = [rx, ry, rz] and radius (one or six), and [tool] with xyz \
+and radius (one or three)";
+
+/// Reads `robot.toml` (see [`parse_robot`]).
+pub fn read_robot(file: &Path) -> Result<Arm, DataError> {
+    parse_robot(file, &read_text(file)?)
+}
+
+/// Parses `robot.toml`: one `[[joint]]` table per joint, base to flange, with `theta_deg, d, a,
+/// alpha_deg`, optional `beta_deg` (default 0) and `radius` (one half-width for all, or five:
+/// theta°, d mm, a mm, alpha°, beta°; 0 fixes a parameter); `[base]` with `xyz`, `rpy_deg =
+/// [rx, ry, rz]`, `radius` (one, or six: x, y, z in mm, then rx, ry, rz in degrees); `[tool]`
+/// with `xyz`, `radius` (one, or three). `file` names the text in errors.
+pub fn parse_robot(file: &Path, text: &str) -> Result<Arm, DataError> {
+    let parsed: RobotFile =
+        toml::from_str(text).map_err(|e| toml_error(file, text, &e, ROBOT_FORMAT))?;
+    let line = |span: std::ops::Range<usize>| Some(text[..span.start].lines().count().max(1));
+    let err = |span: std::ops::Range<usize>, field: &str, what: String| {
+        DataError::new(file, line(span), Some(field), what)
+    };
+    let value = |v: &Spanned<f64>, field: String| -> Result<f64, DataError> {
+        let x = *v.get_ref();
+        if x.is_finite() && x.abs() <= MAX_MAGNITUDE {
+            Ok(x)
+        } else {
+            Err(err(
+                v.span(),
+                &field,
+                format!("expected a finite number of magnitude below {MAX_MAGNITUDE:e}"),
+            ))
+        }
+    };
+    let values = |v: &Spanned<[f64; 3]>, field: &str| -> Result<[f64; 3], DataError> {
+        let x = *v.get_ref();
+        if x.iter().all(|c| c.is_finite() && c.abs() <= MAX_MAGNITUDE) {
+            Ok(x)
+        } else {
+            Err(err(
+                v.span(),
+                field,
+                format!("expected finite numbers of magnitude below {MAX_MAGNITUDE:e}"),
+            ))
+        }
+    };
+    fn radii<const N: usize>(
+        r: &Spanned<Radius<N>>,
+        field: &str,
+        err: &dyn Fn(std::ops::Range<usize>, &str, String) -> DataError,
+    ) -> Result<[f64; N], DataError> {
+        let each = r.get_ref().each();
+        if each
+            .iter()
+            .all(|v| v.is_finite() && (0.0..=MAX_MAGNITUDE).contains(v))
+        {
+            Ok(each)
+        } else {
+            Err(err(
+                r.span(),
+                field,
+                "expected half-widths >= 0 (0 fixes a parameter), finite and below 1e100".into(),
+            ))
+        }
+    }
+    let n = parsed.joint.len();
+    if !JOINTS.contains(&n) {
+        return Err(DataError::new(
+            file,
+            None,
+            Some("joint"),
+            format!(
+                "{n} [[joint]] tables; arms with {} to {} joints are supported",
+                JOINTS.start(),
+                JOINTS.end()
+            ),
+        ));
+    }
+    let mut joints = Vec::with_capacity(n);
+    for (i, j) in parsed.joint.iter().enumerate() {
+        let f = |name: &str| format!("joint[{}].{name}", i + 1);
+        let beta = match &j.beta_deg {
+            Some(b) => value(b, f("beta_deg"))?,
+            None => 0.0,
+        };
+        joints.push(Joint {
+            nominal: [
+                value(&j.theta_deg, f("theta_deg"))?,
+                value(&j.d, f("d"))?,
+                value(&j.a, f("a"))?,
+                value(&j.alpha_deg, f("alpha_deg"))?,
+                beta,
+            ],
+            radius: radii(&j.radius, &f("radius"), &err)?,
+        });
+    }
+    let xyz = values(&parsed.base.xyz, "base.xyz")?;
+    let rpy = values(&parsed.base.rpy_deg, "base.rpy_deg")?;
+    Ok(Arm {
+        joints,
+        base: [xyz[0], xyz[1], xyz[2], rpy[0], rpy[1], rpy[2]],
+        base_radius: radii(&parsed.base.radius, "base.radius", &err)?,
+        tool: values(&parsed.tool.xyz, "tool.xyz")?,
+        tool_radius: radii(&parsed.tool.radius, "tool.radius", &err)?,
+    })
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct UncertaintyFile {
+    joint_deg: Spanned<f64>,
+    pos: Spanned<f64>,
+}
+
+/// Reads `uncertainty.toml` (see [`parse_uncertainty`]).
+pub fn read_uncertainty(file: &Path) -> Result<Uncertainty, DataError> {
+    parse_uncertainty(file, &read_text(file)?)
+}
+
+/// Parses `uncertainty.toml`: `joint_deg` (half-width of every joint reading, degrees) and `pos`
+/// (half-width of every tracked coordinate, mm).
+pub fn parse_uncertainty(file: &Path, text: &str) -> Result<Uncertainty, DataError> {
+    let u: UncertaintyFile = toml::from_str(text).map_err(|e| {
+        toml_error(
+            file,
+            text,
+            &e,
+            "expected joint_deg = half-width in degrees, pos = half-width in mm",
+        )
+    })?;
+    let check = |v: &Spanned<f64>, field: &str| {
+        let x = *v.get_ref();
+        if x.is_finite() && (0.0..=MAX_MAGNITUDE).contains(&x) {
+            Ok(x)
+        } else {
+            let line = Some(text[..v.span().start].lines().count().max(1));
+            Err(DataError::new(
+                file,
+                line,
+                Some(field),
+                format!("expected a finite half-width >= 0, found {x}"),
+            ))
+        }
+    };
+    Ok(Uncertainty {
+        joint_deg: check(&u.joint_deg, "joint_deg")?,
+        pos: check(&u.pos, "pos")?,
+    })
+}
+
+/// The readings of `measurements.csv` and the file line of each.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measurements {
+    /// One reading per configuration, in file order.
+    pub readings: Vec<Reading>,
+    /// The 1-based file line of each configuration.
+    pub lines: Vec<usize>,
+}
+
+/// Reads `measurements.csv` (see [`parse_measurements`]).
+pub fn read_measurements(file: &Path, joints: usize) -> Result<Measurements, DataError> {
+    parse_measurements(file, &read_text(file)?, joints)
+}
+
+/// Parses `measurements.csv`: header `q1,…,qN,px,py,pz` (`N = joints`; joint readings in
+/// degrees, the tracked point in mm in the tracker frame), one row per configuration, at least
+/// one row.
+pub fn parse_measurements(
+    file: &Path,
+    text: &str,
+    joints: usize,
+) -> Result<Measurements, DataError> {
+    let header: Vec<String> = (1..=joints)
+        .map(|i| format!("q{i}"))
+        .chain(["px", "py", "pz"].map(String::from))
+        .collect();
+    let table = parse_number_table(file, text, &header)?;
+    if table.rows.is_empty() {
+        return Err(DataError::new(
+            file,
+            None,
+            None,
+            "no configurations; expected one row per measured configuration",
+        ));
+    }
+    let readings = table
+        .rows
+        .iter()
+        .map(|r| Reading {
+            joints_deg: r[..joints].to_vec(),
+            point: [r[joints], r[joints + 1], r[joints + 2]],
+        })
+        .collect();
+    Ok(Measurements {
+        readings,
+        lines: table.lines,
+    })
+}

@@ -1,0 +1,21 @@
+//! # calib-arm
+//!
+//! Serial arms calibrated from laser-tracker data: the kinematic model (standard
+//! Denavit–Hartenberg plus Hayati's `beta`, a base transform and a tool point) written once under
+//! `#[interval_model]` as a three-row [`calib_core::VectorModel`] ([`model`]), parameter names
+//! and units ([`params`]), and the conversions between the files' degrees and the model's radians
+//! ([`units`]).
+#![deny(unsafe_code)]
+#![warn(missing_docs)]
+#![allow(clippy::needless_range_loop)]
+
+pub mod files;
+pub mod model;
+pub mod params;
+pub mod robot;
+pub mod simulate;
+pub mod units;
+
+pub use model::{Arm3Point, Arm4Point, Arm5Point, Arm6Point, Arm7Point};
+pub use robot::{builtin_arm, Arm, Joint};
+pub use simulate::{simulate, Simulation};

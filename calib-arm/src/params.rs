@@ -1,0 +1,83 @@
+//! The parameters of an `N`-joint arm: names, units and their place in the parameter vector.
+
+/// What a parameter is measured in (in the files and every output).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Unit {
+    /// Millimetres.
+    Mm,
+    /// Degrees (radians inside the model).
+    Deg,
+}
+
+impl Unit {
+    /// `mm` or `°`.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Unit::Mm => "mm",
+            Unit::Deg => "°",
+        }
+    }
+}
+
+/// The five parameters of a joint, in order.
+pub const JOINT_PARAMETERS: [(&str, Unit); 5] = [
+    ("theta", Unit::Deg),
+    ("d", Unit::Mm),
+    ("a", Unit::Mm),
+    ("alpha", Unit::Deg),
+    ("beta", Unit::Deg),
+];
+
+/// The base parameters, in order.
+pub const BASE_PARAMETERS: [(&str, Unit); 6] = [
+    ("base_x", Unit::Mm),
+    ("base_y", Unit::Mm),
+    ("base_z", Unit::Mm),
+    ("base_rx", Unit::Deg),
+    ("base_ry", Unit::Deg),
+    ("base_rz", Unit::Deg),
+];
+
+/// The tool parameters, in order.
+pub const TOOL_PARAMETERS: [(&str, Unit); 3] = [
+    ("tool_x", Unit::Mm),
+    ("tool_y", Unit::Mm),
+    ("tool_z", Unit::Mm),
+];
+
+/// The number of parameters of an arm with `joints` joints: `5N + 9`.
+pub fn count(joints: usize) -> usize {
+    5 * joints + BASE_PARAMETERS.len() + TOOL_PARAMETERS.len()
+}
+
+/// Names and units of every parameter of an arm with `joints` joints, in model order:
+/// `theta1, d1, a1, alpha1, beta1, …, base_x, …, base_rz, tool_x, tool_y, tool_z`.
+pub fn names(joints: usize) -> Vec<(String, Unit)> {
+    let mut out = Vec::with_capacity(count(joints));
+    for i in 1..=joints {
+        out.extend(
+            JOINT_PARAMETERS
+                .iter()
+                .map(|(n, u)| (format!("{n}{i}"), *u)),
+        );
+    }
+    out.extend(BASE_PARAMETERS.iter().map(|(n, u)| (n.to_string(), *u)));
+    out.extend(TOOL_PARAMETERS.iter().map(|(n, u)| (n.to_string(), *u)));
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn six_joints_have_the_issue_s_39_names_in_order() {
+        let n = names(6);
+        assert_eq!(n.len(), 39);
+        assert_eq!(n[0].0, "theta1");
+        assert_eq!(n[29].0, "beta6");
+        assert_eq!(n[30].0, "base_x");
+        assert_eq!(n[35], ("base_rz".to_string(), Unit::Deg));
+        assert_eq!(n[38], ("tool_z".to_string(), Unit::Mm));
+    }
+}

@@ -1,0 +1,124 @@
+//! An arm's description: nominal geometry and prior half-widths per parameter (the files' units:
+//! mm and degrees), and the initial box in the model's units.
+
+use crate::params;
+use crate::units::deg_to_rad;
+use calib_core::Interval;
+
+/// One joint: `theta, d, a, alpha, beta` (degrees and mm) and their prior half-widths (0 fixes a
+/// parameter at its nominal value).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Joint {
+    /// Nominal `theta_deg, d, a, alpha_deg, beta_deg`.
+    pub nominal: [f64; 5],
+    /// Half-widths in the same order and units.
+    pub radius: [f64; 5],
+}
+
+/// An arm: joints from base to flange, the base transform and the tool point (mm and degrees).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Arm {
+    /// Joints, base to flange.
+    pub joints: Vec<Joint>,
+    /// Nominal `x, y, z` (mm) and `rx, ry, rz` (degrees) of the base in the tracker frame.
+    pub base: [f64; 6],
+    /// Half-widths of the base parameters.
+    pub base_radius: [f64; 6],
+    /// Nominal tool point in the flange frame (mm).
+    pub tool: [f64; 3],
+    /// Half-widths of the tool point.
+    pub tool_radius: [f64; 3],
+}
+
+impl Arm {
+    /// Every parameter's nominal value in model order (degrees and mm), see [`params::names`].
+    pub fn nominal(&self) -> Vec<f64> {
+        self.collect(|j| j.nominal, self.base, self.tool)
+    }
+
+    /// Every parameter's prior half-width in model order (degrees and mm).
+    pub fn radius(&self) -> Vec<f64> {
+        self.collect(|j| j.radius, self.base_radius, self.tool_radius)
+    }
+
+    fn collect(
+        &self,
+        joint: impl Fn(&Joint) -> [f64; 5],
+        base: [f64; 6],
+        tool: [f64; 3],
+    ) -> Vec<f64> {
+        let mut v: Vec<f64> = self.joints.iter().flat_map(joint).collect();
+        v.extend(base);
+        v.extend(tool);
+        v
+    }
+
+    /// Which parameters are free (a positive prior half-width).
+    pub fn free(&self) -> Vec<bool> {
+        self.radius().iter().map(|r| *r > 0.0).collect()
+    }
+
+    /// The initial box `nominal ± radius` in the model's units (radians for angles), enclosing
+    /// the decimal values outward; fixed parameters are point intervals of their nominal value
+    /// converted to radians (an interval of a few ulps for angles).
+    pub fn initial_box(&self) -> Vec<Interval> {
+        let units = params::names(self.joints.len());
+        self.nominal()
+            .iter()
+            .zip(self.radius())
+            .zip(&units)
+            .map(|((v, r), (_, unit))| {
+                let deg = Interval::mid_rad(*v, r);
+                match unit {
+                    params::Unit::Deg => deg_to_rad(deg),
+                    params::Unit::Mm => deg,
+                }
+            })
+            .collect()
+    }
+}
+
+/// The built-in arm: the public nominal geometry of a common six-axis collaborative arm (three
+/// parallel middle axes: a UR5's `d1 = 89.159, a2 = -425, a3 = -392.25, d4 = 109.15,
+/// d5 = 94.65, d6 = 82.3` mm), a base 1.2 m from the tracker, a tool point 55 mm out, and the
+/// identifiable default parameter set: 27 free parameters. Fixed, and why: `theta1, d1`
+/// (indistinguishable from `base_rz, base_z`), `beta1` (joint 2 is not parallel to joint 1),
+/// `d2, d3` (consecutive parallel axes: only their sum with `d4` is seen), `beta4, beta5` (the
+/// next axis is not parallel), and all of joint 6 (with a tracked point and no orientation, the
+/// flange parameters trade off against the tool point).
+pub fn builtin_arm() -> Arm {
+    let joint = |nominal: [f64; 5], radius: [f64; 5]| Joint { nominal, radius };
+    Arm {
+        joints: vec![
+            joint([0.0, 89.159, 0.0, 90.0, 0.0], [0.0, 0.0, 0.5, 0.05, 0.0]),
+            joint([0.0, 0.0, -425.0, 0.0, 0.0], [0.05, 0.0, 0.5, 0.05, 0.05]),
+            joint([0.0, 0.0, -392.25, 0.0, 0.0], [0.05, 0.0, 0.5, 0.05, 0.05]),
+            joint([0.0, 109.15, 0.0, 90.0, 0.0], [0.05, 0.5, 0.5, 0.05, 0.0]),
+            joint([0.0, 94.65, 0.0, -90.0, 0.0], [0.05, 0.5, 0.5, 0.05, 0.0]),
+            joint([0.0, 82.3, 0.0, 0.0, 0.0], [0.0; 5]),
+        ],
+        base: [1200.0, 300.0, -250.0, 0.4, -0.3, 25.0],
+        base_radius: [1.0, 1.0, 1.0, 0.1, 0.1, 0.1],
+        tool: [15.0, -10.0, 55.0],
+        tool_radius: [0.5, 0.5, 0.5],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_builtin_arm_has_27_free_parameters_and_a_box_around_its_nominal() {
+        let arm = builtin_arm();
+        assert_eq!(arm.free().iter().filter(|f| **f).count(), 27);
+        let b = arm.initial_box();
+        assert_eq!(b.len(), 39);
+        assert!(b[2].contains(0.0) && b[2].rad() >= 0.5);
+        // alpha1 = 90° ± 0.05° in radians.
+        assert!(b[3].contains(std::f64::consts::FRAC_PI_2));
+        assert!((b[3].rad() - 0.05f64.to_radians()).abs() < 1e-12);
+        // theta1 is fixed at 0: a point.
+        assert_eq!(b[0].wid(), 0.0);
+    }
+}

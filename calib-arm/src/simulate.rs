@@ -1,0 +1,162 @@
+//! Simulated tracker data: a true geometry near the nominal, random configurations within the
+//! joint limits, readings within the error bounds of the true values (uniform), optional
+//! outliers.
+
+use crate::model::tracked_point;
+use crate::params::{self, Unit};
+use crate::robot::Arm;
+use crate::units::{deg_to_rad, to_rad};
+use calib_core::Interval;
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+
+/// Half-widths of the measurement errors: every true value lies within ± these of its reading.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Uncertainty {
+    /// Joint readings, degrees.
+    pub joint_deg: f64,
+    /// Tracked coordinates, mm.
+    pub pos: f64,
+}
+
+impl Uncertainty {
+    /// The laser tracker and encoders: ±0.01 mm per coordinate, ±0.001°.
+    pub const TRACKER: Uncertainty = Uncertainty {
+        joint_deg: 0.001,
+        pos: 0.01,
+    };
+}
+
+/// One measured configuration: joint readings (degrees) and the tracked point (mm).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reading {
+    /// `q_1..q_N` in degrees.
+    pub joints_deg: Vec<f64>,
+    /// `px, py, pz` in mm, tracker frame.
+    pub point: [f64; 3],
+}
+
+/// A simulated data set.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Simulation {
+    /// The true parameters in model order (degrees and mm).
+    pub truth: Vec<f64>,
+    /// The readings (with noise and outliers).
+    pub readings: Vec<Reading>,
+    /// The error bounds the noise respects.
+    pub uncertainty: Uncertainty,
+}
+
+/// The joint range of the simulated configurations (degrees).
+pub const JOINT_LIMIT_DEG: f64 = 170.0;
+
+/// Simulates `configs` configurations of `arm`: the truth is the nominal plus up to `0.8` of each
+/// prior half-width (uniform), the joints uniform within ±[`JOINT_LIMIT_DEG`], the noise uniform
+/// within `noise_scale ×` the error bounds; `outliers` moves the tracked point of configuration
+/// `k` (0-based) by `delta` mm in a random direction.
+pub fn simulate(
+    arm: &Arm,
+    configs: usize,
+    seed: u64,
+    uncertainty: Uncertainty,
+    noise_scale: f64,
+    outliers: &[(usize, f64)],
+) -> Simulation {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let truth: Vec<f64> = arm
+        .nominal()
+        .iter()
+        .zip(arm.radius())
+        .map(|(v, r)| v + rng.random_range(-0.8..=0.8) * r)
+        .collect();
+    let units = params::names(arm.joints.len());
+    let truth_model: Vec<f64> = truth
+        .iter()
+        .zip(&units)
+        .map(|(v, (_, u))| if *u == Unit::Deg { to_rad(*v) } else { *v })
+        .collect();
+    let mut readings = Vec::with_capacity(configs);
+    for k in 0..configs {
+        let q: Vec<f64> = (0..arm.joints.len())
+            .map(|_| rng.random_range(-JOINT_LIMIT_DEG..=JOINT_LIMIT_DEG))
+            .collect();
+        let q_rad: Vec<f64> = q.iter().map(|v| to_rad(*v)).collect();
+        let p = tracked_point(&truth_model, &q_rad).expect("3 to 7 joints");
+        let mut noise = |r: f64| rng.random_range(-1.0..=1.0) * r * noise_scale;
+        let joints_deg = q.iter().map(|v| v + noise(uncertainty.joint_deg)).collect();
+        let mut point = p.map(|v| v + noise(uncertainty.pos));
+        for &(_, delta) in outliers.iter().filter(|(c, _)| *c == k) {
+            let dir = random_direction(&mut rng);
+            for i in 0..3 {
+                point[i] += delta * dir[i];
+            }
+        }
+        readings.push(Reading { joints_deg, point });
+    }
+    Simulation {
+        truth,
+        readings,
+        uncertainty,
+    }
+}
+
+fn random_direction(rng: &mut StdRng) -> [f64; 3] {
+    loop {
+        let v: [f64; 3] = core::array::from_fn(|_| rng.random_range(-1.0..=1.0));
+        let n = v.iter().map(|c| c * c).sum::<f64>().sqrt();
+        if n > 0.1 && n <= 1.0 {
+            return v.map(|c| c / n);
+        }
+    }
+}
+
+/// The measurement box of a reading in model units: `q_i ± joint_deg` in radians (enclosed
+/// outward), then `p ± pos` in mm. `NM` must be the number of joints plus 3.
+pub fn measurement_box<const NM: usize>(r: &Reading, u: &Uncertainty) -> Option<[Interval; NM]> {
+    if r.joints_deg.len() + 3 != NM {
+        return None;
+    }
+    Some(core::array::from_fn(|i| match r.joints_deg.get(i) {
+        Some(q) => deg_to_rad(Interval::mid_rad(*q, u.joint_deg)),
+        None => Interval::mid_rad(r.point[i - r.joints_deg.len()], u.pos),
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::builtin_arm;
+
+    #[test]
+    fn readings_lie_within_the_error_bounds_of_the_truth() {
+        let arm = builtin_arm();
+        let sim = simulate(&arm, 20, 3, Uncertainty::TRACKER, 1.0, &[(4, 0.5)]);
+        let units = params::names(6);
+        let x: Vec<f64> = sim
+            .truth
+            .iter()
+            .zip(&units)
+            .map(|(v, (_, u))| if *u == Unit::Deg { to_rad(*v) } else { *v })
+            .collect();
+        for (k, r) in sim.readings.iter().enumerate() {
+            let b: [Interval; 9] = measurement_box(r, &sim.uncertainty).unwrap();
+            // With the true joint angles (within the joint boxes) the true point is within 0.01
+            // of the reading, except for the outlier.
+            let q: Vec<f64> = r.joints_deg.iter().map(|v| to_rad(*v)).collect();
+            let p = tracked_point(&x, &q).unwrap();
+            let off = (0..3)
+                .map(|i| (p[i] - r.point[i]).abs())
+                .fold(0.0, f64::max);
+            if k == 4 {
+                assert!(off > 0.1, "the outlier moved by 0.5 mm");
+            } else {
+                // The joint noise moves the point by up to ~0.02 mm per joint at this reach.
+                assert!(off < 0.2, "configuration {k}: {off}");
+            }
+            assert!(b[0].contains(q[0]) && b[6].contains(r.point[0]));
+        }
+        for (v, (n, r)) in sim.truth.iter().zip(arm.nominal().iter().zip(arm.radius())) {
+            assert!((v - n).abs() <= 0.8 * r + 1e-12);
+        }
+    }
+}

@@ -1,0 +1,116 @@
+//! The arm residual against an independent forward kinematics (4×4 homogeneous matrices with
+//! nalgebra), its interval evaluators against point values, and its degree/radian handling.
+
+use calib_arm::{Arm3Point, Arm6Point, Arm7Point};
+use calib_core::{Interval, VectorModel};
+use nalgebra::{Matrix4, Vector4};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+
+fn rot_x(a: f64) -> Matrix4<f64> {
+    let (c, s) = (a.cos(), a.sin());
+    Matrix4::new(
+        1.0, 0.0, 0.0, 0.0, 0.0, c, -s, 0.0, 0.0, s, c, 0.0, 0.0, 0.0, 0.0, 1.0,
+    )
+}
+fn rot_y(a: f64) -> Matrix4<f64> {
+    let (c, s) = (a.cos(), a.sin());
+    Matrix4::new(
+        c, 0.0, s, 0.0, 0.0, 1.0, 0.0, 0.0, -s, 0.0, c, 0.0, 0.0, 0.0, 0.0, 1.0,
+    )
+}
+fn rot_z(a: f64) -> Matrix4<f64> {
+    let (c, s) = (a.cos(), a.sin());
+    Matrix4::new(
+        c, -s, 0.0, 0.0, s, c, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+    )
+}
+fn trans(x: f64, y: f64, z: f64) -> Matrix4<f64> {
+    Matrix4::new(
+        1.0, 0.0, 0.0, x, 0.0, 1.0, 0.0, y, 0.0, 0.0, 1.0, z, 0.0, 0.0, 0.0, 1.0,
+    )
+}
+
+/// `T_base · Π A_i(q_i) · t` by matrix products (parameters in the model's order, radians).
+fn forward(x: &[f64], q: &[f64]) -> [f64; 3] {
+    let n = q.len();
+    let b = &x[5 * n..];
+    let mut t = trans(b[0], b[1], b[2]) * rot_z(b[5]) * rot_y(b[4]) * rot_x(b[3]);
+    for i in 0..n {
+        let [th, d, a, al, be] = [
+            x[5 * i],
+            x[5 * i + 1],
+            x[5 * i + 2],
+            x[5 * i + 3],
+            x[5 * i + 4],
+        ];
+        t = t * rot_z(th + q[i]) * trans(0.0, 0.0, d) * trans(a, 0.0, 0.0) * rot_x(al) * rot_y(be);
+    }
+    let p = t * Vector4::new(b[6], b[7], b[8], 1.0);
+    [p[0], p[1], p[2]]
+}
+
+/// A UR5-like geometry (mm, radians) perturbed at random.
+fn random_arm(rng: &mut StdRng, joints: usize) -> Vec<f64> {
+    let mut x = Vec::new();
+    for _ in 0..joints {
+        x.extend([
+            rng.random_range(-0.1..0.1),
+            rng.random_range(0.0..120.0),
+            rng.random_range(-450.0..450.0),
+            rng.random_range(-1.6..1.6),
+            rng.random_range(-0.01..0.01),
+        ]);
+    }
+    x.extend([
+        rng.random_range(-1500.0..1500.0),
+        rng.random_range(-1500.0..1500.0),
+        rng.random_range(-500.0..500.0),
+        rng.random_range(-0.2..0.2),
+        rng.random_range(-0.2..0.2),
+        rng.random_range(-3.0..3.0),
+    ]);
+    x.extend([
+        rng.random_range(-50.0..50.0),
+        rng.random_range(-50.0..50.0),
+        rng.random_range(0.0..150.0),
+    ]);
+    x
+}
+
+fn check<M: VectorModel<NX, NM, 3>, const NX: usize, const NM: usize>(
+    model: &M,
+    joints: usize,
+    seed: u64,
+) {
+    let mut rng = StdRng::seed_from_u64(seed);
+    for _ in 0..200 {
+        let x: [f64; NX] = random_arm(&mut rng, joints).try_into().unwrap();
+        let q: Vec<f64> = (0..joints).map(|_| rng.random_range(-3.0..3.0)).collect();
+        let p = forward(&x, &q);
+        let mut m = [0.0; NM];
+        m[..joints].copy_from_slice(&q);
+        m[joints..].copy_from_slice(&p);
+        let r = model.residuals(&x, &m);
+        for k in 0..3 {
+            assert!(
+                r[k].abs() < 1e-9 * (1.0 + p[k].abs()),
+                "row {k}: {r:?} at {p:?}"
+            );
+        }
+        // The interval evaluation over a small box contains the point values.
+        let xb = x.map(|v| Interval::mid_rad(v, 1e-6));
+        let mb = m.map(|v| Interval::mid_rad(v, 1e-6));
+        let ri = model.residuals_interval(&xb, &mb);
+        for k in 0..3 {
+            assert!(ri[k].contains(r[k]) && ri[k].wid() < 1.0, "{:?}", ri[k]);
+        }
+    }
+}
+
+#[test]
+fn the_generated_residual_is_the_forward_kinematics_of_the_chain() {
+    check(&Arm3Point, 3, 1);
+    check(&Arm6Point, 6, 2);
+    check(&Arm7Point, 7, 3);
+}

@@ -1,0 +1,17 @@
+//! # calib-pipeline
+//!
+//! The layer between the certified kernel (`calib-core`) and a robot (`calib-gough`,
+//! `calib-arm`): what every robot's calibration shares and no robot owns. A robot crate parses its
+//! own files, names its parameters and writes its residual; the errors it reports for bad input
+//! ([`DataError`]: file, line, field) and the way outputs are written ([`write_atomically`]) are
+//! the same for every robot.
+#![deny(unsafe_code)]
+#![warn(missing_docs)]
+
+mod error;
+mod output;
+mod table;
+
+pub use error::{read_text, toml_error, DataError, MAX_MAGNITUDE};
+pub use output::write_atomically;
+pub use table::{parse_number_table, NumberTable};
