@@ -1,5 +1,6 @@
 //! How wide are the interval enclosures of the arm residual over the prior box, compared with
-//! the range of point values? `cargo run --release -p calib-arm --example arm_enclosure`.
+//! the range of point values, in interval and in affine arithmetic (`evaluate_rows_tight`)?
+//! `cargo run --release -p calib-arm --example arm_enclosure`.
 
 use calib_arm::simulate::{measurement_box, Uncertainty};
 use calib_arm::{builtin_arm, simulate, Arm6Point};
@@ -17,6 +18,7 @@ fn main() {
         for shrink in [1.0, 0.1, 0.01] {
             let xb = x0.map(|v| Interval::mid_rad(v.mid(), v.rad() * shrink));
             let e = Arm6Point.evaluate_rows_interval(&xb, &m);
+            let t = Arm6Point.evaluate_rows_tight(&xb, &m);
             let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
             let mut dlo = [[f64::INFINITY; 39]; 3];
             let mut dhi = [[f64::NEG_INFINITY; 39]; 3];
@@ -33,15 +35,22 @@ fn main() {
                     }
                 }
             }
-            let over: Vec<String> = (0..3)
-                .map(|k| format!("{:.1}", e[k].value.wid() / (hi[k] - lo[k])))
-                .collect();
-            let jac: f64 = (0..3)
-                .flat_map(|k| (0..39).map(move |j| (k, j)))
-                .filter(|&(k, j)| dhi[k][j] > dlo[k][j])
-                .map(|(k, j)| e[k].dx[j].wid() / (dhi[k][j] - dlo[k][j]))
-                .fold(0.0, f64::max);
-            println!("box x{shrink:<5} value width / sampled range per row: {over:?}; worst Jacobian entry ratio {jac:.1}; f width {:.4} mm", e[0].value.wid());
+            let ratios = |e: &[calib_core::Evaluation<Interval, 39, 9>; 3]| {
+                let over: Vec<String> = (0..3)
+                    .map(|k| format!("{:.2}", e[k].value.wid() / (hi[k] - lo[k])))
+                    .collect();
+                let jac: f64 = (0..3)
+                    .flat_map(|k| (0..39).map(move |j| (k, j)))
+                    .filter(|&(k, j)| dhi[k][j] > dlo[k][j])
+                    .map(|(k, j)| e[k].dx[j].wid() / (dhi[k][j] - dlo[k][j]))
+                    .fold(0.0, f64::max);
+                format!("value/sampled {over:?}, worst Jacobian entry {jac:.2}")
+            };
+            println!(
+                "box x{shrink:<5} interval: {}; affine: {}",
+                ratios(&e),
+                ratios(&t)
+            );
         }
     }
 }

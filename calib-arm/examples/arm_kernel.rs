@@ -22,13 +22,18 @@ fn main() {
         .collect();
     let x0: [Interval; 39] = arm.initial_box().try_into().expect("39 parameters");
     let start = Instant::now();
-    let c = certify(&Arm6Point, &x0, &data, &Settings::default());
+    let mut settings = Settings::default();
+    if std::env::var("ARM_LP").as_deref() == Ok("clarabel") {
+        settings = settings.with_lp(calib_core::lp::LpEngine::Clarabel);
+    }
+    let c = certify(&Arm6Point, &x0, &data, &settings);
     println!(
-        "certify: {:?} in {:.2} s, {} Newton/LP steps, {} LP solves",
+        "certify: {:?} in {:.2} s, {} Newton/LP steps, {} LP solves ({} failed)",
         c.status,
         start.elapsed().as_secs_f64(),
         c.iterations,
-        c.lp_solves
+        c.lp_solves,
+        c.lp_failures
     );
     let names = params::names(6);
     for (j, (name, unit)) in names.iter().enumerate() {

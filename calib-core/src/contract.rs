@@ -23,9 +23,11 @@
 //! The step is repeated until `‖rad(x_j)‖₁ - ‖rad(x_{j+1})‖₁ < Δ` or the iteration cap. Nothing is
 //! lost: every step keeps all solutions of the box it started from (paper Section IV-A).
 
+use crate::affine::rounding;
 use crate::coupling::coupling_directions;
+use crate::interval::round::{add_up, mul_up};
 use crate::lp::{proves_infeasible, safe_lower_bound, LpBackend, LpStatus, Polyhedron};
-use crate::{Interval, Relaxation, Settings, VectorModel};
+use crate::{Interval, LinearEnclosure, Relaxation, Settings, VectorModel};
 
 /// Which test proved a box empty.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -295,10 +297,18 @@ where
     let ylo = frame.y_box.map(|v| v.inf());
     let yhi = frame.y_box.map(|v| v.sup());
     ws.poly.reset(&ylo, &yhi);
+    for j in 0..NX {
+        // A parameter fixed at a value converted to other units is a sliver of a few ulps.
+        if x[j].wid() <= 1e-12 * x[j].mag().max(1.0) {
+            ws.poly.freeze(j, frame.y_box[j].mag());
+        }
+    }
     let mut row = [0.0; NX];
     let unused = [Interval::ZERO; NR];
+    // The affine forms' noise symbols: x_j = mid(x_j) + rad(x_j) ε_j, i.e. y_j = rad(x_j) ε_j.
+    let rad_x = x.map(|v| v.rad());
     for (k, m) in measurements.iter().enumerate() {
-        let e = model.evaluate_rows_interval(x, m);
+        let e = model.evaluate_rows_tight(x, m);
         if e.iter().any(|r| !r.value.contains(0.0)) {
             return Err(EmptinessProof::CheapRejection { measurement: k });
         }
@@ -344,8 +354,76 @@ where
                 frame.push_rows(&mut ws.poly, &mut row, &eq);
             }
         }
+        if let Some(forms) = model.linear_enclosures(x, m) {
+            for form in &forms {
+                push_enclosure_rows(&mut ws.poly, &mut row, form, &rad_x);
+            }
+            if NR >= 2 {
+                let b_mid: [[f64; NM]; NR] = core::array::from_fn(|r| e[r].dm.map(|v| v.mid()));
+                let rad = m.map(|v| v.rad());
+                for lambda in coupling_directions(&b_mid, &rad).as_slice() {
+                    push_enclosure_rows(&mut ws.poly, &mut row, &combine(lambda, &forms), &rad_x);
+                }
+            }
+        }
     }
     bound_by_linear_programs(x, &frame.xm_iv, ws)
+}
+
+/// `Σ_r λ_r F_r` for linear enclosures `F_r` of the rows of one configuration, with every
+/// rounding bounded into the error radius (so the result encloses `λ·f`).
+fn combine<const NX: usize, const NM: usize, const NR: usize>(
+    lambda: &[f64; NR],
+    forms: &[LinearEnclosure<NX, NM>; NR],
+) -> LinearEnclosure<NX, NM> {
+    let mut e = 0.0;
+    let mut dot = |values: &dyn Fn(usize) -> f64| {
+        let mut acc = 0.0;
+        for r in 0..NR {
+            let t = lambda[r] * values(r);
+            acc += t;
+            e = add_up(e, add_up(rounding(t), rounding(acc)));
+        }
+        acc
+    };
+    let c = dot(&|r| forms[r].c);
+    let gx = core::array::from_fn(|j| dot(&|r| forms[r].gx[j]));
+    let gm = core::array::from_fn(|i| dot(&|r| forms[r].gm[i]));
+    for r in 0..NR {
+        e = add_up(e, mul_up(lambda[r].abs(), forms[r].e));
+    }
+    LinearEnclosure { c, gx, gm, e }
+}
+
+/// The two rows of a linear enclosure in `y = x - mid(x)`: a solution has `f = 0` for some
+/// reading, so `Σ_j (gx_j / rad_j) y_j ∈ -c ± (Σ_i |gm_i| + e)`; the rounded coefficients'
+/// errors (at most `rounding(g_j) rad_j` each) widen the slack.
+fn push_enclosure_rows<const NX: usize, const NM: usize>(
+    poly: &mut Polyhedron,
+    row: &mut [f64; NX],
+    form: &LinearEnclosure<NX, NM>,
+    rad: &[f64; NX],
+) {
+    let mut slack = form.gm.iter().fold(form.e, |s, g| add_up(s, g.abs()));
+    for j in 0..NX {
+        row[j] = if rad[j] > 0.0 {
+            form.gx[j] / rad[j]
+        } else {
+            0.0
+        };
+        if row[j] != 0.0 {
+            slack = add_up(slack, mul_up(rounding(row[j]), rad[j]));
+        } else if form.gx[j] != 0.0 {
+            // A coefficient on a point parameter: it cannot move; its term is at most |gx_j|.
+            slack = add_up(slack, form.gx[j].abs());
+        }
+    }
+    if !slack.is_finite() || !form.c.is_finite() {
+        return;
+    }
+    poly.push_row(row, add_up(-form.c, slack));
+    row.iter_mut().for_each(|v| *v = -*v);
+    poly.push_row(row, add_up(form.c, slack));
 }
 
 /// Adds `Σ a_j (y_j - delta_j) <= r`, i.e. `Σ a_j y_j <= r + Σ a_j delta_j` rounded up.
@@ -380,6 +458,9 @@ fn bound_by_linear_programs<const NX: usize>(
     ws.dual.resize(rows, 0.0);
     let mut out = *x;
     for j in 0..NX {
+        if ws.poly.is_frozen(j) {
+            continue;
+        }
         for sense in [1.0, -1.0] {
             ws.objective = [0.0; NX];
             ws.objective[j] = sense;

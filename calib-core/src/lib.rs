@@ -38,6 +38,7 @@
 // Index loops mirror the matrix notation of the paper (rows k, parameters j) in the numeric code.
 #![allow(clippy::needless_range_loop)]
 
+pub mod affine;
 pub mod bisection;
 pub mod certificate;
 mod certify;
@@ -54,6 +55,7 @@ pub mod outliers;
 mod scalar;
 mod settings;
 
+pub use affine::Affine;
 pub use bisection::{pave, sweep, Paving, SweepResult};
 pub use calib_macros::interval_model;
 pub use certificate::{is_certified_consistent, is_consistent_by_corners, is_consistent_point};
@@ -62,6 +64,6 @@ pub use contract::{contract, Contraction, EmptinessProof, Workspace};
 pub use dual::Dual;
 pub use hull::{hull, hull_with, Hull};
 pub use interval::Interval;
-pub use model::{Evaluation, Model, VectorModel};
+pub use model::{Evaluation, LinearEnclosure, Model, VectorModel};
 pub use scalar::Scalar;
 pub use settings::{Relaxation, Settings};

@@ -123,6 +123,47 @@ pub trait VectorModel<const NX: usize, const NM: usize, const NR: usize> {
     fn jacobians_m(&self, x: &[f64; NX], m: &[f64; NM]) -> [[f64; NM]; NR] {
         self.evaluate_rows(x, m).map(|e| e.dm)
     }
+
+    /// Enclosures of value and both Jacobians of every row over the boxes, as tight as the model
+    /// can make them: what the Newton step linearises with. The default is
+    /// [`VectorModel::evaluate_rows_interval`]; `#[interval_model]` vector models intersect it
+    /// with an evaluation in affine arithmetic ([`crate::affine`]), which keeps the correlations
+    /// that a chain of rotations loses in interval arithmetic.
+    fn evaluate_rows_tight(
+        &self,
+        x: &[Interval; NX],
+        m: &[Interval; NM],
+    ) -> [Evaluation<Interval, NX, NM>; NR] {
+        self.evaluate_rows_interval(x, m)
+    }
+
+    /// Linear enclosures of every row over the boxes (see [`LinearEnclosure`]), when the model can
+    /// compute them (`#[interval_model]` vector models do, in affine arithmetic); `None` by
+    /// default. The Newton step adds their rows to the polyhedron.
+    fn linear_enclosures(
+        &self,
+        _x: &[Interval; NX],
+        _m: &[Interval; NM],
+    ) -> Option<[LinearEnclosure<NX, NM>; NR]> {
+        None
+    }
+}
+
+/// A linear enclosure of a residual over a box `x` and a measurement box `m`: with
+/// `x_j = mid(x_j) + rad(x_j) ε_j` and `M_i = mid(M_i) + rad(M_i) η_i`, for every `ε, η` in
+/// `[-1, 1]`, `f(x, M) ∈ c + Σ_j gx_j ε_j + Σ_i gm_i η_i + [-e, e]` (the affine form of the
+/// residual, [`crate::affine`]). Unlike the mean-value form, its slack `e` holds only the nonlinear
+/// remainders and roundings, not the width of the Jacobian times the width of the box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinearEnclosure<const NX: usize, const NM: usize> {
+    /// The centre.
+    pub c: f64,
+    /// Coefficients of the parameter noise symbols.
+    pub gx: [f64; NX],
+    /// Coefficients of the measurement noise symbols.
+    pub gm: [f64; NM],
+    /// The error radius (`>= 0`).
+    pub e: f64,
 }
 
 impl<T: Model<NX, NM> + ?Sized, const NX: usize, const NM: usize> VectorModel<NX, NM, 1> for T {

@@ -331,3 +331,84 @@ fn a_shifted_configuration_is_named_and_tolerated_as_an_outlier() {
     assert!(contains(&h.outer, &p.truth));
     assert_eq!(h.outliers, vec![3]);
 }
+
+/// Over random boxes, every point value of every row lies in its linear enclosure evaluated (in
+/// interval arithmetic) at the point's noise symbols, and the tight evaluation encloses the
+/// point values and Jacobians as the interval one does.
+fn check_linear_enclosures<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    rng: &mut StdRng,
+    xc: &[f64; NX],
+    xr: &[f64; NX],
+    mc: &[f64; NM],
+    mr: &[f64; NM],
+) where
+    M: VectorModel<NX, NM, NR>,
+{
+    for _ in 0..200 {
+        let xb = random_box(rng, xc, xr);
+        let mb = random_box(rng, mc, mr);
+        let forms = model
+            .linear_enclosures(&xb, &mb)
+            .expect("a generated vector model");
+        let tight = model.evaluate_rows_tight(&xb, &mb);
+        let natural = model.evaluate_rows_interval(&xb, &mb);
+        for _ in 0..20 {
+            let x = random_point(rng, &xb);
+            let m = random_point(rng, &mb);
+            let p = model.evaluate_rows(&x, &m);
+            // ε_j = (x_j - mid) / rad, enclosed.
+            let eps = |v: f64, b: Interval| {
+                if b.rad() == 0.0 {
+                    Interval::ZERO
+                } else {
+                    (Interval::point(v) - Interval::point(b.mid())) / Interval::point(b.rad())
+                }
+            };
+            for r in 0..NR {
+                let f = &forms[r];
+                let mut v = Interval::point(f.c) + Interval::new(-f.e, f.e);
+                for j in 0..NX {
+                    v += Interval::point(f.gx[j]) * eps(x[j], xb[j]);
+                }
+                for i in 0..NM {
+                    v += Interval::point(f.gm[i]) * eps(m[i], mb[i]);
+                }
+                assert!(
+                    v.contains(p[r].value),
+                    "row {r}: {} outside {v}",
+                    p[r].value
+                );
+                assert!(tight[r].value.contains(p[r].value));
+                assert!(tight[r].value.is_subset_of(natural[r].value));
+                for j in 0..NX {
+                    assert!(tight[r].dx[j].contains(p[r].dx[j]), "row {r} d/dx{j}");
+                }
+                for i in 0..NM {
+                    assert!(tight[r].dm[i].contains(p[r].dm[i]), "row {r} d/dm{i}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn affine_enclosures_contain_every_point_value() {
+    let mut rng = StdRng::seed_from_u64(17);
+    check_linear_enclosures(
+        &Pointer,
+        &mut rng,
+        &[1.0, -2.0, 0.5, 500.0, 0.1, -0.2],
+        &[0.3, 0.3, 0.3, 5.0, 0.1, 0.1],
+        &[1.0, 0.5, 300.0, 200.0, 100.0],
+        &[0.2, 0.2, 1.0, 1.0, 1.0],
+    );
+    check_linear_enclosures(
+        &PlanarArm,
+        &mut rng,
+        &[300.0, 250.0, 1.0, -1.0],
+        &[5.0, 5.0, 1.0, 1.0],
+        &[0.7, -1.2, 400.0, 100.0],
+        &[0.3, 0.3, 1.0, 1.0],
+    );
+}

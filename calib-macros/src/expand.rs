@@ -165,6 +165,7 @@ fn vector_model(
     grads: &[Gradient],
 ) -> TokenStream {
     let nr = outputs.len();
+    let n_inputs = nx + nm;
     let s = Ident::new("__S", Span::call_site());
     let values = evaluator(graph, &s, outputs, |v| quote!([#(#v),*]));
     let jm: Vec<Id> = grads.iter().flat_map(|g| g.m.iter().copied()).collect();
@@ -229,6 +230,24 @@ fn vector_model(
             #[inline]
             fn jacobians_m(&self, x: &[f64; #nx], m: &[f64; #nm]) -> [[f64; #nm]; #nr] {
                 Self::__jacobians_m(x, m)
+            }
+            fn evaluate_rows_tight(
+                &self,
+                x: &[#iv; #nx],
+                m: &[#iv; #nm],
+            ) -> [::calib_core::Evaluation<#iv, #nx, #nm>; #nr] {
+                let (ax, am) = ::calib_core::affine::affine_inputs::<#nx, #nm, #n_inputs>(x, m);
+                ::calib_core::affine::intersect_rows(Self::__rows(x, m), &Self::__rows(&ax, &am))
+            }
+            fn linear_enclosures(
+                &self,
+                x: &[#iv; #nx],
+                m: &[#iv; #nm],
+            ) -> ::core::option::Option<[::calib_core::LinearEnclosure<#nx, #nm>; #nr]> {
+                let (ax, am) = ::calib_core::affine::affine_inputs::<#nx, #nm, #n_inputs>(x, m);
+                ::core::option::Option::Some(::calib_core::affine::linear_enclosures(
+                    &Self::__values(&ax, &am),
+                ))
             }
         }
     }

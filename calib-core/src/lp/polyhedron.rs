@@ -19,6 +19,8 @@ pub struct Polyhedron {
     lo: Vec<f64>,
     hi: Vec<f64>,
     generation: u64,
+    /// Per variable: `Some(m)` when it is frozen with `|y_j| <= m` (see [`Polyhedron::freeze`]).
+    frozen: Vec<Option<f64>>,
 }
 
 impl Polyhedron {
@@ -40,12 +42,46 @@ impl Polyhedron {
         self.g_rows.clear();
         self.g_rhs.clear();
         self.generation = NEXT_GENERATION.fetch_add(1, Ordering::Relaxed);
+        self.frozen.clear();
+        self.frozen.resize(self.n, None);
+    }
+
+    /// Freezes variable `j`, known to satisfy `|y_j| <= magnitude`: rows pushed from now on get a
+    /// zero coefficient for it and a right-hand side raised by `|a_j| · magnitude` (rounded up),
+    /// which every point of the polyhedron still satisfies. For variables whose interval is a
+    /// rounding-level sliver (a parameter fixed at a value converted to other units): as an LP
+    /// column they only make the basis singular.
+    pub fn freeze(&mut self, j: usize, magnitude: f64) {
+        self.frozen[j] = Some(magnitude);
+    }
+
+    /// Whether variable `j` is frozen.
+    pub fn is_frozen(&self, j: usize) -> bool {
+        self.frozen.get(j).is_some_and(|f| f.is_some())
     }
 
     /// Adds the row `a·y <= b` (dropped if any number is not finite or `a = 0` with `b >= 0`).
     /// Returns whether the row was kept.
     pub fn push_row(&mut self, a: &[f64], b: f64) -> bool {
         debug_assert_eq!(a.len(), self.n);
+        if self.frozen.iter().any(Option::is_some) {
+            let mut b = b;
+            let mut row = a.to_vec();
+            for (j, f) in self.frozen.iter().enumerate() {
+                if let Some(mag) = f {
+                    b = crate::interval::round::add_up(
+                        b,
+                        crate::interval::round::mul_up(row[j].abs(), *mag),
+                    );
+                    row[j] = 0.0;
+                }
+            }
+            return self.push_scaled(&row, b);
+        }
+        self.push_scaled(a, b)
+    }
+
+    fn push_scaled(&mut self, a: &[f64], b: f64) -> bool {
         if !b.is_finite() || a.iter().any(|v| !v.is_finite()) {
             return false;
         }

@@ -1,0 +1,329 @@
+//! [`Affine`]: rigorous affine arithmetic, a [`Scalar`] that keeps first-order correlations.
+//!
+//! Natural interval evaluation forgets that two intermediate quantities depend on the same
+//! inputs. Through a chain of rotations (a serial arm) this *wrapping effect* makes interval
+//! Jacobians 5–40 times wider than their true range, at every box size, and the Newton step of the
+//! kernel cannot contract. An affine form
+//!
+//! `x̂ = c + Σ_i a_i ε_i + e·ε*`,  `ε_i, ε* ∈ [-1, 1]`,
+//!
+//! carries one noise symbol `ε_i` per input of the box (every parameter and every measured
+//! quantity: `N = NX + NM`) and one error radius `e >= 0` that absorbs everything else. Linear
+//! operations are exact on the linear part; a product adds the remainder `r_x r_y` (with
+//! `r = Σ|a_i| + e`) to `e`; `sin` and `cos` are linearised at the centre `c` with the mean-value
+//! remainder `r² + rad(f'(c)) r` (`|f''| <= 1`); every floating-point rounding of a centre or a
+//! coefficient adds a bound of its error (one ulp of the result, plus the smallest subnormal) to
+//! `e`, and `e` itself is summed with upward rounding. Division, square roots, tangents and powers
+//! fall back to interval arithmetic on the range (sound, without correlations).
+//!
+//! **Invariant.** If every input `x_i` of the box is `mid_i + rad_i ε_i`, then for every `ε` in
+//! `[-1, 1]^N` the exact real value of the quantity lies in `c + a·ε + [-e, e]`. Hence
+//! [`Affine::range`] encloses the quantity over the whole box, and the kernel intersects it with
+//! the natural interval evaluation (both are enclosures).
+
+use crate::interval::round::{add_up, mul_up};
+use crate::{Evaluation, Interval, LinearEnclosure, Scalar};
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+/// An affine form over `N` noise symbols (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Affine<const N: usize> {
+    c: f64,
+    a: [f64; N],
+    e: f64,
+}
+
+/// An upper bound of the rounding error of one round-to-nearest operation whose result is `v`.
+#[inline(always)]
+pub(crate) fn rounding(v: f64) -> f64 {
+    mul_up(v.abs(), f64::EPSILON) + f64::from_bits(1)
+}
+
+impl<const N: usize> Affine<N> {
+    /// The input `x` (a bounded interval) as noise symbol `k`: `mid(x) + rad(x) ε_k`.
+    pub fn input(x: Interval, k: usize) -> Self {
+        let mut a = [0.0; N];
+        if !x.is_bounded() || x.is_empty() {
+            return Affine {
+                c: 0.0,
+                a,
+                e: f64::INFINITY,
+            };
+        }
+        a[k] = x.rad();
+        Affine {
+            c: x.mid(),
+            a,
+            e: 0.0,
+        }
+    }
+
+    /// The form `mid(x) ± rad(x)` with no correlation (any interval, possibly unbounded).
+    pub fn from_interval(x: Interval) -> Self {
+        if !x.is_bounded() || x.is_empty() {
+            return Affine {
+                c: 0.0,
+                a: [0.0; N],
+                e: f64::INFINITY,
+            };
+        }
+        Affine {
+            c: x.mid(),
+            a: [0.0; N],
+            e: x.rad(),
+        }
+    }
+
+    /// `Σ |a_i| + e`, rounded up: the radius of the form.
+    pub fn radius(&self) -> f64 {
+        self.a.iter().fold(self.e, |s, v| add_up(s, v.abs()))
+    }
+
+    /// An interval containing every value of the form.
+    pub fn range(&self) -> Interval {
+        let r = self.radius();
+        if !r.is_finite() || !self.c.is_finite() {
+            return Interval::ENTIRE;
+        }
+        Interval::point(self.c) + Interval::new(-r, r)
+    }
+
+    /// `f(self)` through interval arithmetic on the range (no correlation kept).
+    fn through_interval(self, f: impl Fn(Interval) -> Interval) -> Self {
+        Affine::from_interval(f(self.range()))
+    }
+
+    /// The linearisation `f(c) + α (x - c)` of a function with `|f''| <= 1` (sine, cosine), where
+    /// `value ⊇ f(c)` and `slope ⊇ f'(c)`.
+    fn linearised(self, value: Interval, slope: Interval) -> Self {
+        let r = self.radius();
+        if !r.is_finite() || !value.is_bounded() || !slope.is_bounded() {
+            return Affine::from_interval(Interval::new(-1.0, 1.0));
+        }
+        let alpha = slope.mid();
+        let mut e = value.rad();
+        // |f(t) - f(c) - α (t - c)| <= (|f'(ξ) - f'(c)| + |f'(c) - α|) |t - c| <= (r + rad α) r
+        e = add_up(e, mul_up(add_up(r, slope.rad()), r));
+        e = add_up(e, mul_up(alpha.abs(), self.e));
+        let mut a = [0.0; N];
+        for i in 0..N {
+            a[i] = alpha * self.a[i];
+            if a[i] != 0.0 {
+                e = add_up(e, rounding(a[i]));
+            }
+        }
+        Affine {
+            c: value.mid(),
+            a,
+            e,
+        }
+    }
+}
+
+impl<const N: usize> Add for Affine<N> {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        let c = self.c + o.c;
+        let mut e = add_up(add_up(self.e, o.e), rounding(c));
+        let mut a = [0.0; N];
+        for i in 0..N {
+            a[i] = self.a[i] + o.a[i];
+            if a[i] != 0.0 {
+                e = add_up(e, rounding(a[i]));
+            }
+        }
+        Affine { c, a, e }
+    }
+}
+
+impl<const N: usize> Neg for Affine<N> {
+    type Output = Self;
+    fn neg(self) -> Self {
+        Affine {
+            c: -self.c,
+            a: self.a.map(|v| -v),
+            e: self.e,
+        }
+    }
+}
+
+impl<const N: usize> Sub for Affine<N> {
+    type Output = Self;
+    fn sub(self, o: Self) -> Self {
+        self + (-o)
+    }
+}
+
+impl<const N: usize> Mul for Affine<N> {
+    type Output = Self;
+    /// `c_x c_y + c_x L_y + c_y L_x` plus the remainder `|c_x| e_y + |c_y| e_x + r_x r_y`.
+    fn mul(self, o: Self) -> Self {
+        let c = self.c * o.c;
+        let mut e = rounding(c);
+        e = add_up(e, mul_up(self.c.abs(), o.e));
+        e = add_up(e, mul_up(o.c.abs(), self.e));
+        e = add_up(e, mul_up(self.radius(), o.radius()));
+        let mut a = [0.0; N];
+        for i in 0..N {
+            let (p, q) = (self.c * o.a[i], o.c * self.a[i]);
+            a[i] = p + q;
+            if p != 0.0 || q != 0.0 {
+                e = add_up(e, add_up(add_up(rounding(p), rounding(q)), rounding(a[i])));
+            }
+        }
+        if !e.is_finite() || !c.is_finite() {
+            return Affine::from_interval(self.range() * o.range());
+        }
+        Affine { c, a, e }
+    }
+}
+
+impl<const N: usize> Div for Affine<N> {
+    type Output = Self;
+    fn div(self, o: Self) -> Self {
+        Affine::from_interval(self.range() / o.range())
+    }
+}
+
+impl<const N: usize> Scalar for Affine<N> {
+    fn cst(v: f64) -> Self {
+        Affine::from_interval(Interval::point(v))
+    }
+    fn enclose(_nearest: f64, lo: f64, hi: f64) -> Self {
+        Affine::from_interval(Interval::new(lo, hi))
+    }
+    fn sqr(self) -> Self {
+        self * self
+    }
+    fn powi(self, n: i32) -> Self {
+        self.through_interval(|x| x.powi(n))
+    }
+    fn sqrt(self) -> Self {
+        self.through_interval(Interval::sqrt)
+    }
+    fn sin(self) -> Self {
+        let c = Interval::point(self.c);
+        self.linearised(c.sin(), c.cos())
+    }
+    fn cos(self) -> Self {
+        let c = Interval::point(self.c);
+        self.linearised(c.cos(), -c.sin())
+    }
+    fn tan(self) -> Self {
+        self.through_interval(Interval::tan)
+    }
+}
+
+/// Affine inputs for a box `x` and a measurement box `m`: noise symbols `0..NX` for the
+/// parameters, `NX..NX + NM` for the measurements (`N` must be `NX + NM`).
+pub fn affine_inputs<const NX: usize, const NM: usize, const N: usize>(
+    x: &[Interval; NX],
+    m: &[Interval; NM],
+) -> ([Affine<N>; NX], [Affine<N>; NM]) {
+    assert_eq!(N, NX + NM, "one noise symbol per input");
+    (
+        core::array::from_fn(|j| Affine::input(x[j], j)),
+        core::array::from_fn(|i| Affine::input(m[i], NX + i)),
+    )
+}
+
+/// The affine forms of `NR` residuals (noise symbols `0..NX` for the parameters, `NX..NX + NM`
+/// for the measurements, as [`affine_inputs`] makes them) as [`LinearEnclosure`]s.
+pub fn linear_enclosures<const NX: usize, const NM: usize, const NR: usize, const N: usize>(
+    forms: &[Affine<N>; NR],
+) -> [LinearEnclosure<NX, NM>; NR] {
+    assert_eq!(N, NX + NM, "one noise symbol per input");
+    core::array::from_fn(|r| LinearEnclosure {
+        c: forms[r].c,
+        gx: core::array::from_fn(|j| forms[r].a[j]),
+        gm: core::array::from_fn(|i| forms[r].a[NX + i]),
+        e: forms[r].e,
+    })
+}
+
+/// The intersection of the natural interval evaluation `natural` of every row with the ranges of
+/// its affine evaluation `affine` (both enclose the same quantities over the same boxes).
+pub fn intersect_rows<const NX: usize, const NM: usize, const NR: usize, const N: usize>(
+    natural: [Evaluation<Interval, NX, NM>; NR],
+    affine: &[Evaluation<Affine<N>, NX, NM>; NR],
+) -> [Evaluation<Interval, NX, NM>; NR] {
+    let both = |a: Interval, b: &Affine<N>| {
+        let t = a.intersection(b.range());
+        // Both contain the true range; an empty intersection can only come from a true range
+        // that is itself a single rounding-level point: keep the natural enclosure then.
+        if t.is_empty() {
+            a
+        } else {
+            t
+        }
+    };
+    core::array::from_fn(|r| Evaluation {
+        value: both(natural[r].value, &affine[r].value),
+        dx: core::array::from_fn(|j| both(natural[r].dx[j], &affine[r].dx[j])),
+        dm: core::array::from_fn(|i| both(natural[r].dm[i], &affine[r].dm[i])),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Scalar;
+
+    fn chain<S: Scalar>(x: [S; 3]) -> S {
+        // A rotation chain: the wrapping effect of intervals, not of affine forms.
+        let [a, b, r] = x;
+        let (u, v) = (r * a.cos(), r * a.sin());
+        let (w, z) = (u * b.cos() - v * b.sin(), u * b.sin() + v * b.cos());
+        w * w + z * z - r * r + w * S::cst(0.5) - z / S::cst(3.0)
+    }
+
+    #[test]
+    fn affine_forms_enclose_point_values_and_beat_intervals_on_rotations() {
+        let boxes = [
+            [
+                Interval::new(0.3, 0.31),
+                Interval::new(-1.2, -1.19),
+                Interval::new(100.0, 100.5),
+            ],
+            [
+                Interval::new(-2.0, 1.0),
+                Interval::new(0.0, 3.0),
+                Interval::new(-1.0, 2.0),
+            ],
+            [
+                Interval::point(0.7),
+                Interval::new(1.0, 1.0 + 1e-9),
+                Interval::new(5.0, 5.0),
+            ],
+        ];
+        for (n, b) in boxes.iter().enumerate() {
+            let inputs: [Affine<3>; 3] = core::array::from_fn(|k| Affine::input(b[k], k));
+            let aff = chain(inputs).range();
+            let iv = chain(*b);
+            for s in 0..=1000 {
+                let t = s as f64 / 1000.0;
+                let p: [f64; 3] = core::array::from_fn(|k| {
+                    let f = ((s * (k + 3) * 7919) % 1001) as f64 / 1000.0;
+                    b[k].inf() + if k == 0 { t } else { f } * (b[k].sup() - b[k].inf())
+                });
+                let v = chain(p);
+                assert!(aff.contains(v), "box {n}: {v} outside {aff}");
+                assert!(iv.contains(v));
+            }
+            if n == 0 {
+                // The true range is about 50 wide; intervals lose the rotation invariance.
+                assert!(aff.wid() < 0.5 * iv.wid(), "affine {aff} vs interval {iv}");
+            }
+        }
+    }
+
+    #[test]
+    fn products_of_correlated_forms_cancel() {
+        let x: Affine<1> = Affine::input(Interval::new(1.0, 3.0), 0);
+        let d = (x - x).range();
+        assert!(d.contains(0.0) && d.wid() < 1e-12, "{d}");
+        // x * x over [1, 3]: [-1 + ...]: contains [1, 9].
+        let sq = (x * x).range();
+        assert!(sq.inf() <= 1.0 && sq.sup() >= 9.0, "{sq}");
+    }
+}
