@@ -24,7 +24,7 @@
 //! lost: every step keeps all solutions of the box it started from (paper Section IV-A).
 
 use crate::affine::rounding;
-use crate::coupling::coupling_directions;
+use crate::coupling::{coupling_directions, Directions};
 use crate::interval::round::{add_up, mul_up};
 use crate::lp::{proves_infeasible, safe_lower_bound, LpBackend, LpStatus, Polyhedron};
 use crate::{Interval, LinearEnclosure, Relaxation, Settings, VectorModel};
@@ -333,37 +333,36 @@ where
             };
             frame.push_rows(&mut ws.poly, &mut row, &eq);
         }
-        if NR >= 2 {
+        // The coupling directions of this configuration (none for one row), used by both row
+        // families below.
+        let directions = if NR >= 2 {
             let b_mid: [[f64; NM]; NR] = core::array::from_fn(|r| e[r].dm.map(|v| v.mid()));
-            let rad = m.map(|v| v.rad());
-            for lambda in coupling_directions(&b_mid, &rad).as_slice() {
-                let l = lambda.map(Interval::point);
-                let combine =
-                    |v: &[Interval; NR]| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * v[r]);
-                let b: [Interval; NM] = core::array::from_fn(|i| {
-                    (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dm[i])
-                });
-                let over = |v: &[Interval; NR]| centred_over_measurement(combine(v), m, &m_mid, &b);
-                let eq = ScalarRow {
-                    a: core::array::from_fn(|j| {
-                        (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dx[j])
-                    }),
-                    at_centre: over(&at_centre),
-                    at_corners: [over(&at_corners[0]), over(&at_corners[1])],
-                };
-                frame.push_rows(&mut ws.poly, &mut row, &eq);
-            }
+            coupling_directions(&b_mid, &m.map(|v| v.rad()))
+        } else {
+            Directions::new()
+        };
+        for lambda in directions.as_slice() {
+            let l = lambda.map(Interval::point);
+            let combine = |v: &[Interval; NR]| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * v[r]);
+            let b: [Interval; NM] = core::array::from_fn(|i| {
+                (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dm[i])
+            });
+            let over = |v: &[Interval; NR]| centred_over_measurement(combine(v), m, &m_mid, &b);
+            let eq = ScalarRow {
+                a: core::array::from_fn(|j| {
+                    (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dx[j])
+                }),
+                at_centre: over(&at_centre),
+                at_corners: [over(&at_corners[0]), over(&at_corners[1])],
+            };
+            frame.push_rows(&mut ws.poly, &mut row, &eq);
         }
         if let Some(forms) = model.linear_enclosures(x, m) {
             for form in &forms {
                 push_enclosure_rows(&mut ws.poly, &mut row, form, &rad_x);
             }
-            if NR >= 2 {
-                let b_mid: [[f64; NM]; NR] = core::array::from_fn(|r| e[r].dm.map(|v| v.mid()));
-                let rad = m.map(|v| v.rad());
-                for lambda in coupling_directions(&b_mid, &rad).as_slice() {
-                    push_enclosure_rows(&mut ws.poly, &mut row, &combine(lambda, &forms), &rad_x);
-                }
+            for lambda in directions.as_slice() {
+                push_enclosure_rows(&mut ws.poly, &mut row, &combine(lambda, &forms), &rad_x);
             }
         }
     }

@@ -21,6 +21,8 @@ pub struct Polyhedron {
     generation: u64,
     /// Per variable: `Some(m)` when it is frozen with `|y_j| <= m` (see [`Polyhedron::freeze`]).
     frozen: Vec<Option<f64>>,
+    /// A reusable copy of the row being pushed, when columns are frozen.
+    scratch: Vec<f64>,
 }
 
 impl Polyhedron {
@@ -66,7 +68,9 @@ impl Polyhedron {
         debug_assert_eq!(a.len(), self.n);
         if self.frozen.iter().any(Option::is_some) {
             let mut b = b;
-            let mut row = a.to_vec();
+            let mut row = core::mem::take(&mut self.scratch);
+            row.clear();
+            row.extend_from_slice(a);
             for (j, f) in self.frozen.iter().enumerate() {
                 if let Some(mag) = f {
                     b = crate::interval::round::add_up(
@@ -76,7 +80,9 @@ impl Polyhedron {
                     row[j] = 0.0;
                 }
             }
-            return self.push_scaled(&row, b);
+            let kept = self.push_scaled(&row, b);
+            self.scratch = row;
+            return kept;
         }
         self.push_scaled(a, b)
     }
