@@ -15,6 +15,12 @@
 //!      `Σ inf(A_kj)(x_j - v_j) <= -inf f(v, M_k)` and `-Σ sup(A_kj)(x_j - v_j) <= sup f(v, M_k)`;
 //!      symmetrically at `v = sup(x)`.
 //!
+//!    * Affine forms, for models that provide them ([`VectorModel::linear_enclosures`]): each
+//!      residual (and each coupling combination) satisfies `|c + Σ gx_j ε_j| <= Σ |gm_i| + e` at
+//!      every solution, with `ε_j = y_j / rad(x_j)`. These rows then replace the two above: over a
+//!      long kinematic chain the interval Jacobian overestimates 14-41x where the affine form
+//!      overestimates ~2x, and the LPs get 3-4x fewer rows.
+//!
 //!    Right-hand sides are rounded outward, so every row holds exactly for every solution.
 //! 3. 2n linear programs: min and max of each `y_j` over the polyhedron; each LP answer is turned
 //!    into a rigorous bound by [`crate::lp::safe_lower_bound`], and the box is intersected with it
@@ -304,7 +310,6 @@ where
         }
     }
     let mut row = [0.0; NX];
-    let unused = [Interval::ZERO; NR];
     // The affine forms' noise symbols: x_j = mid(x_j) + rad(x_j) ε_j, i.e. y_j = rad(x_j) ε_j.
     let rad_x = x.map(|v| v.rad());
     for (k, m) in measurements.iter().enumerate() {
@@ -312,51 +317,15 @@ where
         if e.iter().any(|r| !r.value.contains(0.0)) {
             return Err(EmptinessProof::CheapRejection { measurement: k });
         }
-        let m_mid: [Interval; NM] = core::array::from_fn(|i| Interval::point(m[i].mid()));
-        // Values at (centre, mid M) and (corner, mid M), every row at once.
-        let at_centre = if frame.krawczyk() {
-            model.residuals_interval(&frame.xm_iv, &m_mid)
-        } else {
-            unused
-        };
-        let at_corners: [[Interval; NR]; 2] = if frame.corners() {
-            core::array::from_fn(|c| model.residuals_interval(&frame.corner_iv[c], &m_mid))
-        } else {
-            [unused; 2]
-        };
-        for r in 0..NR {
-            let over = |v: Interval| centred_over_measurement(v, m, &m_mid, &e[r].dm);
-            let eq = ScalarRow {
-                a: e[r].dx,
-                at_centre: over(at_centre[r]),
-                at_corners: [over(at_corners[0][r]), over(at_corners[1][r])],
-            };
-            frame.push_rows(&mut ws.poly, &mut row, &eq);
-        }
-        // The coupling directions of this configuration (none for one row), used by both row
-        // families below.
+        // The coupling directions of this configuration (none for one row).
         let directions = if NR >= 2 {
             let b_mid: [[f64; NM]; NR] = core::array::from_fn(|r| e[r].dm.map(|v| v.mid()));
             coupling_directions(&b_mid, &m.map(|v| v.rad()))
         } else {
             Directions::new()
         };
-        for lambda in directions.as_slice() {
-            let l = lambda.map(Interval::point);
-            let combine = |v: &[Interval; NR]| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * v[r]);
-            let b: [Interval; NM] = core::array::from_fn(|i| {
-                (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dm[i])
-            });
-            let over = |v: &[Interval; NR]| centred_over_measurement(combine(v), m, &m_mid, &b);
-            let eq = ScalarRow {
-                a: core::array::from_fn(|j| {
-                    (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dx[j])
-                }),
-                at_centre: over(&at_centre),
-                at_corners: [over(&at_corners[0]), over(&at_corners[1])],
-            };
-            frame.push_rows(&mut ws.poly, &mut row, &eq);
-        }
+        // With affine forms (measured 6-20x tighter than the interval Jacobian over a long chain's
+        // prior, and no looser near the fixed point) their rows replace the interval relaxation.
         if let Some(forms) = model.linear_enclosures(x, m) {
             for form in &forms {
                 push_enclosure_rows(&mut ws.poly, &mut row, form, &rad_x);
@@ -364,9 +333,61 @@ where
             for lambda in directions.as_slice() {
                 push_enclosure_rows(&mut ws.poly, &mut row, &combine(lambda, &forms), &rad_x);
             }
+        } else {
+            push_relaxation_rows(model, &frame, m, &e, &directions, &mut ws.poly, &mut row);
         }
     }
     bound_by_linear_programs(x, &frame.xm_iv, ws)
+}
+
+/// The interval relaxation rows ([`Relaxation`]) of one configuration: each of its rows and each
+/// combination `λ·f` along its coupling directions.
+fn push_relaxation_rows<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    frame: &StepFrame<NX>,
+    m: &[Interval; NM],
+    e: &[crate::Evaluation<Interval, NX, NM>; NR],
+    directions: &Directions<NR>,
+    poly: &mut Polyhedron,
+    row: &mut [f64; NX],
+) where
+    M: VectorModel<NX, NM, NR>,
+{
+    let unused = [Interval::ZERO; NR];
+    let m_mid: [Interval; NM] = core::array::from_fn(|i| Interval::point(m[i].mid()));
+    // Values at (centre, mid M) and (corner, mid M), every row at once.
+    let at_centre = if frame.krawczyk() {
+        model.residuals_interval(&frame.xm_iv, &m_mid)
+    } else {
+        unused
+    };
+    let at_corners: [[Interval; NR]; 2] = if frame.corners() {
+        core::array::from_fn(|c| model.residuals_interval(&frame.corner_iv[c], &m_mid))
+    } else {
+        [unused; 2]
+    };
+    for r in 0..NR {
+        let over = |v: Interval| centred_over_measurement(v, m, &m_mid, &e[r].dm);
+        let eq = ScalarRow {
+            a: e[r].dx,
+            at_centre: over(at_centre[r]),
+            at_corners: [over(at_corners[0][r]), over(at_corners[1][r])],
+        };
+        frame.push_rows(poly, row, &eq);
+    }
+    for lambda in directions.as_slice() {
+        let l = lambda.map(Interval::point);
+        let combine = |v: &[Interval; NR]| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * v[r]);
+        let b: [Interval; NM] =
+            core::array::from_fn(|i| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dm[i]));
+        let over = |v: &[Interval; NR]| centred_over_measurement(combine(v), m, &m_mid, &b);
+        let eq = ScalarRow {
+            a: core::array::from_fn(|j| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dx[j])),
+            at_centre: over(&at_centre),
+            at_corners: [over(&at_corners[0]), over(&at_corners[1])],
+        };
+        frame.push_rows(poly, row, &eq);
+    }
 }
 
 /// `Σ_r λ_r F_r` for linear enclosures `F_r` of the rows of one configuration, with every

@@ -21,24 +21,38 @@
 //! elimination with partial pivoting every [`REFACTOR_EVERY`] pivots and at each start. All buffers
 //! are reused: no allocation after the first call of a size.
 
+use super::basis::{Basis, Constraints};
+use super::scaled_simplex::ScaledSimplex;
 use super::{LpBackend, LpStatus, Polyhedron};
-use crate::linalg::gauss_jordan_inverse;
 
 /// The dense simplex engine (see the module documentation).
 #[derive(Clone, Debug, Default)]
 pub struct DenseSimplex {
-    basis: Vec<usize>,
-    in_basis: Vec<bool>,
-    a_w: Vec<f64>,
-    inv: Vec<f64>,
-    y: Vec<f64>,
-    lambda: Vec<f64>,
-    w: Vec<f64>,
-    a_k: Vec<f64>,
+    b: Basis,
+    /// The engine for LPs of more than [`SMALL_DIM`] variables.
+    large: ScaledSimplex,
     /// The polyhedron generation of the last optimal solve (its basis can warm-start the next).
     warm: Option<u64>,
     /// Pivots made by the last call (for profiling).
     pub last_pivots: usize,
+}
+
+/// LPs with more variables than this go to [`ScaledSimplex`]: the unscaled walk below is measured
+/// faster on the 7 variables of a Gough leg and never stalls there, while long kinematic chains (27
+/// and more variables, thousands of nearly parallel rows) need scaling and stall handling.
+pub const SMALL_DIM: usize = 16;
+
+/// The constraints of `p` as this engine sees them (unscaled).
+struct Plain<'a>(&'a Polyhedron);
+
+impl Constraints for Plain<'_> {
+    fn constraint(&self, k: usize, a: &mut [f64]) -> f64 {
+        constraint(self.0, k, a)
+    }
+
+    fn rhs(&self, k: usize) -> f64 {
+        rhs(self.0, k)
+    }
 }
 
 /// Violations below this (relative to the row scale, rows are normalised to max |coef| ~ 1) are
@@ -115,88 +129,36 @@ fn along(p: &Polyhedron, k: usize, d: &[f64]) -> f64 {
 }
 
 impl DenseSimplex {
-    fn resize(&mut self, n: usize) {
-        self.basis.resize(n, 0);
-        self.a_w.resize(n * n, 0.0);
-        self.inv.resize(n * n, 0.0);
-        self.y.resize(n, 0.0);
-        self.lambda.resize(n, 0.0);
-        self.w.resize(n, 0.0);
-        self.a_k.resize(n, 0.0);
-    }
-
-    fn set_basis_mask(&mut self, constraints: usize) {
-        self.in_basis.clear();
-        self.in_basis.resize(constraints, false);
-        for &k in &self.basis {
-            self.in_basis[k] = true;
-        }
-    }
-
-    /// Recomputes `inv = A_W⁻¹`; false if `A_W` is (numerically) singular.
-    fn invert(&mut self, p: &Polyhedron) -> bool {
+    /// The unscaled solve, for at most [`SMALL_DIM`] variables.
+    fn minimize_small(
+        &mut self,
+        p: &Polyhedron,
+        c: &[f64],
+        dual: &mut [f64],
+        primal: &mut [f64],
+    ) -> LpStatus {
         let n = p.dim();
-        for r in 0..n {
-            constraint(p, self.basis[r], &mut self.a_k);
-            self.a_w[r * n..(r + 1) * n].copy_from_slice(&self.a_k);
-        }
-        gauss_jordan_inverse(n, &mut self.a_w, &mut self.inv)
-    }
-
-    /// `y = A_W⁻¹ b_W`.
-    fn vertex(&mut self, p: &Polyhedron) {
-        let n = p.dim();
-        for j in 0..n {
-            self.y[j] = (0..n)
-                .map(|r| self.inv[j * n + r] * rhs(p, self.basis[r]))
-                .sum();
-        }
-    }
-
-    /// `λ_W = -A_W⁻ᵀ c` (not clipped).
-    fn multipliers(&mut self, n: usize, c: &[f64]) {
-        for r in 0..n {
-            self.lambda[r] = -(0..n).map(|j| self.inv[j * n + r] * c[j]).sum::<f64>();
-        }
-    }
-
-    /// `w = A_W⁻ᵀ a_k` for the constraint in `self.a_k`.
-    fn transformed_row(&mut self, n: usize) {
-        for r in 0..n {
-            self.w[r] = (0..n).map(|j| self.inv[j * n + r] * self.a_k[j]).sum();
-        }
-    }
-
-    /// Replaces basis position `r` by constraint `k` (with `w` already computed for `a_k`):
-    /// `inv' = inv - inv e_r (w - e_r)ᵀ / w_r` (Sherman–Morrison).
-    fn replace(&mut self, n: usize, r: usize, k: usize) {
-        let wr = self.w[r];
-        for j in 0..n {
-            let u = self.inv[j * n + r];
-            if u != 0.0 {
-                for col in 0..n {
-                    let v = if col == r {
-                        self.w[col] - 1.0
-                    } else {
-                        self.w[col]
-                    };
-                    self.inv[j * n + col] -= u * v / wr;
-                }
+        self.b.resize(n);
+        dual.iter_mut().for_each(|v| *v = 0.0);
+        self.b.pivots = 0;
+        if self.warm == Some(p.generation()) && self.b.in_basis.len() == p.rows() + 2 * n {
+            if let Some(status) = self.primal_simplex(p, c, dual, primal) {
+                return status;
             }
+            dual.iter_mut().for_each(|v| *v = 0.0);
         }
-        self.in_basis[self.basis[r]] = false;
-        self.in_basis[k] = true;
-        self.basis[r] = k;
-        self.last_pivots += 1;
+        let status = self.dual_simplex(p, c, dual, primal);
+        self.warm = (status == LpStatus::Optimal).then_some(p.generation());
+        status
     }
 
     fn export(&self, m: usize, dual: &mut [f64], primal: &mut [f64]) {
-        for (r, &k) in self.basis.iter().enumerate() {
+        for (r, &k) in self.b.basis.iter().enumerate() {
             if k < m {
-                dual[k] = self.lambda[r].max(0.0);
+                dual[k] = self.b.lambda[r].max(0.0);
             }
         }
-        primal.copy_from_slice(&self.y);
+        primal.copy_from_slice(&self.b.y);
     }
 
     /// The cold-start dual simplex (see the module documentation).
@@ -209,33 +171,33 @@ impl DenseSimplex {
     ) -> LpStatus {
         let (n, m) = (p.dim(), p.rows());
         for j in 0..n {
-            self.basis[j] = m + 2 * j + usize::from(c[j] > 0.0);
+            self.b.basis[j] = m + 2 * j + usize::from(c[j] > 0.0);
         }
-        self.set_basis_mask(m + 2 * n);
+        self.b.set_mask(m + 2 * n);
         let mut since_refactor = REFACTOR_EVERY;
         let mut degenerate = 0usize;
         let max_pivots = 10 * (n + m) + 50;
         let mut status = LpStatus::Failed;
         for _ in 0..max_pivots {
             if since_refactor >= REFACTOR_EVERY {
-                if !self.invert(p) {
+                if !self.b.invert(&Plain(p)) {
                     break;
                 }
                 since_refactor = 0;
             }
-            self.vertex(p);
-            self.multipliers(n, c);
-            self.lambda.iter_mut().for_each(|l| *l = l.max(0.0));
+            self.b.vertex(&Plain(p));
+            self.b.multipliers(c);
+            self.b.lambda.iter_mut().for_each(|l| *l = l.max(0.0));
             // Most violated constraint outside the basis (Dantzig), or the first violated one once
             // degenerate pivots pile up (Bland's rule, which cannot cycle).
             let bland = degenerate > 2 * n;
             let mut entering = None;
             let mut worst = FEASIBILITY_TOL;
             for k in 0..m + 2 * n {
-                if self.in_basis[k] {
+                if self.b.in_basis[k] {
                     continue;
                 }
-                let v = violation(p, k, &self.y);
+                let v = violation(p, k, &self.b.y);
                 if v > worst {
                     worst = v;
                     entering = Some(k);
@@ -249,17 +211,17 @@ impl DenseSimplex {
                 break;
             };
             // w = A_W⁻ᵀ a_k; leave the basis constraint with the smallest ratio λ_r / w_r, w_r > 0.
-            constraint(p, k, &mut self.a_k);
-            self.transformed_row(n);
+            constraint(p, k, &mut self.b.a_k);
+            self.b.transformed_row();
             let mut leave: Option<usize> = None;
             let mut best = f64::INFINITY;
             for r in 0..n {
-                if self.w[r] > PIVOT_TOL {
-                    let t = self.lambda[r] / self.w[r];
+                if self.b.w[r] > PIVOT_TOL {
+                    let t = self.b.lambda[r] / self.b.w[r];
                     // Bland: among (near-)ties, the constraint with the smallest index leaves.
                     let tie = bland
                         && leave.is_some_and(|l| {
-                            t <= best * (1.0 + 1e-12) + 1e-300 && self.basis[r] < self.basis[l]
+                            t <= best * (1.0 + 1e-12) + 1e-300 && self.b.basis[r] < self.b.basis[l]
                         });
                     if t < best || tie {
                         best = best.min(t);
@@ -275,15 +237,15 @@ impl DenseSimplex {
                     dual[k] = 1.0;
                 }
                 for r in 0..n {
-                    let kr = self.basis[r];
+                    let kr = self.b.basis[r];
                     if kr < m {
-                        dual[kr] = (-self.w[r]).max(0.0);
+                        dual[kr] = (-self.b.w[r]).max(0.0);
                     }
                 }
-                primal.copy_from_slice(&self.y);
+                primal.copy_from_slice(&self.b.y);
                 return LpStatus::Infeasible;
             };
-            self.replace(n, r, k);
+            self.b.replace(r, k);
             since_refactor += 1;
         }
         self.export(m, dual, primal);
@@ -300,11 +262,11 @@ impl DenseSimplex {
         primal: &mut [f64],
     ) -> Option<LpStatus> {
         let (n, m) = (p.dim(), p.rows());
-        if !self.invert(p) {
+        if !self.b.invert(&Plain(p)) {
             return None;
         }
-        self.vertex(p);
-        if (0..m + 2 * n).any(|k| !self.in_basis[k] && violation(p, k, &self.y) > WARM_TOL) {
+        self.b.vertex(&Plain(p));
+        if (0..m + 2 * n).any(|k| !self.b.in_basis[k] && violation(p, k, &self.b.y) > WARM_TOL) {
             return None;
         }
         let mut since_refactor = 0;
@@ -312,22 +274,22 @@ impl DenseSimplex {
         let max_pivots = 10 * (n + m) + 50;
         for _ in 0..max_pivots {
             if since_refactor >= REFACTOR_EVERY {
-                if !self.invert(p) {
+                if !self.b.invert(&Plain(p)) {
                     return None;
                 }
                 since_refactor = 0;
-                self.vertex(p);
+                self.b.vertex(&Plain(p));
             }
-            self.multipliers(n, c);
+            self.b.multipliers(c);
             let bland = degenerate > 2 * n;
             // Leave the constraint with the most negative multiplier (Bland: the first negative).
             let mut leave = None;
             let mut most = -FEASIBILITY_TOL;
             for r in 0..n {
-                if self.lambda[r] < most
-                    || (bland && self.lambda[r] < -FEASIBILITY_TOL && leave.is_none())
+                if self.b.lambda[r] < most
+                    || (bland && self.b.lambda[r] < -FEASIBILITY_TOL && leave.is_none())
                 {
-                    most = self.lambda[r];
+                    most = self.b.lambda[r];
                     leave = Some(r);
                     if bland {
                         break;
@@ -341,17 +303,17 @@ impl DenseSimplex {
             // Edge direction d = -A_W⁻¹ e_r: keeps the other basis constraints active and moves
             // inside constraint r; c·d = λ_r < 0.
             for j in 0..n {
-                self.a_w[j] = -self.inv[j * n + r];
+                self.b.a_w[j] = -self.b.inv[j * n + r];
             }
             let mut enter = None;
             let mut best = f64::INFINITY;
             for k in 0..m + 2 * n {
-                if self.in_basis[k] {
+                if self.b.in_basis[k] {
                     continue;
                 }
-                let ad = along(p, k, &self.a_w[..n]);
+                let ad = along(p, k, &self.b.a_w[..n]);
                 if ad > PIVOT_TOL {
-                    let slack = -violation_unscaled(p, k, &self.y);
+                    let slack = -violation_unscaled(p, k, &self.b.y);
                     let t = slack.max(0.0) / ad;
                     if t < best
                         || (bland && t <= best * (1.0 + 1e-12) && enter.is_some_and(|e| k < e))
@@ -364,14 +326,14 @@ impl DenseSimplex {
             let k = enter?;
             degenerate = if best <= 1e-14 { degenerate + 1 } else { 0 };
             for j in 0..n {
-                self.y[j] += best * self.a_w[j];
+                self.b.y[j] += best * self.b.a_w[j];
             }
-            constraint(p, k, &mut self.a_k);
-            self.transformed_row(n);
-            if self.w[r].abs() < PIVOT_TOL {
+            constraint(p, k, &mut self.b.a_k);
+            self.b.transformed_row();
+            if self.b.w[r].abs() < PIVOT_TOL {
                 return None;
             }
-            self.replace(n, r, k);
+            self.b.replace(r, k);
             since_refactor += 1;
         }
         None
@@ -407,17 +369,16 @@ impl LpBackend for DenseSimplex {
         primal: &mut [f64],
     ) -> LpStatus {
         let n = p.dim();
-        self.resize(n);
-        dual.iter_mut().for_each(|v| *v = 0.0);
-        self.last_pivots = 0;
-        if self.warm == Some(p.generation()) && self.in_basis.len() == p.rows() + 2 * n {
-            if let Some(status) = self.primal_simplex(p, c, dual, primal) {
-                return status;
-            }
-            dual.iter_mut().for_each(|v| *v = 0.0);
-        }
-        let status = self.dual_simplex(p, c, dual, primal);
-        self.warm = (status == LpStatus::Optimal).then_some(p.generation());
+        let status = if n > SMALL_DIM {
+            self.large.minimize(p, c, dual, primal)
+        } else {
+            self.minimize_small(p, c, dual, primal)
+        };
+        self.last_pivots = if n > SMALL_DIM {
+            self.large.pivots()
+        } else {
+            self.b.pivots
+        };
         status
     }
 }

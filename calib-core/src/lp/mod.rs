@@ -8,8 +8,10 @@
 //! arithmetic. A wrong, inaccurate or failed solve can only weaken the bound, never invalidate it.
 
 mod clarabel_backend;
+mod basis;
 mod dense_simplex;
 mod polyhedron;
+mod scaled_simplex;
 mod safe_bound;
 
 pub use clarabel_backend::ClarabelLp;

@@ -155,7 +155,7 @@ impl Polyhedron {
 
 /// `2^-e` such that `max * 2^-e` lies in `[0.5, 1)`: an exact scaling, computed from the exponent
 /// bits (no libm call). Subnormal or huge `max` is left unscaled.
-fn power_of_two_scale(max: f64) -> f64 {
+pub(super) fn power_of_two_scale(max: f64) -> f64 {
     let biased = ((max.to_bits() >> 52) & 0x7ff) as i64;
     // max = 1.f * 2^(biased - 1023), so e = biased - 1022 puts it in [0.5, 1).
     let e = biased - 1022;
