@@ -22,7 +22,7 @@
 //! the natural interval evaluation (both are enclosures).
 
 use crate::interval::round::{add_up, mul_up};
-use crate::{Evaluation, Interval, LinearEnclosure, Scalar};
+use crate::{Interval, LinearEnclosure, Scalar};
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
 /// An affine form over `N` noise symbols (see the module documentation).
@@ -238,29 +238,6 @@ pub fn linear_enclosures<const NX: usize, const NM: usize, const NR: usize, cons
         gx: core::array::from_fn(|j| forms[r].a[j]),
         gm: core::array::from_fn(|i| forms[r].a[NX + i]),
         e: forms[r].e,
-    })
-}
-
-/// The intersection of the natural interval evaluation `natural` of every row with the ranges of
-/// its affine evaluation `affine` (both enclose the same quantities over the same boxes).
-pub fn intersect_rows<const NX: usize, const NM: usize, const NR: usize, const N: usize>(
-    natural: [Evaluation<Interval, NX, NM>; NR],
-    affine: &[Evaluation<Affine<N>, NX, NM>; NR],
-) -> [Evaluation<Interval, NX, NM>; NR] {
-    let both = |a: Interval, b: &Affine<N>| {
-        let t = a.intersection(b.range());
-        // Both contain the true range; an empty intersection can only come from a true range
-        // that is itself a single rounding-level point: keep the natural enclosure then.
-        if t.is_empty() {
-            a
-        } else {
-            t
-        }
-    };
-    core::array::from_fn(|r| Evaluation {
-        value: both(natural[r].value, &affine[r].value),
-        dx: core::array::from_fn(|j| both(natural[r].dx[j], &affine[r].dx[j])),
-        dm: core::array::from_fn(|i| both(natural[r].dm[i], &affine[r].dm[i])),
     })
 }
 

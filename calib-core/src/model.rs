@@ -124,19 +124,6 @@ pub trait VectorModel<const NX: usize, const NM: usize, const NR: usize> {
         self.evaluate_rows(x, m).map(|e| e.dm)
     }
 
-    /// Enclosures of value and both Jacobians of every row over the boxes, as tight as the model
-    /// can make them: what the Newton step linearises with. The default is
-    /// [`VectorModel::evaluate_rows_interval`]; `#[interval_model]` vector models intersect it
-    /// with an evaluation in affine arithmetic ([`crate::affine`]), which keeps the correlations
-    /// that a chain of rotations loses in interval arithmetic.
-    fn evaluate_rows_tight(
-        &self,
-        x: &[Interval; NX],
-        m: &[Interval; NM],
-    ) -> [Evaluation<Interval, NX, NM>; NR] {
-        self.evaluate_rows_interval(x, m)
-    }
-
     /// Linear enclosures of every row over the boxes (see [`LinearEnclosure`]), when the model can
     /// compute them (`#[interval_model]` vector models do, in affine arithmetic); `None` by
     /// default. The Newton step adds their rows to the polyhedron.
@@ -164,6 +151,19 @@ pub struct LinearEnclosure<const NX: usize, const NM: usize> {
     pub gm: [f64; NM],
     /// The error radius (`>= 0`).
     pub e: f64,
+}
+
+impl<const NX: usize, const NM: usize> LinearEnclosure<NX, NM> {
+    /// The range of the form over the boxes: `c ± (Σ|gx_j| + Σ|gm_i| + e)`, rounded outward.
+    pub fn range(&self) -> Interval {
+        use crate::interval::round::add_up;
+        let r = self
+            .gx
+            .iter()
+            .chain(&self.gm)
+            .fold(self.e, |acc, g| add_up(acc, g.abs()));
+        Interval::point(self.c) + Interval::new(-r, r)
+    }
 }
 
 impl<T: Model<NX, NM> + ?Sized, const NX: usize, const NM: usize> VectorModel<NX, NM, 1> for T {

@@ -333,8 +333,8 @@ fn a_shifted_configuration_is_named_and_tolerated_as_an_outlier() {
 }
 
 /// Over random boxes, every point value of every row lies in its linear enclosure evaluated (in
-/// interval arithmetic) at the point's noise symbols, and the tight evaluation encloses the
-/// point values and Jacobians as the interval one does.
+/// interval arithmetic) at the point's noise symbols, and the range of the form contains it too
+/// (what the Newton step's cheap rejection uses).
 fn check_linear_enclosures<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     rng: &mut StdRng,
@@ -351,8 +351,6 @@ fn check_linear_enclosures<M, const NX: usize, const NM: usize, const NR: usize>
         let forms = model
             .linear_enclosures(&xb, &mb)
             .expect("a generated vector model");
-        let tight = model.evaluate_rows_tight(&xb, &mb);
-        let natural = model.evaluate_rows_interval(&xb, &mb);
         for _ in 0..20 {
             let x = random_point(rng, &xb);
             let m = random_point(rng, &mb);
@@ -379,14 +377,7 @@ fn check_linear_enclosures<M, const NX: usize, const NM: usize, const NR: usize>
                     "row {r}: {} outside {v}",
                     p[r].value
                 );
-                assert!(tight[r].value.contains(p[r].value));
-                assert!(tight[r].value.is_subset_of(natural[r].value));
-                for j in 0..NX {
-                    assert!(tight[r].dx[j].contains(p[r].dx[j]), "row {r} d/dx{j}");
-                }
-                for i in 0..NM {
-                    assert!(tight[r].dm[i].contains(p[r].dm[i]), "row {r} d/dm{i}");
-                }
+                assert!(f.range().contains(p[r].value), "row {r}: range");
             }
         }
     }

@@ -194,11 +194,14 @@ fn vector_model(
     let iv = quote!(::calib_core::Interval);
     quote! {
         #[allow(clippy::all, clippy::pedantic, unused_variables, non_snake_case)]
-        // Not `#[inline]`: a chain of rotations differentiated in every parameter is a large body,
+        // Never inlined: a chain of rotations differentiated in every parameter is a large body,
         // and inlining it into every call site of the kernel multiplies compile time for no gain.
         impl #name {
+            #[inline(never)]
             fn __values<#bound>(#args) -> [#s; #nr] { #values }
+            #[inline(never)]
             fn __jacobians_m<#bound>(#args) -> [[#s; #nm]; #nr] { #jacobians_m }
+            #[inline(never)]
             fn __rows<#bound>(#args) -> [::calib_core::Evaluation<#s, #nx, #nm>; #nr] { #rows }
         }
 
@@ -230,14 +233,6 @@ fn vector_model(
             #[inline]
             fn jacobians_m(&self, x: &[f64; #nx], m: &[f64; #nm]) -> [[f64; #nm]; #nr] {
                 Self::__jacobians_m(x, m)
-            }
-            fn evaluate_rows_tight(
-                &self,
-                x: &[#iv; #nx],
-                m: &[#iv; #nm],
-            ) -> [::calib_core::Evaluation<#iv, #nx, #nm>; #nr] {
-                let (ax, am) = ::calib_core::affine::affine_inputs::<#nx, #nm, #n_inputs>(x, m);
-                ::calib_core::affine::intersect_rows(Self::__rows(x, m), &Self::__rows(&ax, &am))
             }
             fn linear_enclosures(
                 &self,

@@ -97,6 +97,30 @@ impl Basis {
         }
     }
 
+    /// The dual simplex's entering constraint: outside the basis, the largest `violation(k)` above
+    /// `tolerance` (Dantzig), or the first one above it with `bland` (Bland's rule, which cannot
+    /// cycle); `None` when none is violated (the vertex is optimal).
+    pub fn most_violated(
+        &self,
+        tolerance: f64,
+        bland: bool,
+        violation: impl Fn(usize) -> f64,
+    ) -> Option<usize> {
+        let mut entering = None;
+        let mut worst = tolerance;
+        for k in (0..self.in_basis.len()).filter(|&k| !self.in_basis[k]) {
+            let v = violation(k);
+            if v > worst {
+                worst = v;
+                entering = Some(k);
+                if bland {
+                    break;
+                }
+            }
+        }
+        entering
+    }
+
     /// Replaces basis position `r` by constraint `k` (with `w` already computed for `a_k`):
     /// `inv' = inv - inv e_r (w - e_r)ᵀ / w_r` (Sherman–Morrison).
     pub fn replace(&mut self, r: usize, k: usize) {

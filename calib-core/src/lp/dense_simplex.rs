@@ -191,21 +191,9 @@ impl DenseSimplex {
             // Most violated constraint outside the basis (Dantzig), or the first violated one once
             // degenerate pivots pile up (Bland's rule, which cannot cycle).
             let bland = degenerate > 2 * n;
-            let mut entering = None;
-            let mut worst = FEASIBILITY_TOL;
-            for k in 0..m + 2 * n {
-                if self.b.in_basis[k] {
-                    continue;
-                }
-                let v = violation(p, k, &self.b.y);
-                if v > worst {
-                    worst = v;
-                    entering = Some(k);
-                    if bland {
-                        break;
-                    }
-                }
-            }
+            let entering = self
+                .b
+                .most_violated(FEASIBILITY_TOL, bland, |k| violation(p, k, &self.b.y));
             let Some(k) = entering else {
                 status = LpStatus::Optimal;
                 break;

@@ -7,12 +7,12 @@
 //! `c·y >= inf((c + Gᵀλ)·[lo, hi]) - sup(λ·g)` for every feasible `y`, evaluated in interval
 //! arithmetic. A wrong, inaccurate or failed solve can only weaken the bound, never invalidate it.
 
-mod clarabel_backend;
 mod basis;
+mod clarabel_backend;
 mod dense_simplex;
 mod polyhedron;
-mod scaled_simplex;
 mod safe_bound;
+mod scaled_simplex;
 
 pub use clarabel_backend::ClarabelLp;
 pub use dense_simplex::DenseSimplex;

@@ -17,8 +17,8 @@
 //! The answers are hints: [`super::safe_lower_bound`] checks the multipliers against the true rows
 //! and objective.
 
-use super::polyhedron::power_of_two_scale;
 use super::basis::{Basis, Constraints};
+use super::polyhedron::power_of_two_scale;
 use super::{LpStatus, Polyhedron};
 
 /// The engine (see the module documentation).
@@ -285,21 +285,9 @@ impl ScaledSimplex {
             // Most violated constraint outside the basis (Dantzig), or the first violated one once
             // degenerate pivots pile up even after the perturbation (Bland's rule: no cycling).
             let bland = degenerate > 2 * n;
-            let mut entering = None;
-            let mut worst = FEASIBILITY_TOL;
-            for k in 0..m + 2 * n {
-                if self.b.in_basis[k] {
-                    continue;
-                }
-                let v = violation(&self.scaled, p, k, &self.b.y);
-                if v > worst {
-                    worst = v;
-                    entering = Some(k);
-                    if bland {
-                        break;
-                    }
-                }
-            }
+            let entering = self.b.most_violated(FEASIBILITY_TOL, bland, |k| {
+                violation(&self.scaled, p, k, &self.b.y)
+            });
             let Some(k) = entering else {
                 status = LpStatus::Optimal;
                 break;
@@ -308,7 +296,8 @@ impl ScaledSimplex {
             // (Harris: the largest w_r among the ratios within tolerance of the smallest).
             constraint(&self.scaled, p, k, &mut self.b.a_k);
             self.b.transformed_row();
-            let eligible = |r: usize| self.b.w[r] > PIVOT_TOL && !self.scaled.pinned(self.b.basis[r]);
+            let eligible =
+                |r: usize| self.b.w[r] > PIVOT_TOL && !self.scaled.pinned(self.b.basis[r]);
             let bound = (0..n)
                 .filter(|&r| eligible(r))
                 .map(|r| (self.b.lambda[r] + HARRIS_TOL) / self.b.w[r])
@@ -509,4 +498,3 @@ impl ScaledSimplex {
         status
     }
 }
-
