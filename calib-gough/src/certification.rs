@@ -6,6 +6,7 @@ use crate::measurement::{leg_boxes, measured, Configuration, Uncertainty};
 use crate::report::{bounds, LegReport, Report};
 use crate::{GoughLeg, PARAMETER_NAMES};
 use calib_core::{certify, hull, pave, sweep, EmptinessProof, Hull, Interval, Settings, Status};
+use calib_pipeline::Outcome;
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -151,6 +152,28 @@ impl LegResult {
             paving: None,
             boxes: h.boxes_contracted,
             seconds: 0.0,
+        }
+    }
+
+    /// The leg as a robot-agnostic [`Outcome`] (for the shared sentences of
+    /// [`calib_pipeline::verdict`]).
+    pub fn outcome(&self) -> Outcome {
+        let vec = |b: [Interval; 7]| b.to_vec();
+        Outcome {
+            names: PARAMETER_NAMES.iter().map(|s| s.to_string()).collect(),
+            x0: vec(self.x0),
+            status: self.status,
+            emptiness: self.emptiness,
+            x1: self.x1.map(vec),
+            outer: self.outer.map(vec),
+            inner: self.inner.map(vec),
+            witness: self.witness.map(|w| w.to_vec()),
+            conflict: self.conflict.clone(),
+            outliers: self.outliers.clone(),
+            iterations: self.iterations,
+            converged: self.converged,
+            boxes: self.boxes,
+            seconds: self.seconds,
         }
     }
 

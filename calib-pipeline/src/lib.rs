@@ -9,9 +9,15 @@
 #![warn(missing_docs)]
 
 mod error;
+pub mod identify;
+pub mod lsq;
+mod outcome;
 mod output;
+pub mod report;
 mod table;
+pub mod verdict;
 
 pub use error::{read_text, toml_error, DataError, MAX_MAGNITUDE};
+pub use outcome::{certify_model, is_fixed, Depth, Outcome};
 pub use output::write_atomically;
 pub use table::{parse_number_table, NumberTable};

@@ -1,0 +1,247 @@
+//! One certified sub-problem of a robot (a Gough leg, an arm's whole chain), whatever its model:
+//! [`Outcome`] holds what the kernel proved in plain vectors, with the parameters' names, and
+//! [`certify_model`] produces it from any [`VectorModel`].
+
+use calib_core::{certify, hull, EmptinessProof, Interval, Settings, Status, VectorModel};
+use std::time::Instant;
+
+/// What is certified about one sub-problem (parameters in the model's units).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    /// The parameters' names, in model order.
+    pub names: Vec<String>,
+    /// The initial box.
+    pub x0: Vec<Interval>,
+    /// The verdict.
+    pub status: Status,
+    /// For `Empty`: what proved it.
+    pub emptiness: Option<EmptinessProof>,
+    /// The paper's fixed point (`None` when x0 was proved empty at once).
+    pub x1: Option<Vec<Interval>>,
+    /// The tightest certified outer box (`None` when empty).
+    pub outer: Option<Vec<Interval>>,
+    /// Certified inner bounds.
+    pub inner: Option<Vec<Interval>>,
+    /// A certified consistent parameter vector.
+    pub witness: Option<Vec<f64>>,
+    /// For an empty sub-problem: a minimal set of configurations (0-based) that cannot be fitted
+    /// together.
+    pub conflict: Option<Vec<usize>>,
+    /// With outliers tolerated: the configurations (0-based) proved to be outliers.
+    pub outliers: Vec<usize>,
+    /// Newton/LP steps to x1.
+    pub iterations: usize,
+    /// Whether the hull met its tolerance (`None` when only x1 was computed).
+    pub converged: Option<bool>,
+    /// Boxes contracted in total.
+    pub boxes: usize,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// How far to go: the paper's x1 alone, or the tight hull with its tolerance and budget.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Depth {
+    /// One contraction to the fixed point x1, with a witness and inner bounds.
+    Fast,
+    /// The tight hull ([`calib_core::hull`]) under the settings' tolerance and budget.
+    Hull,
+}
+
+/// Certifies `x0` against the measurement boxes (one per configuration).
+pub fn certify_model<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    names: &[String],
+    x0: &[Interval; NX],
+    boxes: &[[Interval; NM]],
+    depth: Depth,
+    settings: &Settings,
+) -> Outcome
+where
+    M: VectorModel<NX, NM, NR> + Sync,
+{
+    let t = Instant::now();
+    let vec = |b: [Interval; NX]| b.to_vec();
+    let mut out = match depth {
+        Depth::Fast => {
+            let c = certify(model, x0, boxes, settings);
+            let x1 = (c.status != Status::Empty).then(|| vec(c.outer));
+            Outcome {
+                names: names.to_vec(),
+                x0: x0.to_vec(),
+                status: c.status,
+                emptiness: c.emptiness,
+                outer: x1.clone(),
+                x1,
+                inner: c.inner.map(vec),
+                witness: c.witness.map(|w| w.to_vec()),
+                conflict: c.conflict,
+                outliers: c.outliers,
+                iterations: c.iterations,
+                converged: None,
+                boxes: 1,
+                seconds: 0.0,
+            }
+        }
+        Depth::Hull => {
+            let h = hull(model, x0, boxes, settings);
+            Outcome {
+                names: names.to_vec(),
+                x0: x0.to_vec(),
+                status: h.status,
+                emptiness: h.emptiness,
+                x1: h.x1.map(vec),
+                outer: (h.status != Status::Empty).then(|| vec(h.outer)),
+                inner: h.inner.map(vec),
+                witness: h.witness.map(|w| w.to_vec()),
+                conflict: h.conflict,
+                outliers: h.outliers,
+                iterations: h.iterations,
+                converged: Some(h.converged),
+                boxes: h.boxes_contracted,
+                seconds: 0.0,
+            }
+        }
+    };
+    out.seconds = t.elapsed().as_secs_f64();
+    out
+}
+
+impl Outcome {
+    /// The outer width over the inner width, per parameter, when both exist (`NaN` for a
+    /// parameter fixed in x0, whose widths are both zero).
+    pub fn width_ratios(&self) -> Option<Vec<f64>> {
+        let (outer, inner) = (self.outer.as_ref()?, self.inner.as_ref()?);
+        Some(
+            outer
+                .iter()
+                .zip(inner)
+                .map(|(o, i)| o.wid() / i.wid())
+                .collect(),
+        )
+    }
+
+    /// The parameters (index, which end) where the outer box reaches a face of x0. Parameters
+    /// fixed in x0 (zero width up to rounding) are left out.
+    pub fn x0_faces(&self) -> Vec<(usize, &'static str)> {
+        let Some(outer) = &self.outer else {
+            return Vec::new();
+        };
+        (0..self.x0.len())
+            .filter(|&j| !is_fixed(self.x0[j]))
+            .filter_map(|j| {
+                let lo = outer[j].inf() <= self.x0[j].inf();
+                let hi = outer[j].sup() >= self.x0[j].sup();
+                match (lo, hi) {
+                    (true, true) => Some((j, "both ends")),
+                    (true, false) => Some((j, "lower end")),
+                    (false, true) => Some((j, "upper end")),
+                    (false, false) => None,
+                }
+            })
+            .collect()
+    }
+
+    /// The outcome restricted to the parameters `index` (in that order), renamed `names`: for a
+    /// robot certified through a larger model (an arm padded with identity joints).
+    pub fn select(&self, index: &[usize], names: Vec<String>) -> Outcome {
+        let pick = |b: &Vec<Interval>| index.iter().map(|&j| b[j]).collect();
+        Outcome {
+            names,
+            x0: pick(&self.x0),
+            x1: self.x1.as_ref().map(pick),
+            outer: self.outer.as_ref().map(pick),
+            inner: self.inner.as_ref().map(pick),
+            witness: self
+                .witness
+                .as_ref()
+                .map(|w| index.iter().map(|&j| w[j]).collect()),
+            emptiness: match self.emptiness {
+                Some(EmptinessProof::EmptyIntersection { parameter }) => {
+                    Some(EmptinessProof::EmptyIntersection {
+                        parameter: index.iter().position(|&j| j == parameter).unwrap_or(0),
+                    })
+                }
+                other => other,
+            },
+            ..self.clone()
+        }
+    }
+
+    /// The same outcome with every interval mapped by `f(index, interval)` (to display units;
+    /// `f` must enclose, e.g. radians to degrees rounded outward) and the witness by `g`.
+    pub fn map_units(
+        &self,
+        f: impl Fn(usize, Interval) -> Interval,
+        g: impl Fn(usize, f64) -> f64,
+    ) -> Outcome {
+        let boxes = |b: &Vec<Interval>| b.iter().enumerate().map(|(j, v)| f(j, *v)).collect();
+        Outcome {
+            x0: boxes(&self.x0),
+            x1: self.x1.as_ref().map(boxes),
+            outer: self.outer.as_ref().map(boxes),
+            inner: self.inner.as_ref().map(boxes),
+            witness: self
+                .witness
+                .as_ref()
+                .map(|w| w.iter().enumerate().map(|(j, v)| g(j, *v)).collect()),
+            ..self.clone()
+        }
+    }
+}
+
+/// Whether a parameter is fixed: a point, or a sliver of a few ulps (a fixed value converted to
+/// other units, enclosed).
+pub fn is_fixed(v: Interval) -> bool {
+    v.wid() <= 1e-12 * v.mag().max(1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn outcome(x0: Vec<Interval>, outer: Vec<Interval>) -> Outcome {
+        Outcome {
+            names: (0..x0.len()).map(|j| format!("p{j}")).collect(),
+            x0,
+            status: Status::Consistent,
+            emptiness: None,
+            x1: Some(outer.clone()),
+            outer: Some(outer.clone()),
+            inner: Some(
+                outer
+                    .iter()
+                    .map(|v| Interval::mid_rad(v.mid(), v.rad() / 2.0))
+                    .collect(),
+            ),
+            witness: None,
+            conflict: None,
+            outliers: vec![],
+            iterations: 1,
+            converged: Some(true),
+            boxes: 1,
+            seconds: 0.0,
+        }
+    }
+
+    #[test]
+    fn faces_of_x0_skip_fixed_parameters_and_ratios_divide_widths() {
+        let x0 = vec![
+            Interval::new(-1.0, 1.0),
+            Interval::new(-1.0, 1.0),
+            Interval::point(2.0),
+        ];
+        let outer = vec![
+            Interval::new(-1.0, 0.5),
+            Interval::new(-0.5, 0.5),
+            Interval::point(2.0),
+        ];
+        let o = outcome(x0, outer);
+        assert_eq!(o.x0_faces(), vec![(0, "lower end")]);
+        let r = o.width_ratios().expect("inner and outer");
+        assert!((r[0] - 2.0).abs() < 1e-12 && (r[1] - 2.0).abs() < 1e-12);
+        let doubled = o.map_units(|_, v| v * Interval::point(2.0), |_, v| 2.0 * v);
+        assert!(doubled.x0[0].contains(-2.0) && doubled.x0[0].contains(2.0));
+        assert!(doubled.x0[0].wid() < 4.0 + 1e-12);
+    }
+}

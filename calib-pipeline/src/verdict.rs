@@ -1,0 +1,300 @@
+//! An outcome in plain words: the verdict and its evidence, the tightness reached, the outliers,
+//! where a parameter vector found by other means stands. The terminal output and the certificates
+//! of every robot say the same sentences.
+
+use crate::outcome::Outcome;
+use calib_core::{EmptinessProof, Interval, Status};
+
+/// Names configurations by number and by their line in the measurement file.
+#[derive(Clone, Copy, Debug)]
+pub struct ConfigurationNames<'a> {
+    /// The measurement file's name (as shown to the user).
+    pub file: &'a str,
+    /// The file line of each configuration (1-based lines, in configuration order).
+    pub lines: &'a [usize],
+}
+
+impl ConfigurationNames<'_> {
+    /// "configurations 4, 8 (measurements.csv lines 5, 9)" for 0-based configurations `[3, 7]`.
+    pub fn name(&self, configs: &[usize]) -> String {
+        let numbers: Vec<String> = configs.iter().map(|k| (k + 1).to_string()).collect();
+        let at: Vec<String> = configs
+            .iter()
+            .map(|&k| self.lines.get(k).map_or("?".into(), |l| l.to_string()))
+            .collect();
+        let (noun, line) = if configs.len() == 1 {
+            ("configuration", "line")
+        } else {
+            ("configurations", "lines")
+        };
+        format!(
+            "{noun} {} ({} {line} {})",
+            numbers.join(", "),
+            self.file,
+            at.join(", ")
+        )
+    }
+}
+
+/// What proved a sub-problem empty, in words (`names`: the parameters' names).
+pub fn proof_in_words(proof: Option<EmptinessProof>, names: &[String]) -> String {
+    match proof {
+        Some(EmptinessProof::CheapRejection { measurement }) => format!(
+            "configuration {} fits no parameter vector left after contraction",
+            measurement + 1
+        ),
+        Some(EmptinessProof::LpInfeasible) => {
+            "the linear relaxation of the data has no solution (checked Farkas certificate)".into()
+        }
+        Some(EmptinessProof::EmptyIntersection { parameter }) => format!(
+            "the certified lower and upper bounds of {} crossed",
+            names.get(parameter).map_or("a parameter", String::as_str)
+        ),
+        Some(EmptinessProof::Subdivision) => {
+            "every piece of a subdivision of x0 was proved empty".into()
+        }
+        Some(EmptinessProof::EverySubset) => {
+            "whichever configurations are dropped, the rest was proved inconsistent".into()
+        }
+        None => "no proof recorded".into(),
+    }
+}
+
+/// A short verdict: "consistent", "proved empty" or "undecided".
+pub fn short_verdict(status: Status) -> &'static str {
+    match status {
+        Status::Consistent => "consistent",
+        Status::Empty => "proved empty",
+        Status::Undecided => "undecided",
+    }
+}
+
+/// The verdict and its evidence, one sentence per entry: for an empty sub-problem the proof, the
+/// conflicting configurations and what to do next.
+pub fn verdict(r: &Outcome, names: &ConfigurationNames<'_>, max_outliers: usize) -> Vec<String> {
+    match r.status {
+        Status::Empty => {
+            let tolerated = if max_outliers > 0 {
+                format!(", even with {max_outliers} of them tolerated as outliers")
+            } else {
+                String::new()
+            };
+            let mut out = vec![format!(
+                "verdict: no parameter vector in x0 fits the measurements within their error \
+                 bounds{tolerated} — proved: {}",
+                proof_in_words(r.emptiness, &r.names)
+            )];
+            match &r.conflict {
+                Some(conflict) => {
+                    let named = names.name(conflict);
+                    out.push(if conflict.len() == 1 {
+                        format!("conflict: {named} alone fits no parameter vector of x0.")
+                    } else {
+                        format!(
+                            "conflict: {named} cannot be fitted together; with any one of them \
+                             removed the rest is not proved inconsistent."
+                        )
+                    });
+                    out.push(format!(
+                        "re-measure them, or run with --max-outliers {} to tolerate {} bad \
+                         configuration{}",
+                        max_outliers + 1,
+                        max_outliers + 1,
+                        if max_outliers == 0 { "" } else { "s" }
+                    ));
+                }
+                None => out.push(
+                    "run with a larger --max-outliers, or check the model and error bounds".into(),
+                ),
+            }
+            out
+        }
+        Status::Consistent => {
+            vec!["verdict: consistent (a certified witness satisfies every measurement box)".into()]
+        }
+        Status::Undecided => vec![
+            "verdict: undecided (no certified witness found; the outer box \
+                                   is still a certified enclosure)"
+                .into(),
+        ],
+    }
+}
+
+/// What the outer/inner ratios mean for this run: converged, budget spent, or `--fast`.
+pub fn tightness(r: &Outcome) -> Option<&'static str> {
+    r.width_ratios()?;
+    Some(match r.converged {
+        Some(true) => {
+            "the true range of each parameter lies between inner and outer: outer overstates it \
+             by at most the ratio"
+        }
+        Some(false) => {
+            "budget spent before every ratio reached the tolerance (--max-boxes, --max-seconds); \
+             both boxes are still certified"
+        }
+        None => "(--fast: the paper's x1 only; drop --fast for the tight hull)",
+    })
+}
+
+/// "name (which end)" for each parameter whose outer box reaches a face of x0.
+fn named_faces(r: &Outcome) -> Vec<String> {
+    r.x0_faces()
+        .iter()
+        .map(|(j, end)| format!("{} ({end})", r.names[*j]))
+        .collect()
+}
+
+/// Where the outer box reaches a face of the initial box x0, in words: consistent parameter
+/// vectors may then lie beyond x0, which the certificate does not cover.
+pub fn touching_x0(r: &Outcome) -> Option<String> {
+    let faces = named_faces(r);
+    (!faces.is_empty()).then(|| {
+        format!(
+            "the outer box reaches x0 in {}: consistent parameter vectors may lie beyond x0 there, \
+             and the certificate covers x0 only — enlarge the initial box (its radius) to look \
+             further",
+            faces.join(", ")
+        )
+    })
+}
+
+/// The parameters whose outer box still reaches x0, in words, for robots whose prior box is the
+/// question ("is this parameter determined?"): the data then do not determine them — the
+/// consistent values may fill the prior box, or extend beyond it.
+pub fn not_determined(r: &Outcome) -> Option<String> {
+    let faces = named_faces(r);
+    (!faces.is_empty()).then(|| {
+        format!(
+            "not determined by these data: {} — the certified range still reaches the prior box \
+             x0 there, so consistent values may lie anywhere up to (and beyond) the prior; more \
+             configurations, or a smaller prior, would determine {}",
+            faces.join(", "),
+            if faces.len() == 1 { "it" } else { "them" }
+        )
+    })
+}
+
+/// What a certificate proves about a parameter vector found by other means (a least-squares fit).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Standing {
+    /// Inside the certified box: not refuted (which alone does not prove it consistent).
+    Inside,
+    /// Inside x0 but outside the certified box (in these parameters), or anywhere in x0 when x0
+    /// was proved empty: it does not fit the measurements within their error bounds.
+    Refuted(Vec<usize>),
+    /// Outside x0 (in these parameters): the certificate covers x0 only and proves nothing here.
+    BeyondX0(Vec<usize>),
+}
+
+/// Where `x` stands against a certificate over `x0`: `certified` is the certified box, `None` when
+/// x0 was proved to hold no consistent parameter vector.
+pub fn standing(x0: &[Interval], certified: Option<&[Interval]>, x: &[f64]) -> Standing {
+    let outside =
+        |b: &[Interval]| -> Vec<usize> { (0..b.len()).filter(|&j| !b[j].contains(x[j])).collect() };
+    let beyond = outside(x0);
+    if !beyond.is_empty() {
+        return Standing::BeyondX0(beyond);
+    }
+    match certified {
+        None => Standing::Refuted(Vec::new()),
+        Some(b) => {
+            let refuted = outside(b);
+            if refuted.is_empty() {
+                Standing::Inside
+            } else {
+                Standing::Refuted(refuted)
+            }
+        }
+    }
+}
+
+/// [`standing`] against an outcome: its outer box, or none when it was proved empty.
+pub fn outcome_standing(r: &Outcome, x: &[f64]) -> Standing {
+    let certified = match r.status {
+        Status::Empty => None,
+        _ => Some(r.outer.as_deref().unwrap_or(&r.x0)),
+    };
+    standing(&r.x0, certified, x)
+}
+
+/// With outliers tolerated (`max_outliers > 0`) on a sub-problem that is not empty: which configurations
+/// were proved to be outliers.
+pub fn outliers(
+    r: &Outcome,
+    names: &ConfigurationNames<'_>,
+    max_outliers: usize,
+) -> Option<String> {
+    if max_outliers == 0 || r.status == Status::Empty {
+        return None;
+    }
+    Some(if r.outliers.is_empty() {
+        format!("outliers (at most {max_outliers} tolerated): no configuration is proved to be one")
+    } else {
+        format!(
+            "outliers (at most {max_outliers} tolerated): {} — every parameter vector that fits \
+             the rest misfits {}",
+            names.name(&r.outliers),
+            if r.outliers.len() == 1 { "it" } else { "them" }
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn configurations_are_named_by_number_and_line() {
+        let lines = [2, 3, 5, 6];
+        let n = ConfigurationNames {
+            file: "m.csv",
+            lines: &lines,
+        };
+        assert_eq!(n.name(&[2]), "configuration 3 (m.csv line 5)");
+        assert_eq!(n.name(&[0, 3]), "configurations 1, 4 (m.csv lines 2, 6)");
+        assert_eq!(n.name(&[9]), "configuration 10 (m.csv line ?)");
+    }
+
+    #[test]
+    fn only_vectors_inside_x0_are_refuted() {
+        let x0 = [Interval::new(-1.0, 1.0); 7];
+        let outer = [Interval::new(-0.5, 0.5); 7];
+        let mut x = [0.0; 7];
+        assert_eq!(standing(&x0, Some(&outer), &x), Standing::Inside);
+        assert_eq!(standing(&x0, None, &x), Standing::Refuted(vec![]));
+        x[6] = 0.75;
+        assert_eq!(standing(&x0, Some(&outer), &x), Standing::Refuted(vec![6]));
+        x[2] = 3.0;
+        assert_eq!(standing(&x0, Some(&outer), &x), Standing::BeyondX0(vec![2]));
+        assert_eq!(standing(&x0, None, &x), Standing::BeyondX0(vec![2]));
+    }
+
+    #[test]
+    fn every_proof_has_words() {
+        let names: Vec<String> = (0..7).map(|j| format!("p{j}")).collect();
+        for p in [
+            Some(EmptinessProof::CheapRejection { measurement: 4 }),
+            Some(EmptinessProof::LpInfeasible),
+            Some(EmptinessProof::EmptyIntersection { parameter: 6 }),
+            Some(EmptinessProof::Subdivision),
+            Some(EmptinessProof::EverySubset),
+            None,
+        ] {
+            let words = proof_in_words(p, &names);
+            assert!(
+                !words.contains("Rejection") && !words.contains("Lp"),
+                "{words}"
+            );
+        }
+        assert!(proof_in_words(
+            Some(EmptinessProof::CheapRejection { measurement: 4 }),
+            &names
+        )
+        .contains("configuration 5"));
+        assert!(proof_in_words(
+            Some(EmptinessProof::EmptyIntersection { parameter: 6 }),
+            &names
+        )
+        .contains("p6"));
+    }
+}
