@@ -4,17 +4,21 @@
 //! Denavit–Hartenberg plus Hayati's `beta`, a base transform and a tool point) written once under
 //! `#[interval_model]` as a three-row [`calib_core::VectorModel`] ([`model`]), parameter names
 //! and units ([`params`]), and the conversions between the files' degrees and the model's radians
-//! ([`units`]).
+//! ([`units`]); the files read ([`files`]) and written ([`write`]), simulated data ([`simulate`]),
+//! and the arm's use of the robot-agnostic pipeline ([`certification`]: identifiability,
+//! certification, least squares, in the files' units). The `arm` binary is the command line.
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 #![allow(clippy::needless_range_loop)]
 
+pub mod certification;
 pub mod files;
 pub mod model;
 pub mod params;
 pub mod robot;
 pub mod simulate;
 pub mod units;
+pub mod write;
 
 pub use model::{Arm3Point, Arm4Point, Arm5Point, Arm6Point, Arm7Point};
 pub use robot::{builtin_arm, Arm, Joint};

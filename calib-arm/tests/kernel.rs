@@ -121,9 +121,8 @@ where
 
 #[test]
 fn random_arms_keep_the_truth_and_certify_one_reading_per_configuration() {
-    // Three-joint arms here; 4 to 7 joints pass the same check (`check` with Arm4Point ..
-    // Arm7Point) but each joint count instantiates the whole kernel once more, minutes of
-    // compilation: see the crate README.
+    // Three-joint arms through their own model here, with every witness rechecked; 3 to 7 joints
+    // through the padded 7-joint model of `certify_arm` below.
     let mut consistent = 0;
     for seed in 0..4u64 {
         let mut rng = StdRng::seed_from_u64(seed);
@@ -141,4 +140,52 @@ fn a_shifted_configuration_is_proved_inconsistent_and_named() {
     let mut rng = StdRng::seed_from_u64(77);
     let arm = random_arm(3, &mut rng);
     check(&Arm3Point, &arm, 77, true);
+}
+
+#[test]
+fn arms_of_3_to_7_joints_certify_through_the_padded_model() {
+    use calib_arm::certification::{certify_arm, RunOptions};
+    use calib_pipeline::Depth;
+    for joints in 3..=7 {
+        let seed = 100 + joints as u64;
+        let mut rng = StdRng::seed_from_u64(seed);
+        let arm = random_arm(joints, &mut rng);
+        let sim = simulate(&arm, 10, seed, Uncertainty::TRACKER, 1.0, &[]);
+        let options = RunOptions {
+            depth: Depth::Fast,
+            lsq: false,
+        };
+        let run = certify_arm(
+            &arm,
+            &sim.readings,
+            &sim.uncertainty,
+            options,
+            &Settings::default(),
+        )
+        .expect("3 to 7 joints");
+        let o = &run.outcome;
+        assert_ne!(
+            o.status,
+            Status::Empty,
+            "{joints} joints: consistent data proved empty"
+        );
+        assert_eq!(o.x0.len(), params::count(joints));
+        let outer = o.outer.as_ref().expect("not empty");
+        for (j, t) in sim.truth.iter().enumerate() {
+            // Files' units (degrees, mm), boxes converted outward.
+            assert!(
+                outer[j].contains(*t),
+                "{joints} joints: {} truth {t} outside {}",
+                o.names[j],
+                outer[j]
+            );
+            assert!(o.x0[j].contains(*t));
+        }
+        if let (Some(inner), Some(w)) = (&o.inner, &o.witness) {
+            for j in 0..outer.len() {
+                assert!(inner[j].is_subset_of(outer[j]) || inner[j].wid() <= 1e-9);
+                assert!(outer[j].inf() - 1e-9 <= w[j] && w[j] <= outer[j].sup() + 1e-9);
+            }
+        }
+    }
 }

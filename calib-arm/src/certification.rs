@@ -1,0 +1,243 @@
+//! Certifying an arm: the arm's data turned into the robot-agnostic pipeline's inputs (the model
+//! for its joint count, the prior box and one measurement box per configuration, in the model's
+//! radians), and its outputs turned back into the files' millimetres and degrees.
+//!
+//! An arm is one sub-problem: all its configurations constrain one parameter vector.
+//!
+//! Every arm goes through the 7-joint model ([`Arm7Point`]): an arm of `N < 7` joints is padded
+//! with `7 - N` identity joints (every parameter fixed at 0, joint readings exactly 0, so each
+//! padded `A_i` is the identity matrix, exactly, in interval arithmetic too). The certified set is
+//! the arm's own, and the kernel is compiled once instead of once per joint count (minutes of
+//! build time each).
+
+use crate::params::{self, Unit};
+use crate::robot::Arm;
+use crate::simulate::{Reading, Uncertainty};
+use crate::units::{deg_to_rad, rad_to_deg, to_deg, to_rad};
+use crate::Arm7Point;
+use calib_core::{Interval, Settings};
+use calib_pipeline::identify::{analyse, identification_jacobian, Identifiability};
+use calib_pipeline::lsq::{least_squares, Fit};
+use calib_pipeline::{certify_model, Depth, Outcome};
+
+/// What one run on an arm's data found (every value in the files' units: mm and degrees).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ArmRun {
+    /// The certified outcome.
+    pub outcome: Outcome,
+    /// The identifiability of the free parameters on these configurations, at the nominal.
+    pub identifiability: Identifiability,
+    /// The least-squares fit from the nominal (`None` when not asked for).
+    pub fit: Option<Fit>,
+}
+
+/// What to compute.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunOptions {
+    /// x1 only, or the tight hull.
+    pub depth: Depth,
+    /// Also the least-squares fit.
+    pub lsq: bool,
+}
+
+/// The parameter names of an arm with `joints` joints.
+pub fn names(joints: usize) -> Vec<String> {
+    params::names(joints).into_iter().map(|(n, _)| n).collect()
+}
+
+/// The unit symbols of an arm with `joints` joints.
+pub fn units(joints: usize) -> Vec<String> {
+    params::names(joints)
+        .into_iter()
+        .map(|(_, u)| u.symbol().to_string())
+        .collect()
+}
+
+/// `v` (model units: radians for angles) in the files' units, enclosed outward.
+fn to_file_units(unit: Unit, v: Interval) -> Interval {
+    match unit {
+        Unit::Deg => rad_to_deg(v),
+        Unit::Mm => v,
+    }
+}
+
+/// What a run computes besides identifiability.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Job {
+    Identify,
+    Fit,
+    Certify(RunOptions),
+}
+
+/// The identifiability of `arm`'s free parameters on the configurations of `readings`, at the
+/// nominal geometry (no certification).
+pub fn identifiability(
+    arm: &Arm,
+    readings: &[Reading],
+    u: &Uncertainty,
+) -> Result<Identifiability, String> {
+    Ok(dispatch(arm, readings, u, Job::Identify, &Settings::default())?.identifiability)
+}
+
+/// The least-squares fit of `arm`'s free parameters to `readings` (taken as exact), from the
+/// nominal, in the files' units.
+pub fn fit_arm(arm: &Arm, readings: &[Reading]) -> Result<Fit, String> {
+    let exact = Uncertainty {
+        joint_deg: 0.0,
+        pos: 0.0,
+    };
+    dispatch(arm, readings, &exact, Job::Fit, &Settings::default())?
+        .fit
+        .ok_or_else(|| "no fit was made".to_string())
+}
+
+/// Certifies `arm` against `readings` with the error bounds `u`.
+pub fn certify_arm(
+    arm: &Arm,
+    readings: &[Reading],
+    u: &Uncertainty,
+    options: RunOptions,
+    settings: &Settings,
+) -> Result<ArmRun, String> {
+    dispatch(arm, readings, u, Job::Certify(options), settings)
+}
+
+fn dispatch(
+    arm: &Arm,
+    readings: &[Reading],
+    u: &Uncertainty,
+    job: Job,
+    settings: &Settings,
+) -> Result<ArmRun, String> {
+    let joints = arm.joints.len();
+    if !(3..=MAX_JOINTS).contains(&joints) {
+        return Err(format!(
+            "arms with 3 to {MAX_JOINTS} joints are supported, not {joints}"
+        ));
+    }
+    if let Some(r) = readings.iter().find(|r| r.joints_deg.len() != joints) {
+        return Err(format!(
+            "a configuration has {} joint readings; the arm has {joints} joints",
+            r.joints_deg.len()
+        ));
+    }
+    Ok(run(arm, readings, u, job, settings))
+}
+
+/// The most joints an arm may have (the model every arm is padded to).
+const MAX_JOINTS: usize = 7;
+/// Parameters of the padded model.
+const NX: usize = 5 * MAX_JOINTS + 9;
+/// Measured quantities of the padded model.
+const NM: usize = MAX_JOINTS + 3;
+
+/// The padded model's index of each of the arm's parameters (model order).
+fn padded_index(joints: usize) -> Vec<usize> {
+    let shift = 5 * (MAX_JOINTS - joints);
+    (0..params::count(joints))
+        .map(|j| if j < 5 * joints { j } else { j + shift })
+        .collect()
+}
+
+fn run(arm: &Arm, readings: &[Reading], u: &Uncertainty, job: Job, settings: &Settings) -> ArmRun {
+    let model = &Arm7Point;
+    let joints = arm.joints.len();
+    let index = padded_index(joints);
+    let units: Vec<Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
+    let names = names(joints);
+    let prior = arm.initial_box();
+    let nominal_files = arm.nominal();
+    // Padded parameters are points at 0 (an identity joint).
+    let mut x0 = [Interval::ZERO; NX];
+    let mut nominal = [0.0; NX];
+    for (j, &p) in index.iter().enumerate() {
+        x0[p] = prior[j];
+        nominal[p] = match units[j] {
+            Unit::Deg => to_rad(nominal_files[j]),
+            Unit::Mm => nominal_files[j],
+        };
+    }
+    let boxes: Vec<[Interval; NM]> = readings.iter().map(|r| padded_box(r, u)).collect();
+    let (free, jacobian) = identification_jacobian(model, &nominal, &x0, &boxes);
+    let to_arm = |p: usize| index.iter().position(|&q| q == p).unwrap_or(p);
+    let mut identifiability = analyse(&free, jacobian);
+    for c in identifiability
+        .undetermined
+        .iter_mut()
+        .chain(identifiability.weak.iter_mut())
+    {
+        c.members.iter_mut().for_each(|m| m.0 = to_arm(m.0));
+    }
+    let mid = || -> Vec<[f64; NM]> { boxes.iter().map(|b| b.map(|v| v.mid())).collect() };
+    let (outcome, fit) = match job {
+        Job::Certify(o) => {
+            let all_names: Vec<String> = (0..NX).map(|p| format!("#{p}")).collect();
+            let outcome = certify_model(model, &all_names, &x0, &boxes, o.depth, settings);
+            let fit = o.lsq.then(|| least_squares(model, &nominal, &free, &mid()));
+            (outcome.select(&index, names), fit)
+        }
+        Job::Fit => (
+            uncertified(names, &prior),
+            Some(least_squares(model, &nominal, &free, &mid())),
+        ),
+        Job::Identify => (uncertified(names, &prior), None),
+    };
+    let outcome = outcome.map_units(
+        |j, v| to_file_units(units[j], v),
+        |j, v| match units[j] {
+            Unit::Deg => to_deg(v),
+            Unit::Mm => v,
+        },
+    );
+    let fit = fit.map(|f| Fit {
+        x: index
+            .iter()
+            .enumerate()
+            .map(|(j, &p)| match units[j] {
+                Unit::Deg => to_deg(f.x[p]),
+                Unit::Mm => f.x[p],
+            })
+            .collect(),
+        ..f
+    });
+    ArmRun {
+        outcome,
+        identifiability,
+        fit,
+    }
+}
+
+/// The padded model's measurement box of a reading: the arm's joints `q_i ± joint_deg` in radians
+/// (enclosed outward), the padded joints exactly 0, then `p ± pos` in mm.
+fn padded_box(r: &Reading, u: &Uncertainty) -> [Interval; NM] {
+    let n = r.joints_deg.len();
+    core::array::from_fn(|i| {
+        if i < n {
+            deg_to_rad(Interval::mid_rad(r.joints_deg[i], u.joint_deg))
+        } else if i < MAX_JOINTS {
+            Interval::ZERO
+        } else {
+            Interval::mid_rad(r.point[i - MAX_JOINTS], u.pos)
+        }
+    })
+}
+
+/// An outcome with nothing certified yet (the prior box only).
+fn uncertified(names: Vec<String>, x0: &[Interval]) -> Outcome {
+    Outcome {
+        names,
+        x0: x0.to_vec(),
+        status: calib_core::Status::Undecided,
+        emptiness: None,
+        x1: None,
+        outer: None,
+        inner: None,
+        witness: None,
+        conflict: None,
+        outliers: Vec::new(),
+        iterations: 0,
+        converged: None,
+        boxes: 0,
+        seconds: 0.0,
+    }
+}

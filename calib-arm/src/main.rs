@@ -1,0 +1,18 @@
+//! `arm`: certified calibration of a serial arm from laser-tracker data.
+#![deny(unsafe_code)]
+
+mod cli;
+
+use clap::Parser;
+
+fn main() {
+    let args = cli::Cli::parse();
+    let code = match cli::run(args) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            1
+        }
+    };
+    std::process::exit(code);
+}

@@ -1,0 +1,227 @@
+//! The `arm` command line end to end, on a small 3-joint arm (seconds, where the built-in 6-axis
+//! arm takes a minute): simulate, certify with the truth inside, an outlier proved and named,
+//! least squares, and bad input refused with the file, line and field named and nothing written.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A 3-joint arm with small priors (one Newton step bites) and a tilted base.
+const ROBOT: &str = r#"
+[[joint]]
+theta_deg = 0.0
+d = 120.0
+a = 0.0
+alpha_deg = 90.0
+radius = [0.0, 0.0, 0.01, 0.001, 0.0]
+
+[[joint]]
+theta_deg = 2.0
+d = 0.0
+a = -400.0
+alpha_deg = 0.0
+radius = [0.001, 0.0, 0.01, 0.001, 0.001]
+
+[[joint]]
+theta_deg = -1.0
+d = 15.0
+a = -350.0
+alpha_deg = 0.0
+radius = [0.001, 0.0, 0.01, 0.001, 0.0]
+
+[base]
+xyz = [900.0, -200.0, 100.0]
+rpy_deg = [0.5, -0.4, 30.0]
+radius = [0.02, 0.02, 0.02, 0.002, 0.002, 0.002]
+
+[tool]
+xyz = [10.0, 5.0, 60.0]
+radius = 0.01
+"#;
+
+fn arm(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_arm"))
+        .args(args)
+        .output()
+        .expect("the arm binary runs")
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}\n{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+fn tempdir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("arm-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+/// Simulates `configs` configurations of [`ROBOT`] into `dir`, with `extra` options.
+fn simulated(dir: &Path, configs: usize, extra: &[&str]) {
+    let robot = dir.join("design.toml");
+    std::fs::write(&robot, ROBOT).expect("write robot");
+    let configs = configs.to_string();
+    let mut args = vec![
+        "simulate",
+        "--robot",
+        robot.to_str().expect("utf-8"),
+        "--configs",
+        &configs,
+        "--seed",
+        "5",
+        "--out",
+        dir.to_str().expect("utf-8"),
+    ];
+    args.extend_from_slice(extra);
+    let o = arm(&args);
+    assert!(o.status.success(), "{}", text(&o));
+}
+
+fn certify(dir: &Path, extra: &[&str]) -> Output {
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let (robot, data, u) = (
+        p("robot.toml"),
+        p("measurements.csv"),
+        p("uncertainty.toml"),
+    );
+    let mut args = vec![
+        "certify",
+        "--robot",
+        &robot,
+        "--measurements",
+        &data,
+        "--uncertainty",
+        &u,
+    ];
+    args.extend_from_slice(extra);
+    arm(&args)
+}
+
+#[test]
+fn certify_keeps_the_truth_and_reports_in_json() {
+    let dir = tempdir("truth");
+    simulated(&dir, 12, &[]);
+    let json = dir.join("report.json");
+    let o = certify(&dir, &["--lsq", "--json", json.to_str().expect("utf-8")]);
+    assert!(o.status.success(), "{}", text(&o));
+    let out = text(&o);
+    assert!(out.contains("verdict: consistent"), "{out}");
+    assert!(out.contains("identifiability:"), "{out}");
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("report")).expect("json");
+    let truth: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("truth.json")).expect("truth"))
+            .expect("json");
+    assert_eq!(report["status"], "consistent");
+    let params = report["parameters"].as_array().expect("parameters");
+    assert_eq!(params.len(), 24);
+    for p in params {
+        let name = p["name"].as_str().expect("name");
+        let t = truth[name].as_f64().expect("truth value");
+        let outer = &p["outer"];
+        let (lo, hi) = (
+            outer[0].as_f64().expect("lo"),
+            outer[1].as_f64().expect("hi"),
+        );
+        assert!(lo <= t && t <= hi, "{name}: {t} outside [{lo}, {hi}]");
+        if p["fixed"] == false {
+            let inner = &p["inner"];
+            assert!(
+                lo <= inner[0].as_f64().expect("inner") && inner[1].as_f64().expect("inner") <= hi
+            );
+        }
+        assert!(p["lsq"].is_f64(), "{name}: least squares value");
+    }
+}
+
+#[test]
+fn a_shifted_configuration_is_proved_and_named_then_tolerated() {
+    let dir = tempdir("outlier");
+    simulated(&dir, 12, &["--outlier", "4:0.5"]);
+    let o = certify(&dir, &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    let out = text(&o);
+    assert!(
+        out.contains("configuration 4 (measurements.csv line 5)"),
+        "{out}"
+    );
+    let json = dir.join("tolerated.json");
+    let o = certify(
+        &dir,
+        &[
+            "--max-outliers",
+            "1",
+            "--json",
+            json.to_str().expect("utf-8"),
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("report")).expect("json");
+    assert_eq!(report["outliers"], serde_json::json!([4]));
+}
+
+#[test]
+fn least_squares_runs_on_the_files() {
+    let dir = tempdir("lsq");
+    simulated(&dir, 12, &[]);
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let o = arm(&[
+        "lsq",
+        "--robot",
+        &p("robot.toml"),
+        "--measurements",
+        &p("measurements.csv"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("residuals: rms"), "{}", text(&o));
+}
+
+#[test]
+fn bad_files_name_file_line_and_field_and_write_nothing() {
+    let dir = tempdir("bad");
+    simulated(&dir, 6, &[]);
+    let json = dir.join("never.json");
+    let robot = dir.join("robot.toml");
+    let good = std::fs::read_to_string(&robot).expect("robot");
+    // A non-numeric link length on the second joint.
+    let bad = good.replacen("a = -400.0", "a = \"long\"", 1);
+    std::fs::write(&robot, &bad).expect("write");
+    let o = certify(&dir, &["--json", json.to_str().expect("utf-8")]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    let line = bad
+        .lines()
+        .position(|l| l.contains("\"long\""))
+        .expect("edited line")
+        + 1;
+    assert!(
+        err.contains("robot.toml") && err.contains(&format!("line {line}")),
+        "{err}"
+    );
+    assert!(!json.exists());
+    // A measurement row with a missing coordinate.
+    std::fs::write(&robot, &good).expect("write");
+    let data = dir.join("measurements.csv");
+    let rows = std::fs::read_to_string(&data).expect("data");
+    let cut: Vec<&str> = rows.lines().collect();
+    let short = format!(
+        "{}\n{}\n",
+        cut[0],
+        cut[1].rsplit_once(',').expect("comma").0
+    );
+    std::fs::write(&data, short).expect("write");
+    let o = certify(&dir, &["--json", json.to_str().expect("utf-8")]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        err.contains("measurements.csv") && err.contains("line 2"),
+        "{err}"
+    );
+    assert!(!json.exists());
+}
