@@ -12,8 +12,8 @@
 
 use crate::params::{self, Unit};
 use crate::robot::Arm;
-use crate::simulate::{Reading, Uncertainty};
-use crate::units::{deg_to_rad, rad_to_deg, to_deg, to_rad};
+use crate::simulate::{measurement_box, Reading, Uncertainty};
+use crate::units::{rad_to_deg, to_deg, to_rad};
 use crate::Arm7Point;
 use calib_core::{Interval, Settings};
 use calib_pipeline::identify::{analyse, identification_jacobian, Identifiability};
@@ -157,7 +157,11 @@ fn run(arm: &Arm, readings: &[Reading], u: &Uncertainty, job: Job, settings: &Se
             Unit::Mm => nominal_files[j],
         };
     }
-    let boxes: Vec<[Interval; NM]> = readings.iter().map(|r| padded_box(r, u)).collect();
+    // At most MAX_JOINTS joint readings (checked by `dispatch`): every reading has a box.
+    let boxes: Vec<[Interval; NM]> = readings
+        .iter()
+        .filter_map(|r| measurement_box(r, u))
+        .collect();
     let (free, jacobian) = identification_jacobian(model, &nominal, &x0, &boxes);
     let to_arm = |p: usize| index.iter().position(|&q| q == p).unwrap_or(p);
     let mut identifiability = analyse(&free, jacobian);
@@ -205,21 +209,6 @@ fn run(arm: &Arm, readings: &[Reading], u: &Uncertainty, job: Job, settings: &Se
         identifiability,
         fit,
     }
-}
-
-/// The padded model's measurement box of a reading: the arm's joints `q_i ± joint_deg` in radians
-/// (enclosed outward), the padded joints exactly 0, then `p ± pos` in mm.
-fn padded_box(r: &Reading, u: &Uncertainty) -> [Interval; NM] {
-    let n = r.joints_deg.len();
-    core::array::from_fn(|i| {
-        if i < n {
-            deg_to_rad(Interval::mid_rad(r.joints_deg[i], u.joint_deg))
-        } else if i < MAX_JOINTS {
-            Interval::ZERO
-        } else {
-            Interval::mid_rad(r.point[i - MAX_JOINTS], u.pos)
-        }
-    })
 }
 
 /// An outcome with nothing certified yet (the prior box only).

@@ -110,15 +110,24 @@ fn random_direction(rng: &mut StdRng) -> [f64; 3] {
     }
 }
 
-/// The measurement box of a reading in model units: `q_i ± joint_deg` in radians (enclosed
-/// outward), then `p ± pos` in mm. `NM` must be the number of joints plus 3.
+/// The measurement box of a reading in model units, for a model of `NM - 3` joints: `q_i ±
+/// joint_deg` in radians (enclosed outward), joints the reading does not have (an arm padded with
+/// identity joints) exactly 0, then `p ± pos` in mm. `None` when the reading has more joints than
+/// the model.
 pub fn measurement_box<const NM: usize>(r: &Reading, u: &Uncertainty) -> Option<[Interval; NM]> {
-    if r.joints_deg.len() + 3 != NM {
+    let model_joints = NM.checked_sub(3)?;
+    let n = r.joints_deg.len();
+    if n > model_joints {
         return None;
     }
-    Some(core::array::from_fn(|i| match r.joints_deg.get(i) {
-        Some(q) => deg_to_rad(Interval::mid_rad(*q, u.joint_deg)),
-        None => Interval::mid_rad(r.point[i - r.joints_deg.len()], u.pos),
+    Some(core::array::from_fn(|i| {
+        if i < n {
+            deg_to_rad(Interval::mid_rad(r.joints_deg[i], u.joint_deg))
+        } else if i < model_joints {
+            Interval::ZERO
+        } else {
+            Interval::mid_rad(r.point[i - model_joints], u.pos)
+        }
     }))
 }
 
@@ -158,5 +167,20 @@ mod tests {
         for (v, (n, r)) in sim.truth.iter().zip(arm.nominal().iter().zip(arm.radius())) {
             assert!((v - n).abs() <= 0.8 * r + 1e-12);
         }
+    }
+
+    #[test]
+    fn boxes_pad_missing_joints_with_exact_zeros() {
+        let r = Reading {
+            joints_deg: vec![10.0, -20.0, 30.0],
+            point: [1.0, 2.0, 3.0],
+        };
+        let b: [Interval; 10] = measurement_box(&r, &Uncertainty::TRACKER).expect("3 <= 7");
+        assert!(b[0].contains(10f64.to_radians()) && b[0].wid() > 0.0);
+        for padded in &b[3..7] {
+            assert_eq!(*padded, Interval::ZERO);
+        }
+        assert!(b[7].contains(1.0) && b[9].contains(3.0));
+        assert!(measurement_box::<5>(&r, &Uncertainty::TRACKER).is_none());
     }
 }
