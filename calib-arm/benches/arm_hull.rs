@@ -1,0 +1,74 @@
+//! Seconds per certification of serial arms through the pipeline (`certify_arm`, the padded
+//! 7-joint model): the tight hull of a small 3-joint arm (12 configurations, tight priors), and
+//! one contraction to x1 of the built-in 6-axis arm (20 configurations, the priors and
+//! error bounds; 50 configurations take ~35 s, see `arm demo`).
+//!
+//! `cargo bench -p calib-arm --bench arm_hull`.
+
+use calib_arm::certification::{certify_arm, RunOptions};
+use calib_arm::simulate::{simulate, Uncertainty};
+use calib_arm::{builtin_arm, Arm, Joint};
+use calib_core::Settings;
+use calib_pipeline::Depth;
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
+
+/// A 3-joint arm with priors a few times the error bounds' effect.
+fn small_arm() -> Arm {
+    let joint = |nominal: [f64; 5], radius: [f64; 5]| Joint { nominal, radius };
+    Arm {
+        joints: vec![
+            joint([0.0, 120.0, 0.0, 90.0, 0.0], [0.0, 0.0, 0.02, 0.002, 0.0]),
+            joint(
+                [2.0, 0.0, -400.0, 0.0, 0.0],
+                [0.002, 0.0, 0.02, 0.002, 0.002],
+            ),
+            joint(
+                [-1.0, 15.0, -350.0, 0.0, 0.0],
+                [0.002, 0.0, 0.02, 0.002, 0.0],
+            ),
+        ],
+        base: [900.0, -200.0, 100.0, 0.5, -0.4, 30.0],
+        base_radius: [0.05, 0.05, 0.05, 0.005, 0.005, 0.005],
+        tool: [10.0, 5.0, 60.0],
+        tool_radius: [0.02; 3],
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    let mut g = c.benchmark_group("arm");
+    g.sample_size(10);
+    let cases = [
+        (
+            "3-joint hull, 12 configurations",
+            small_arm(),
+            12,
+            Depth::Hull,
+        ),
+        (
+            "built-in x1, 20 configurations",
+            builtin_arm(),
+            20,
+            Depth::Fast,
+        ),
+    ];
+    for (name, arm, configs, depth) in cases {
+        let sim = simulate(&arm, configs, 3, Uncertainty::TRACKER, 1.0, &[]);
+        let settings = Settings::default()
+            .with_hull_tolerance(0.10)
+            .with_hull_budget(2_000, Some(60.0));
+        let options = RunOptions { depth, lsq: false };
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                black_box(
+                    certify_arm(&arm, &sim.readings, &sim.uncertainty, options, &settings)
+                        .expect("3 to 7 joints"),
+                )
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
