@@ -128,6 +128,9 @@ where
 {
     let mut current = *x;
     let mut iterations = 0;
+    // Each box's LPs warm-start only from this box's earlier steps: the result must not depend
+    // on which boxes a worker thread contracted before.
+    ws.lp.forget();
     if current.iter().any(|v| v.is_empty()) {
         return Contraction {
             result: Err(EmptinessProof::EmptyIntersection {
@@ -283,6 +286,12 @@ impl<const NX: usize> StepFrame<NX> {
     }
 }
 
+/// Whether a parameter is fixed: a point, or a sliver of a few ulps (a parameter fixed at a value
+/// converted to other units). The LPs freeze such parameters.
+pub(crate) fn is_fixed(x: &Interval) -> bool {
+    x.wid() <= 1e-12 * x.mag().max(1.0)
+}
+
 /// One Newton/LP step. `Ok` holds a sub-box of `x` containing every solution in `x`.
 ///
 /// Each configuration contributes the relaxation rows of each of its `NR` residuals and, for
@@ -304,8 +313,7 @@ where
     let yhi = frame.y_box.map(|v| v.sup());
     ws.poly.reset(&ylo, &yhi);
     for j in 0..NX {
-        // A parameter fixed at a value converted to other units is a sliver of a few ulps.
-        if x[j].wid() <= 1e-12 * x[j].mag().max(1.0) {
+        if is_fixed(&x[j]) {
             ws.poly.freeze(j, frame.y_box[j].mag());
         }
     }
@@ -313,6 +321,7 @@ where
     // The affine forms' noise symbols: x_j = mid(x_j) + rad(x_j) ε_j, i.e. y_j = rad(x_j) ε_j.
     let rad_x = x.map(|v| v.rad());
     for (k, m) in measurements.iter().enumerate() {
+        ws.poly.begin_group(k as u32);
         let e = model.evaluate_rows_interval(x, m);
         let forms = model.linear_enclosures(x, m);
         let excluded = |r: usize| {

@@ -349,6 +349,10 @@ impl LpBackend for DenseSimplex {
         "dense-simplex"
     }
 
+    fn forget(&mut self) {
+        self.large.forget();
+    }
+
     fn minimize(
         &mut self,
         p: &Polyhedron,

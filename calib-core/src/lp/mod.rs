@@ -46,6 +46,12 @@ pub trait LpBackend: Send {
         dual: &mut [f64],
         primal: &mut [f64],
     ) -> LpStatus;
+
+    /// Forgets what earlier solves left behind to start later ones from (remembered optimal
+    /// bases), so that the next answers depend only on the problems given from now on. The
+    /// contraction calls it before each box: boxes reach worker threads in an unpredictable
+    /// order, and the results must not depend on it. The default has nothing to forget.
+    fn forget(&mut self) {}
 }
 
 /// Which LP engine the kernel uses.

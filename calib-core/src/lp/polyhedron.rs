@@ -23,6 +23,9 @@ pub struct Polyhedron {
     frozen: Vec<Option<f64>>,
     /// A reusable copy of the row being pushed, when columns are frozen.
     scratch: Vec<f64>,
+    /// Per row, its tag ([`Polyhedron::tag`]); and the tag the next pushed row gets.
+    tags: Vec<u64>,
+    next_tag: u64,
 }
 
 impl Polyhedron {
@@ -43,6 +46,8 @@ impl Polyhedron {
         self.hi.extend_from_slice(hi);
         self.g_rows.clear();
         self.g_rhs.clear();
+        self.tags.clear();
+        self.next_tag = 0;
         self.generation = NEXT_GENERATION.fetch_add(1, Ordering::Relaxed);
         self.frozen.clear();
         self.frozen.resize(self.n, None);
@@ -62,10 +67,41 @@ impl Polyhedron {
         self.frozen.get(j).is_some_and(|f| f.is_some())
     }
 
+    /// Starts a group of rows (a configuration's rows, say): the rows pushed from now on are
+    /// tagged `(group, 0)`, `(group, 1)`, … in the order they are pushed (dropped rows use up
+    /// their tag too). Without groups, the tags are `(0, 0)`, `(0, 1)`, …
+    ///
+    /// Tags let an LP engine recognise "the same" row in the next polyhedron of a sequence
+    /// (contraction steps, the boxes of a hull) when a group's row count changes, to warm-start
+    /// from an earlier optimal basis. Groups must be started in increasing order.
+    pub fn begin_group(&mut self, group: u32) {
+        self.next_tag = u64::from(group) << 32;
+    }
+
+    /// The tag of row `i` (see [`Polyhedron::begin_group`]).
+    pub fn tag(&self, i: usize) -> u64 {
+        self.tags[i]
+    }
+
+    /// The row with tag `tag`, if there is one (the tags increase with the row index).
+    pub fn find_tag(&self, tag: u64) -> Option<usize> {
+        self.tags.binary_search(&tag).ok()
+    }
+
     /// Adds the row `a·y <= b` (dropped if any number is not finite or `a = 0` with `b >= 0`).
     /// Returns whether the row was kept.
     pub fn push_row(&mut self, a: &[f64], b: f64) -> bool {
         debug_assert_eq!(a.len(), self.n);
+        let tag = self.next_tag;
+        self.next_tag += 1;
+        let kept = self.push_untagged(a, b);
+        if kept {
+            self.tags.push(tag);
+        }
+        kept
+    }
+
+    fn push_untagged(&mut self, a: &[f64], b: f64) -> bool {
         if self.frozen.iter().any(Option::is_some) {
             let mut b = b;
             let mut row = core::mem::take(&mut self.scratch);
@@ -184,5 +220,12 @@ mod tests {
         assert!(!p.push_row(&[0.0, 0.0], 1.0));
         assert!(p.push_row(&[0.0, 0.0], -1.0));
         assert_eq!(p.rows(), 2);
+        assert_eq!((p.tag(0), p.tag(1)), (0, 3));
+        p.begin_group(2);
+        assert!(!p.push_row(&[0.0, 0.0], 1.0));
+        assert!(p.push_row(&[1.0, 0.0], 1.0));
+        assert_eq!(p.find_tag((2 << 32) | 1), Some(2));
+        assert_eq!(p.find_tag(2 << 32), None);
+        assert_eq!(p.find_tag(3), Some(1));
     }
 }
