@@ -34,29 +34,94 @@ pub fn is_certified_consistent<M, const NX: usize, const NM: usize, const NR: us
 where
     M: VectorModel<NX, NM, NR>,
 {
-    let xm = x.map(|v| v.mid());
+    bounded(x, measurements)
+        && measurements
+            .iter()
+            .all(|m| configuration_consistent(model, x, m))
+}
+
+/// Whether the box and every measurement box are bounded (the corners of an unbounded box are not
+/// points: no certificate, and no panic).
+fn bounded<const NX: usize, const NM: usize>(
+    x: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+) -> bool {
     let bounded = |b: &[Interval]| b.iter().all(|v| v.is_bounded());
-    if !bounded(x) || !measurements.iter().all(|m| bounded(m)) {
-        // The corners of an unbounded box are not points: no certificate (and no panic).
-        return false;
-    }
+    bounded(x) && measurements.iter().all(|m| bounded(m))
+}
+
+/// Whether every `x` in the bounded box `x` is consistent with the one bounded measurement box `m`
+/// (the test of [`is_certified_consistent`], for one configuration).
+fn configuration_consistent<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    m: &[Interval; NM],
+) -> bool
+where
+    M: VectorModel<NX, NM, NR>,
+{
     if NR != 1 {
-        return measurements.iter().all(|m| configuration_fits(model, x, m));
+        return configuration_fits(model, x, m);
     }
-    measurements.iter().all(|m| {
-        // The linearisation in M at the centre picks the corners most likely to change the sign.
-        let mm = m.map(|v| v.mid());
-        let g = model.jacobians_m(&xm, &mm)[0];
-        let corner = |up: bool| -> [Interval; NM] {
-            core::array::from_fn(|i| {
-                let (lo, hi) = (m[i].inf(), m[i].sup());
-                Interval::point(if (g[i] > 0.0) == up { hi } else { lo })
-            })
+    // The linearisation in M at the centre picks the corners most likely to change the sign.
+    let xm = x.map(|v| v.mid());
+    let mm = m.map(|v| v.mid());
+    let g = model.jacobians_m(&xm, &mm)[0];
+    let corner = |up: bool| -> [Interval; NM] {
+        core::array::from_fn(|i| {
+            let (lo, hi) = (m[i].inf(), m[i].sup());
+            Interval::point(if (g[i] > 0.0) == up { hi } else { lo })
+        })
+    };
+    let below = model.residuals_interval(x, &corner(false))[0];
+    let above = model.residuals_interval(x, &corner(true))[0];
+    below.sup() <= 0.0 && above.inf() >= 0.0
+}
+
+/// [`is_consistent_point`] for a sequence of nearby points (a bisection, a walk towards a face):
+/// the configuration that refuted the last point is tested first. Points near the edge of the
+/// solution set are refuted by the same few configurations again and again, so a refutation
+/// usually costs one configuration test instead of half of them. The answer is the same as
+/// [`is_consistent_point`]'s: every configuration is still tested before a point is accepted.
+pub(crate) struct FailFirst {
+    order: Vec<usize>,
+}
+
+impl FailFirst {
+    /// An order for `p` configurations.
+    pub(crate) fn new(p: usize) -> Self {
+        FailFirst {
+            order: (0..p).collect(),
+        }
+    }
+
+    /// Whether the point `x` is certified consistent (see [`is_consistent_point`]).
+    pub(crate) fn is_consistent_point<M, const NX: usize, const NM: usize, const NR: usize>(
+        &mut self,
+        model: &M,
+        x: &[f64; NX],
+        measurements: &[[Interval; NM]],
+    ) -> bool
+    where
+        M: VectorModel<NX, NM, NR>,
+    {
+        let xi = x.map(Interval::point);
+        if !x.iter().all(|v| v.is_finite()) || !bounded(&xi, measurements) {
+            return false;
+        }
+        if self.order.len() != measurements.len() {
+            *self = FailFirst::new(measurements.len());
+        }
+        let Some(pos) = self
+            .order
+            .iter()
+            .position(|&k| !configuration_consistent(model, &xi, &measurements[k]))
+        else {
+            return true;
         };
-        let below = model.residuals_interval(x, &corner(false))[0];
-        let above = model.residuals_interval(x, &corner(true))[0];
-        below.sup() <= 0.0 && above.inf() >= 0.0
-    })
+        self.order[..=pos].rotate_right(1);
+        false
+    }
 }
 
 /// Whether the point `x` is certified consistent.
@@ -254,6 +319,28 @@ where
     M: VectorModel<NX, NM, NR>,
 {
     let mut inner = witness.map(Interval::point);
+    for p in inner_points(model, witness, outer, targets, measurements, bisections) {
+        for i in 0..NX {
+            inner[i] = inner[i].hull(Interval::point(p[i]));
+        }
+    }
+    inner
+}
+
+/// The certified points of [`inner_box`]: per target, the farthest one found on its segment.
+pub(crate) fn inner_points<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    witness: &[f64; NX],
+    outer: &[Interval; NX],
+    targets: &[[f64; NX]],
+    measurements: &[[Interval; NM]],
+    bisections: usize,
+) -> Vec<[f64; NX]>
+where
+    M: VectorModel<NX, NM, NR>,
+{
+    let mut order = FailFirst::new(measurements.len());
+    let mut points = Vec::new();
     for target in targets {
         let target: &[f64; NX] =
             &core::array::from_fn(|i| target[i].clamp(outer[i].inf(), outer[i].sup()));
@@ -263,14 +350,14 @@ where
             })
         };
         let mut best = None;
-        if is_consistent_point(model, target, measurements) {
+        if order.is_consistent_point(model, target, measurements) {
             best = Some(*target);
         } else {
             let (mut lo, mut hi) = (0.0, 1.0);
             for _ in 0..bisections {
                 let t = 0.5 * (lo + hi);
                 let p = at(t);
-                if is_consistent_point(model, &p, measurements) {
+                if order.is_consistent_point(model, &p, measurements) {
                     lo = t;
                     best = Some(p);
                 } else {
@@ -278,11 +365,7 @@ where
                 }
             }
         }
-        if let Some(p) = best {
-            for i in 0..NX {
-                inner[i] = inner[i].hull(Interval::point(p[i]));
-            }
-        }
+        points.extend(best);
     }
-    inner
+    points
 }

@@ -44,7 +44,7 @@ where
     };
     let room: [f64; NM] =
         core::array::from_fn(|i| (hint[i] - m[i].inf()).min(m[i].sup() - hint[i]).max(0.0));
-    let jm = model.evaluate_rows(&xm, &hint).map(|e| e.dm);
+    let jm = model.jacobians_m(&xm, &hint);
     let Some(s) = square_subsystem(&jm, &room) else {
         return false;
     };
@@ -78,8 +78,8 @@ where
     let mut lo = vec![0.0; n];
     let mut hi = vec![0.0; n];
     for _ in 0..8 {
-        let e = model.evaluate_rows(x, &reading);
-        let scale = e.iter().map(|r| r.value.abs()).fold(0.0, f64::max);
+        let (values, jm) = model.residuals_and_jacobians_m(x, &reading);
+        let scale = values.iter().map(|v| v.abs()).fold(0.0, f64::max);
         for i in 0..NM {
             lo[i] = m[i].inf() - reading[i];
             hi[i] = m[i].sup() - reading[i];
@@ -95,13 +95,13 @@ where
             return None;
         }
         poly.reset(&lo, &hi);
-        for r in &e {
+        for (value, dm) in values.iter().zip(&jm) {
             // f + J δ = 0, as two inequalities.
-            row[..NM].copy_from_slice(&r.dm);
+            row[..NM].copy_from_slice(dm);
             row[NM] = 0.0;
-            poly.push_row(&row, -r.value);
+            poly.push_row(&row, -value);
             row.iter_mut().for_each(|v| *v = -*v);
-            poly.push_row(&row, r.value);
+            poly.push_row(&row, *value);
         }
         for i in 0..NM {
             let rad = m[i].rad();
@@ -125,7 +125,7 @@ where
             step = step.max((next - reading[i]).abs() / (m[i].rad() + f64::MIN_POSITIVE));
             reading[i] = next;
         }
-        if scale == 0.0 || step < 1e-13 {
+        if scale == 0.0 || step < 1e-6 {
             break;
         }
     }
@@ -183,10 +183,10 @@ where
 {
     let mut a = vec![0.0; NR * NR];
     for step in 0..4 {
-        let e = model.evaluate_rows(x, hint);
+        let (values, jm) = model.residuals_and_jacobians_m(x, hint);
         for r in 0..NR {
             for (k, &i) in s.iter().enumerate() {
-                a[r * NR + k] = e[r].dm[i];
+                a[r * NR + k] = jm[r][i];
             }
         }
         if !gauss_jordan_inverse(NR, &mut a, c) {
@@ -196,7 +196,7 @@ where
             break;
         }
         for (k, &i) in s.iter().enumerate() {
-            let d: f64 = (0..NR).map(|r| c[k * NR + r] * e[r].value).sum();
+            let d: f64 = (0..NR).map(|r| c[k * NR + r] * values[r]).sum();
             hint[i] = (hint[i] - d).clamp(m[i].inf(), m[i].sup());
         }
     }
@@ -235,13 +235,13 @@ where
         for k in 0..NR {
             reading[s[k]] = y[k];
         }
-        let jac = model.evaluate_rows_interval(x, &reading);
+        let jac = model.jacobians_m_interval(x, &reading);
         let mut kbox = [Interval::ZERO; NR];
         for k in 0..NR {
             let mut acc = Interval::point(centre[k]) + z[k];
             for l in 0..NR {
                 // (I - C J)_{kl}
-                let cj = (0..NR).fold(Interval::ZERO, |a, r| a + ci(k, r) * jac[r].dm[s[l]]);
+                let cj = (0..NR).fold(Interval::ZERO, |a, r| a + ci(k, r) * jac[r][s[l]]);
                 let identity = if k == l {
                     Interval::ONE
                 } else {

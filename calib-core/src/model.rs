@@ -124,6 +124,23 @@ pub trait VectorModel<const NX: usize, const NM: usize, const NR: usize> {
         self.evaluate_rows(x, m).map(|e| e.dm)
     }
 
+    /// `f(x, M)` and `∂f/∂M (x, M)` of every row in floating point (what the search for a reading
+    /// that fits a configuration needs; `#[interval_model]` skips the parameter derivatives).
+    fn residuals_and_jacobians_m(
+        &self,
+        x: &[f64; NX],
+        m: &[f64; NM],
+    ) -> ([f64; NR], [[f64; NM]; NR]) {
+        let e = self.evaluate_rows(x, m);
+        (e.map(|r| r.value), e.map(|r| r.dm))
+    }
+
+    /// Row by row, an enclosure of `∂f_r/∂M` over the boxes (what the existence test of
+    /// [`crate::certificate`] needs; `#[interval_model]` skips the parameter derivatives).
+    fn jacobians_m_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [[Interval; NM]; NR] {
+        self.evaluate_rows_interval(x, m).map(|e| e.dm)
+    }
+
     /// Linear enclosures of every row over the boxes (see [`LinearEnclosure`]), when the model can
     /// compute them (`#[interval_model]` vector models do, in affine arithmetic); `None` by
     /// default. The Newton step adds their rows to the polyhedron.
@@ -190,5 +207,9 @@ impl<T: Model<NX, NM> + ?Sized, const NX: usize, const NM: usize> VectorModel<NX
     #[inline]
     fn jacobians_m(&self, x: &[f64; NX], m: &[f64; NM]) -> [[f64; NM]; 1] {
         [self.jacobian_m(x, m)]
+    }
+    #[inline]
+    fn jacobians_m_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [[Interval; NM]; 1] {
+        [self.jacobian_m_interval(x, m)]
     }
 }

@@ -94,12 +94,18 @@ fn check_rows<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, cons
         let mb = random_box(rng, mc, mr);
         let rows = model.evaluate_rows_interval(&xb, &mb);
         assert_eq!(rows.map(|r| r.value), model.residuals_interval(&xb, &mb));
+        // The ∂f/∂M-only evaluator (the existence test's) encloses what the full one does.
+        let jm_box = model.jacobians_m_interval(&xb, &mb);
         for _ in 0..10 {
             let x = random_point(rng, &xb);
             let m = random_point(rng, &mb);
             let p = model.evaluate_rows(&x, &m);
             assert_eq!(p.map(|r| r.value), model.residuals(&x, &m));
             assert_eq!(p.map(|r| r.dm), model.jacobians_m(&x, &m));
+            assert_eq!(
+                (p.map(|r| r.value), p.map(|r| r.dm)),
+                model.residuals_and_jacobians_m(&x, &m)
+            );
             for r in 0..NR {
                 assert!(rows[r].value.contains(p[r].value), "row {r}: value outside");
                 for j in 0..NX {
@@ -110,7 +116,7 @@ fn check_rows<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, cons
                 }
                 for i in 0..NM {
                     assert!(
-                        rows[r].dm[i].contains(p[r].dm[i]),
+                        rows[r].dm[i].contains(p[r].dm[i]) && jm_box[r][i].contains(p[r].dm[i]),
                         "row {r}: d/dm{i} outside"
                     );
                 }

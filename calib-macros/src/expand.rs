@@ -173,6 +173,13 @@ fn vector_model(
         let rows = v.chunks(nm).map(|r| quote!([#(#r),*]));
         quote!([#(#rows),*])
     });
+    let mut values_jm = outputs.to_vec();
+    values_jm.extend(&jm);
+    let values_and_jacobians_m = evaluator(graph, &s, &values_jm, |v| {
+        let (values, derivatives) = v.split_at(nr);
+        let rows = derivatives.chunks(nm).map(|r| quote!([#(#r),*]));
+        quote!(([#(#values),*], [#(#rows),*]))
+    });
     let mut all = outputs.to_vec();
     for g in grads {
         all.extend(&g.x);
@@ -201,6 +208,10 @@ fn vector_model(
             fn __values<#bound>(#args) -> [#s; #nr] { #values }
             #[inline(never)]
             fn __jacobians_m<#bound>(#args) -> [[#s; #nm]; #nr] { #jacobians_m }
+            #[inline(never)]
+            fn __values_jacobians_m<#bound>(#args) -> ([#s; #nr], [[#s; #nm]; #nr]) {
+                #values_and_jacobians_m
+            }
             #[inline(never)]
             fn __rows<#bound>(#args) -> [::calib_core::Evaluation<#s, #nx, #nm>; #nr] { #rows }
         }
@@ -232,6 +243,18 @@ fn vector_model(
             }
             #[inline]
             fn jacobians_m(&self, x: &[f64; #nx], m: &[f64; #nm]) -> [[f64; #nm]; #nr] {
+                Self::__jacobians_m(x, m)
+            }
+            #[inline]
+            fn residuals_and_jacobians_m(
+                &self,
+                x: &[f64; #nx],
+                m: &[f64; #nm],
+            ) -> ([f64; #nr], [[f64; #nm]; #nr]) {
+                Self::__values_jacobians_m(x, m)
+            }
+            #[inline]
+            fn jacobians_m_interval(&self, x: &[#iv; #nx], m: &[#iv; #nm]) -> [[#iv; #nm]; #nr] {
                 Self::__jacobians_m(x, m)
             }
             fn linear_enclosures(
