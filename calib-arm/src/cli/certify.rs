@@ -2,9 +2,9 @@
 
 use super::output::{file_name, print_identifiability, print_outcome, spinner, write_json};
 use super::DataFiles;
-use calib_arm::certification::{certify_arm, RunOptions};
+use calib_arm::certification::{arm_settings, certify_arm, RunOptions};
 use calib_arm::files::{read_measurements, read_robot, read_uncertainty};
-use calib_core::{Settings, Status};
+use calib_core::Status;
 use calib_pipeline::verdict::ConfigurationNames;
 use calib_pipeline::Depth;
 use std::path::PathBuf;
@@ -65,7 +65,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         )
         .into());
     }
-    let settings = Settings::default()
+    let settings = arm_settings()
         .with_hull_tolerance(a.tolerance)
         .with_hull_budget(a.max_boxes, a.max_seconds)
         .with_max_outliers(a.max_outliers);

@@ -2,10 +2,9 @@
 
 use super::output::{print_identifiability, print_outcome, spinner, write_json};
 use calib_arm::builtin_arm;
-use calib_arm::certification::{certify_arm, RunOptions};
+use calib_arm::certification::{arm_settings, certify_arm, RunOptions};
 use calib_arm::simulate::{simulate, Uncertainty};
 use calib_arm::write::write_data_set;
-use calib_core::Settings;
 use calib_pipeline::verdict::ConfigurationNames;
 use calib_pipeline::Depth;
 use std::path::PathBuf;
@@ -48,7 +47,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         write_data_set(dir, &arm, &sim)
             .map_err(|e| format!("{}: cannot write the data set: {e}", dir.display()))?;
     }
-    let settings = Settings::default()
+    let settings = arm_settings()
         .with_hull_tolerance(0.10)
         .with_hull_budget(10_000, Some(a.max_seconds));
     let options = RunOptions {
