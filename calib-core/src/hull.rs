@@ -720,7 +720,7 @@ fn push_outward<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, co
     objective[face.j] = if face.upper { -1.0 } else { 1.0 };
     let mut dual = vec![0.0; 2 * measurements.len()];
     let mut primal = [0.0; NX];
-    let mut row = [0.0; NX];
+    let mut rows: Vec<LinearisedRow<NX>> = Vec::new();
     for _ in 0..12 {
         let lo: [f64; NX] = core::array::from_fn(|j| region[j].inf() - p[j]);
         let hi: [f64; NX] = core::array::from_fn(|j| region[j].sup() - p[j]);
@@ -731,22 +731,32 @@ fn push_outward<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, co
         {
             break;
         }
-        poly.reset(&lo, &hi);
+        rows.clear();
         for m in measurements {
             let mm = m.map(|v| v.mid());
             let rad = m.map(|v| v.rad());
             let e = model.evaluate_rows(&p, &mm);
+            let mut count = 0;
             for_each_linearised_row(&e, &rad, |value, dx, w| {
-                let w = (1.0 - margin) * w;
-                // f + g·d <= θw  and  -(f + g·d) <= θw
-                row.copy_from_slice(dx);
-                poly.push_row(&row, w - value);
-                row.iter_mut().for_each(|v| *v = -*v);
-                poly.push_row(&row, w + value);
+                rows.push(LinearisedRow {
+                    value,
+                    dx: *dx,
+                    w: (1.0 - margin) * w,
+                    active: count < NR,
+                });
+                count += 1;
             });
         }
-        dual.resize(poly.rows(), 0.0);
-        if lp.minimize(&poly, &objective, &mut dual, &mut primal) != LpStatus::Optimal {
+        let lp_step = PushLp {
+            lp: &mut *lp,
+            poly: &mut poly,
+            lo: &lo,
+            hi: &hi,
+            objective: &objective,
+            dual: &mut dual,
+            primal: &mut primal,
+        };
+        if !lp_step.solve(&mut rows) {
             margin = (2.0 * margin).min(0.9);
             continue;
         }
@@ -776,4 +786,75 @@ fn push_outward<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, co
         }
     }
     best
+}
+
+/// One linearised scalar equation of a push (see [`push_outward`]): `|value + dx·d| <= w`.
+struct LinearisedRow<const NX: usize> {
+    value: f64,
+    dx: [f64; NX],
+    w: f64,
+    /// Whether the LP holds it: every residual row from the start, coupling rows once violated.
+    active: bool,
+}
+
+/// The LP of one push step, `min ±d_j` over the active rows and the box `[lo, hi]`.
+struct PushLp<'a, const NX: usize> {
+    lp: &'a mut DenseSimplex,
+    poly: &'a mut Polyhedron,
+    lo: &'a [f64; NX],
+    hi: &'a [f64; NX],
+    objective: &'a [f64; NX],
+    dual: &'a mut Vec<f64>,
+    primal: &'a mut [f64; NX],
+}
+
+/// At most this many LPs per push step: each adds the coupling rows its optimum violates.
+const ROW_GENERATION_ROUNDS: usize = 6;
+
+impl<const NX: usize> PushLp<'_, NX> {
+    /// Solves over every row by row generation: the residual rows first, then the coupling rows
+    /// (up to `MAX_DIRECTIONS` per configuration, most of them never binding) that the optimum
+    /// violates, until it violates none or [`ROW_GENERATION_ROUNDS`] LPs were solved. False when
+    /// an LP failed. With one row per configuration (no coupling rows) this is the single LP
+    /// over every row. The optimum is a candidate only: the push certifies it.
+    fn solve(self, rows: &mut [LinearisedRow<NX>]) -> bool {
+        let mut row = [0.0; NX];
+        for _ in 0..ROW_GENERATION_ROUNDS {
+            self.poly.reset(self.lo, self.hi);
+            for (g, r) in rows.iter().enumerate().filter(|(_, r)| r.active) {
+                // Tags that name the row, so that a remembered basis survives added rows.
+                self.poly.begin_group(g as u32);
+                // f + g·d <= θw  and  -(f + g·d) <= θw
+                row.copy_from_slice(&r.dx);
+                self.poly.push_row(&row, r.w - r.value);
+                row.iter_mut().for_each(|v| *v = -*v);
+                self.poly.push_row(&row, r.w + r.value);
+            }
+            self.dual.resize(self.poly.rows(), 0.0);
+            if self
+                .lp
+                .minimize(self.poly, self.objective, self.dual, self.primal)
+                != LpStatus::Optimal
+            {
+                return false;
+            }
+            let mut added = false;
+            for r in rows.iter_mut().filter(|r| !r.active) {
+                let v = r.value
+                    + r.dx
+                        .iter()
+                        .zip(self.primal.iter())
+                        .map(|(a, d)| a * d)
+                        .sum::<f64>();
+                if v.abs() > r.w {
+                    r.active = true;
+                    added = true;
+                }
+            }
+            if !added {
+                break;
+            }
+        }
+        true
+    }
 }
