@@ -1,9 +1,8 @@
 //! Seconds per certification of serial arms through the pipeline (`certify_arm`, the padded
 //! 7-joint model): the hull of a small 3-joint arm (12 configurations, tight priors) limited to 20
-//! contracted boxes (unlimited, it spends a 60 s budget without reaching ratio 1.10: the hull's
-//! cost per box is what to bring down), and one contraction to x1 of the built-in 6-axis arm (10
-//! configurations, the priors and error bounds; 50 configurations take ~35 s, see
-//! `arm demo`).
+//! contracted boxes, and one contraction to x1 of the built-in 6-axis arm (10 configurations, the
+//! issue's priors and error bounds; 50 configurations take ~7 s, see `arm demo` and
+//! `benches/README.md`).
 //!
 //! `cargo bench -p calib-arm --bench arm_hull`.
 

@@ -17,7 +17,7 @@ pub struct Args {
     /// Random seed of the simulation.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Also refine to the tight hull (minutes; bounded by --max-seconds).
+    /// Also refine towards the tight hull, for at most --max-seconds.
     #[arg(long)]
     hull: bool,
     /// With --hull: stop refining after this many seconds.
@@ -54,7 +54,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         depth: if a.hull { Depth::Hull } else { Depth::Fast },
         lsq: true,
     };
-    let bar = spinner("certifying (about a minute in a release build)");
+    let bar = spinner("certifying (about ten seconds in a release build; --hull: --max-seconds)");
     let run = certify_arm(&arm, &sim.readings, &sim.uncertainty, options, &settings)?;
     bar.finish_and_clear();
     let lines: Vec<usize> = (2..2 + a.configs).collect();
