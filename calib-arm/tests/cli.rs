@@ -183,6 +183,30 @@ fn least_squares_runs_on_the_files() {
 }
 
 #[test]
+fn a_closed_output_ends_the_program_quietly() {
+    let dir = tempdir("pipe");
+    simulated(&dir, 6, &[]);
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    // `arm lsq … | head -0`: the reader is gone before the first line is printed.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_arm"))
+        .args(["lsq", "--robot", &p("robot.toml")])
+        .args(["--measurements", &p("measurements.csv")])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the arm binary runs");
+    drop(child.stdout.take());
+    let o = child.wait_with_output().expect("the arm binary ends");
+    assert!(!text(&o).contains("panicked"), "{}", text(&o));
+    assert_eq!(
+        o.status.code(),
+        Some(calib_pipeline::CLOSED_OUTPUT_STATUS),
+        "{}",
+        text(&o)
+    );
+}
+
+#[test]
 fn bad_files_name_file_line_and_field_and_write_nothing() {
     let dir = tempdir("bad");
     simulated(&dir, 6, &[]);

@@ -6,6 +6,7 @@ mod cli;
 use clap::Parser;
 
 fn main() {
+    calib_pipeline::exit_quietly_when_output_closes();
     let args = cli::Cli::parse();
     let code = match cli::run(args) {
         Ok(code) => code,

@@ -391,3 +391,28 @@ fn lsq_and_reproduce_run_end_to_end() {
     let help = gough(&["certify", "--help"]);
     assert!(String::from_utf8_lossy(&help.stdout).contains("Example"));
 }
+
+#[test]
+fn a_closed_output_ends_the_program_quietly() {
+    let dir = tempdir("pipe");
+    simulate(&dir, 5, &[]);
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    // `gough certify … | head -0`: the reader is gone before the first line is printed.
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gough"))
+        .args(["certify", "--fast", "--robot", &p("robot.toml")])
+        .args(["--measurements", &p("measurements.csv")])
+        .args(["--uncertainty", &p("uncertainty.toml")])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("gough runs");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("gough ends");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(
+        out.status.code(),
+        Some(calib_pipeline::CLOSED_OUTPUT_STATUS),
+        "{stderr}"
+    );
+}

@@ -19,5 +19,5 @@ pub mod verdict;
 
 pub use error::{read_text, toml_error, DataError, MAX_MAGNITUDE};
 pub use outcome::{certify_model, is_fixed, Depth, Outcome};
-pub use output::write_atomically;
+pub use output::{exit_quietly_when_output_closes, write_atomically, CLOSED_OUTPUT_STATUS};
 pub use table::{parse_number_table, NumberTable};

@@ -1,4 +1,5 @@
-//! Writing outputs so that nothing is half-written.
+//! Writing outputs: files so that nothing is half-written, standard output so that a closed pipe
+//! ends the program quietly.
 
 use std::path::Path;
 
@@ -20,9 +21,49 @@ pub fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
     })
 }
 
+/// The exit status after standard output was closed under the program (128 + SIGPIPE: what a
+/// shell reports for a tool that the closed pipe stopped, so `set -o pipefail` still sees it).
+pub const CLOSED_OUTPUT_STATUS: i32 = 141;
+
+/// Makes a closed standard output (`gough certify … | head`) end the program quietly, as
+/// command-line tools do: `println!` panics when its pipe is closed, and this panic hook turns
+/// exactly that panic into a silent exit with [`CLOSED_OUTPUT_STATUS`]. Every other panic goes to
+/// the hook that was installed before. Call it first thing in `main`.
+pub fn exit_quietly_when_output_closes() {
+    let previous = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let payload = info.payload();
+        let message = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if is_closed_output(message) {
+            std::process::exit(CLOSED_OUTPUT_STATUS);
+        }
+        previous(info)
+    }));
+}
+
+/// Whether a panic message is the standard library's for writing to a closed stdout or stderr.
+fn is_closed_output(message: &str) -> bool {
+    message.starts_with("failed printing to std") && message.contains("Broken pipe")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn only_closed_output_panics_are_recognised() {
+        assert!(is_closed_output(
+            "failed printing to stdout: Broken pipe (os error 32)"
+        ));
+        assert!(!is_closed_output(
+            "failed printing to stdout: No space left on device"
+        ));
+        assert!(!is_closed_output("index out of bounds: Broken pipe"));
+    }
 
     #[test]
     fn writes_whole_files_and_leaves_no_temporary_behind() {
