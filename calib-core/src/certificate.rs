@@ -304,30 +304,10 @@ where
 }
 
 /// Inner bounds: starting from a certified `witness` in the box `outer`, walks towards each `target`
-/// (the LP extreme points, clamped into `outer`) by bisection on the segment, keeping the farthest
-/// certified point, and returns the hull of all certified points found. Every point tried lies in
-/// `outer` (a convex box containing the witness), so the inner box lies in the outer one.
-pub(crate) fn inner_box<M, const NX: usize, const NM: usize, const NR: usize>(
-    model: &M,
-    witness: &[f64; NX],
-    outer: &[Interval; NX],
-    targets: &[[f64; NX]],
-    measurements: &[[Interval; NM]],
-    bisections: usize,
-) -> [Interval; NX]
-where
-    M: VectorModel<NX, NM, NR>,
-{
-    let mut inner = witness.map(Interval::point);
-    for p in inner_points(model, witness, outer, targets, measurements, bisections) {
-        for i in 0..NX {
-            inner[i] = inner[i].hull(Interval::point(p[i]));
-        }
-    }
-    inner
-}
-
-/// The certified points of [`inner_box`]: per target, the farthest one found on its segment.
+/// (the LP extreme points, clamped into `outer`) by bisection on the segment and returns, per
+/// target, the farthest certified point found. Every point tried lies in `outer` (a convex box
+/// containing the witness), so the hull of the witness and these points (the inner box) lies in
+/// the outer one.
 pub(crate) fn inner_points<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     witness: &[f64; NX],

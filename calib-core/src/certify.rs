@@ -1,6 +1,6 @@
 //! [`certify`]: contraction to a fixed point plus the evidence for the verdict.
 
-use crate::certificate::{find_witness, inner_box};
+use crate::certificate::{find_witness, inner_points};
 use crate::contract::{contract, EmptinessProof, Workspace};
 use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
 use crate::{Interval, Settings, VectorModel};
@@ -232,14 +232,17 @@ fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, c
                 out.status = Status::Consistent;
                 out.witness = Some(w);
                 if settings.inner_bounds {
-                    out.inner = Some(inner_box(
+                    let points = inner_points(
                         model,
                         &w,
                         &outer,
                         &extremes,
                         measurements,
                         settings.inner_bisections,
-                    ));
+                    );
+                    out.inner = Some(points.iter().fold(w.map(Interval::point), |h, p| {
+                        core::array::from_fn(|i| h[i].hull(Interval::point(p[i])))
+                    }));
                 }
             }
         }
