@@ -287,8 +287,9 @@ impl<const NX: usize> StepFrame<NX> {
 }
 
 /// Whether a parameter is fixed: a point, or a sliver of a few ulps (a parameter fixed at a value
-/// converted to other units). The LPs freeze such parameters.
-pub(crate) fn is_fixed(x: &Interval) -> bool {
+/// converted to other units, enclosed). The LPs freeze such parameters, the hull pushes no point
+/// along them, and reports list them apart.
+pub fn is_fixed(x: Interval) -> bool {
     x.wid() <= 1e-12 * x.mag().max(1.0)
 }
 
@@ -313,7 +314,7 @@ where
     let yhi = frame.y_box.map(|v| v.sup());
     ws.poly.reset(&ylo, &yhi);
     for j in 0..NX {
-        if is_fixed(&x[j]) {
+        if is_fixed(x[j]) {
             ws.poly.freeze(j, frame.y_box[j].mag());
         }
     }

@@ -352,7 +352,7 @@ where
         // First inner points: push the LP extreme points of x1 (or the witness) to their faces.
         // (Not along parameters fixed at a point: nothing to gain there.)
         let seeds: Vec<(Face, [f64; NX])> = Face::all(NX)
-            .filter(|f| !is_fixed(&x0[f.j]))
+            .filter(|f| !is_fixed(x0[f.j]))
             .flat_map(|f| {
                 let lp = extremes.get(f.slot()).copied();
                 lp.into_iter().chain(witness).map(move |p| (f, p))

@@ -60,7 +60,7 @@ pub use bisection::{pave, sweep, Paving, SweepResult};
 pub use calib_macros::interval_model;
 pub use certificate::{is_certified_consistent, is_consistent_by_corners, is_consistent_point};
 pub use certify::{certify, certify_with, Certification, Status};
-pub use contract::{contract, Contraction, EmptinessProof, Workspace};
+pub use contract::{contract, is_fixed, Contraction, EmptinessProof, Workspace};
 pub use dual::Dual;
 pub use hull::{hull, hull_with, Hull};
 pub use interval::Interval;

@@ -2,6 +2,7 @@
 //! [`Outcome`] holds what the kernel proved in plain vectors, with the parameters' names, and
 //! [`certify_model`] produces it from any [`VectorModel`].
 
+pub use calib_core::is_fixed;
 use calib_core::{certify, hull, EmptinessProof, Interval, Settings, Status, VectorModel};
 use std::time::Instant;
 
@@ -188,12 +189,6 @@ impl Outcome {
             ..self.clone()
         }
     }
-}
-
-/// Whether a parameter is fixed: a point, or a sliver of a few ulps (a fixed value converted to
-/// other units, enclosed).
-pub fn is_fixed(v: Interval) -> bool {
-    v.wid() <= 1e-12 * v.mag().max(1.0)
 }
 
 #[cfg(test)]
