@@ -4,7 +4,7 @@
 //! Denavit–Hartenberg plus Hayati's `beta`, a base transform and a tool point) written once under
 //! `#[interval_model]` as a three-row [`calib_core::VectorModel`] ([`model`]), parameter names
 //! and units ([`params`]), and the conversions between the files' degrees and the model's radians
-//! ([`units`]); the files read ([`files`]) and written ([`write`]), simulated data ([`simulate`]),
+//! ([`units`]); the files read ([`files`]) and written ([`mod@write`]), simulated data ([`mod@simulate`]),
 //! and the arm's use of the robot-agnostic pipeline ([`certification`]: identifiability,
 //! certification, least squares, in the files' units). The `arm` binary is the command line.
 #![deny(unsafe_code)]

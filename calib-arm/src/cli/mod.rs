@@ -71,6 +71,8 @@ enum Command {
 #[derive(clap::Args, Debug)]
 pub struct DataFiles {
     /// The arm: [[joint]] tables (theta_deg, d, a, alpha_deg, beta_deg, radius), [base], [tool].
+    // The brackets are TOML table names shown verbatim by --help, not rustdoc links.
+    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long, value_name = "FILE")]
     robot: PathBuf,
     /// One row per configuration: q1,…,qN (degrees), px,py,pz (mm, tracker frame).
