@@ -164,6 +164,28 @@ fn a_shifted_configuration_is_proved_and_named_then_tolerated() {
     let report: Value =
         serde_json::from_str(&std::fs::read_to_string(&json).expect("report")).expect("json");
     assert_eq!(report["outliers"], serde_json::json!([4]));
+
+    // `auto` finds that one outlier is needed, and then certifies exactly as `--max-outliers 1`.
+    let auto_json = dir.join("auto.json");
+    let o = certify(
+        &dir,
+        &[
+            "--max-outliers",
+            "auto",
+            "--json",
+            auto_json.to_str().expect("utf-8"),
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(
+        text(&o).contains("1 outlier tolerated (proved: with every configuration kept"),
+        "{}",
+        text(&o)
+    );
+    let auto: Value =
+        serde_json::from_str(&std::fs::read_to_string(&auto_json).expect("report")).expect("json");
+    assert_eq!(auto["outliers"], report["outliers"]);
+    assert_eq!(auto["parameters"], report["parameters"]);
 }
 
 #[test]

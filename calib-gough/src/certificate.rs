@@ -137,8 +137,6 @@ pub struct Certificate<'a> {
     pub legs: Vec<LegEntry<'a>>,
     /// How configurations are named (file and lines).
     pub names: ConfigurationNames<'a>,
-    /// Outliers tolerated per leg.
-    pub max_outliers: usize,
     /// Sections after the legs.
     pub sections: Vec<Section>,
 }
@@ -453,7 +451,7 @@ impl Certificate<'_> {
             badge(r.status),
             n = r.leg + 1
         );
-        for sentence in verdict::verdict(r, &self.names, self.max_outliers) {
+        for sentence in verdict::verdict(r, &self.names) {
             let _ = writeln!(h, "<p class=\"evidence\">{}</p>", escape(&sentence));
         }
         if let (Some(ratio), Some(meaning)) = (verdict::width_ratios(r), verdict::tightness(r)) {
@@ -467,7 +465,7 @@ impl Certificate<'_> {
         if let Some(line) = verdict::touching_x0(r) {
             let _ = writeln!(h, "<p class=\"evidence\">Note: {}.</p>", escape(&line));
         }
-        if let Some(line) = verdict::outliers(r, &self.names, self.max_outliers) {
+        if let Some(line) = verdict::outliers(r, &self.names) {
             let _ = writeln!(h, "<p class=\"evidence\">{}</p>", escape(&line));
         }
         if let Some(w) = r.witness {

@@ -6,7 +6,7 @@ use crate::measurement::{leg_boxes, measured, Configuration, Uncertainty};
 use crate::report::{bounds, LegReport, Report};
 use crate::{GoughLeg, PARAMETER_NAMES};
 use calib_core::{certify, hull, pave, sweep, EmptinessProof, Hull, Interval, Settings, Status};
-use calib_pipeline::Outcome;
+use calib_pipeline::{smallest_consistent, Outcome, OutlierBudget};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -27,8 +27,9 @@ pub struct CertifyOptions {
     pub max_boxes: usize,
     /// The hull's time budget per leg.
     pub max_seconds: Option<f64>,
-    /// Tolerated outliers per leg.
-    pub max_outliers: usize,
+    /// Tolerated outliers per leg: a number, or the smallest number that makes each leg
+    /// consistent ([`OutlierBudget::Auto`]).
+    pub max_outliers: OutlierBudget,
 }
 
 impl Default for CertifyOptions {
@@ -41,7 +42,7 @@ impl Default for CertifyOptions {
             tolerance: Settings::default().hull_tolerance,
             max_boxes: Settings::default().hull_max_boxes,
             max_seconds: None,
-            max_outliers: 0,
+            max_outliers: OutlierBudget::Fixed(0),
         }
     }
 }
@@ -81,16 +82,15 @@ impl CertifyOptions {
                 ));
             }
         }
-        if self.max_outliers >= configs {
-            return Err(format!(
-                "--max-outliers {}: must be smaller than the number of configurations ({configs})",
-                self.max_outliers
-            ));
-        }
+        self.max_outliers.check(configs)?;
+        let tolerated = match self.max_outliers {
+            OutlierBudget::Fixed(q) => q,
+            OutlierBudget::Auto => 0,
+        };
         let settings = Settings::default()
             .with_hull_tolerance(self.tolerance)
             .with_hull_budget(self.max_boxes, self.max_seconds)
-            .with_max_outliers(self.max_outliers);
+            .with_max_outliers(tolerated);
         Ok((chosen, settings))
     }
 }
@@ -118,6 +118,8 @@ pub struct LegResult {
     pub conflict: Option<Vec<usize>>,
     /// With outliers tolerated: the configurations (0-based) proved to be outliers.
     pub outliers: Vec<usize>,
+    /// How many outliers this result tolerates (the kernel's [`Settings::max_outliers`]).
+    pub tolerated: usize,
     /// Newton/LP steps to x1.
     pub iterations: usize,
     /// Whether the hull met the tolerance (`None` with `fast`).
@@ -146,6 +148,7 @@ impl LegResult {
             witness: h.witness,
             conflict: h.conflict,
             outliers: h.outliers,
+            tolerated: 0,
             iterations: h.iterations,
             converged: Some(h.converged),
             x2: None,
@@ -192,6 +195,7 @@ impl LegResult {
             converged: self.converged,
             conflict: self.conflict.as_deref().map(one_based),
             outliers: one_based(&self.outliers),
+            outliers_tolerated: self.tolerated,
             witness: self.witness.map(|w| w.to_vec()),
             iterations: self.iterations,
             boxes: self.boxes,
@@ -236,6 +240,7 @@ pub fn certify_leg(
             witness: c.witness,
             conflict: c.conflict,
             outliers: c.outliers,
+            tolerated: 0,
             iterations: c.iterations,
             converged: None,
             x2: None,
@@ -256,12 +261,16 @@ pub fn certify_leg(
         r.boxes += p.boxes_contracted;
         r.paving = Some((p.boxes.len(), p.inner_volume, p.outer_volume));
     }
+    r.tolerated = settings.max_outliers;
     r.seconds = t.elapsed().as_secs_f64();
     r
 }
 
 /// Certifies the chosen legs in parallel (in leg order); `done` is called after each leg (for
-/// progress). Errors are option errors (see [`CertifyOptions::validate`]).
+/// progress). With [`OutlierBudget::Auto`], each leg is certified with the smallest number of
+/// tolerated outliers that does not prove it empty (see [`smallest_consistent`]; the leg's
+/// [`LegResult::tolerated`] says which). Errors are option errors (see
+/// [`CertifyOptions::validate`]).
 pub fn certify_legs(
     robot: &[LegSpec],
     configs: &[Configuration],
@@ -273,7 +282,26 @@ pub fn certify_legs(
     Ok(legs
         .par_iter()
         .map(|&leg| {
-            let r = certify_leg(&robot[leg], leg, configs, u, options, &settings);
+            let t = Instant::now();
+            let (_, mut r) = smallest_consistent(
+                options.max_outliers,
+                configs.len(),
+                |q| {
+                    let settings = settings.clone().with_max_outliers(q);
+                    Ok::<_, std::convert::Infallible>(certify_leg(
+                        &robot[leg],
+                        leg,
+                        configs,
+                        u,
+                        options,
+                        &settings,
+                    ))
+                },
+                |r| r.status == Status::Empty,
+            )
+            .unwrap_or_else(|never| match never {});
+            // With `auto`, the leg's time includes the tries that proved fewer outliers too few.
+            r.seconds = t.elapsed().as_secs_f64();
             done();
             r
         })

@@ -55,6 +55,10 @@ pub struct LegReport {
     /// With `--max-outliers`: the configurations (1-based) proved to be outliers.
     #[serde(default)]
     pub outliers: Vec<usize>,
+    /// How many outliers the leg's result tolerates (with `--max-outliers Q`, Q; with `auto`, the
+    /// smallest number not proved empty); absent when none.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub outliers_tolerated: usize,
     /// A certified consistent parameter vector.
     pub witness: Option<Vec<f64>>,
     /// Newton/LP iterations of the certification.
@@ -116,6 +120,11 @@ pub fn ratios(ratio: &[f64; 7]) -> String {
 
 pub use calib_pipeline::write_atomically;
 
+/// Whether a count is zero (to leave default values out of the JSON).
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -142,6 +151,7 @@ mod tests {
                 converged: Some(true),
                 conflict: Some(vec![3, 9]),
                 outliers: vec![9],
+                outliers_tolerated: 1,
                 witness: Some(vec![0.1; 7]),
                 iterations: 3,
                 boxes: 1,

@@ -6,7 +6,7 @@ use crate::certification::LegResult;
 use crate::PARAMETER_NAMES;
 use calib_core::{EmptinessProof, Interval, Status};
 use calib_pipeline::verdict as words;
-pub use calib_pipeline::verdict::{short_verdict, ConfigurationNames, Standing};
+pub use calib_pipeline::verdict::{auto_outliers, short_verdict, ConfigurationNames, Standing};
 
 /// What proved a leg empty, in words.
 pub fn proof_in_words(proof: Option<EmptinessProof>) -> String {
@@ -15,9 +15,9 @@ pub fn proof_in_words(proof: Option<EmptinessProof>) -> String {
 }
 
 /// The verdict and its evidence, one sentence per entry: for an empty leg the proof, the
-/// conflicting configurations and what to do next.
-pub fn verdict(r: &LegResult, names: &ConfigurationNames<'_>, max_outliers: usize) -> Vec<String> {
-    words::verdict(&r.outcome(), names, max_outliers)
+/// conflicting configurations and what to do next (with the outliers the result tolerates).
+pub fn verdict(r: &LegResult, names: &ConfigurationNames<'_>) -> Vec<String> {
+    words::verdict(&r.outcome(), names, r.tolerated)
 }
 
 /// The outer (or x1) width over the inner width, per parameter, when both exist.
@@ -57,14 +57,10 @@ pub fn leg_standing(r: &LegResult, x: &[f64; 7]) -> Standing {
     standing(&r.x0, certified, x)
 }
 
-/// With outliers tolerated (`max_outliers > 0`) on a leg that is not empty: which configurations
+/// With outliers tolerated (`r.tolerated > 0`) on a leg that is not empty: which configurations
 /// were proved to be outliers.
-pub fn outliers(
-    r: &LegResult,
-    names: &ConfigurationNames<'_>,
-    max_outliers: usize,
-) -> Option<String> {
-    words::outliers(&r.outcome(), names, max_outliers)
+pub fn outliers(r: &LegResult, names: &ConfigurationNames<'_>) -> Option<String> {
+    words::outliers(&r.outcome(), names, r.tolerated)
 }
 
 #[cfg(test)]
@@ -88,6 +84,7 @@ mod tests {
             witness: None,
             conflict: None,
             outliers: vec![],
+            tolerated: 0,
             iterations: 1,
             converged: Some(true),
             x2: None,

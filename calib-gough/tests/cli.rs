@@ -149,6 +149,34 @@ fn max_outliers_names_every_culprit_and_keeps_the_truth() {
     assert!(stdout.contains("configurations 5, 13 (measurements.csv lines 6, 14)"));
     let bad = certify(&dir, &["--max-outliers", "21"]);
     assert_eq!(bad.status.code(), Some(1));
+
+    // `auto`: leg 2 needs both outliers, leg 3 none; each leg's result is then exactly the
+    // certification with that many tolerated.
+    let auto = certify(&dir, &["--legs", "2,3", "--max-outliers", "auto"]);
+    assert_eq!(auto.status.code(), Some(0));
+    let stdout = String::from_utf8_lossy(&auto.stdout);
+    assert!(
+        stdout.contains("2 outliers tolerated (proved: with 1 or fewer tolerated, no parameter"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("no outlier needed"), "{stdout}");
+    let auto_rep = report(&dir);
+    assert_eq!(auto_rep["legs"][0]["outliers_tolerated"], 2);
+    assert_eq!(auto_rep["legs"][0]["outer"], leg2["outer"]);
+    assert_eq!(auto_rep["legs"][0]["outliers"], serde_json::json!([5, 13]));
+    assert!(auto_rep["legs"][1].get("outliers_tolerated").is_none());
+    assert_eq!(certify(&dir, &["--legs", "3"]).status.code(), Some(0));
+    assert_eq!(
+        auto_rep["legs"][1]["outer"],
+        report(&dir)["legs"][0]["outer"]
+    );
+    let bad = certify(&dir, &["--max-outliers", "some"]);
+    assert_eq!(
+        bad.status.code(),
+        Some(2),
+        "clap rejects it as a usage error"
+    );
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("or `auto`"));
 }
 
 #[test]

@@ -12,6 +12,7 @@ mod error;
 pub mod identify;
 pub mod lsq;
 mod outcome;
+mod outlier_budget;
 mod output;
 pub mod report;
 mod table;
@@ -19,5 +20,6 @@ pub mod verdict;
 
 pub use error::{read_text, toml_error, DataError, MAX_MAGNITUDE};
 pub use outcome::{certify_model, is_fixed, Depth, Outcome};
+pub use outlier_budget::{smallest_consistent, OutlierBudget};
 pub use output::{exit_quietly_when_output_closes, write_atomically, CLOSED_OUTPUT_STATUS};
 pub use table::{parse_number_table, NumberTable};

@@ -239,9 +239,38 @@ pub fn outliers(
     })
 }
 
+/// What `--max-outliers auto` found, for a result certified with `q` outliers tolerated: every
+/// smaller number was proved too few (see [`crate::smallest_consistent`]).
+pub fn auto_outliers(q: usize, status: Status) -> String {
+    match (q, status) {
+        (q, Status::Empty) => {
+            format!(
+                "--max-outliers auto: empty even with {q} outliers tolerated, the most possible"
+            )
+        }
+        (0, _) => "--max-outliers auto: no outlier needed (every configuration kept)".into(),
+        (1, _) => "--max-outliers auto: 1 outlier tolerated (proved: with every configuration \
+                   kept, no parameter vector of x0 fits)"
+            .into(),
+        (q, _) => format!(
+            "--max-outliers auto: {q} outliers tolerated (proved: with {} or fewer tolerated, no \
+             parameter vector of x0 fits)",
+            q - 1
+        ),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn auto_outliers_say_what_was_proved() {
+        assert!(auto_outliers(0, Status::Consistent).contains("no outlier needed"));
+        assert!(auto_outliers(1, Status::Undecided).contains("with every configuration kept"));
+        assert!(auto_outliers(3, Status::Consistent).contains("with 2 or fewer tolerated"));
+        assert!(auto_outliers(4, Status::Empty).contains("empty even with 4"));
+    }
 
     #[test]
     fn configurations_are_named_by_number_and_line() {

@@ -61,16 +61,23 @@ fn run(py: Python<'_>, inputs: Inputs, options: CertifyOptions) -> PyResult<Stri
 struct Options {
     legs: Option<Vec<usize>>,
     sweep: bool,
-    max_outliers: usize,
+    /// A number or `auto` (what `--max-outliers` accepts).
+    max_outliers: String,
     fast: bool,
     tolerance: f64,
     max_boxes: usize,
     max_seconds: Option<f64>,
 }
 
-impl From<Options> for CertifyOptions {
-    fn from(o: Options) -> Self {
-        CertifyOptions {
+impl TryFrom<Options> for CertifyOptions {
+    type Error = PyErr;
+
+    fn try_from(o: Options) -> PyResult<Self> {
+        let max_outliers = o
+            .max_outliers
+            .parse()
+            .map_err(|e| value_error(format!("max_outliers: {e}")))?;
+        Ok(CertifyOptions {
             legs: o.legs,
             fast: o.fast,
             sweep: o.sweep,
@@ -78,8 +85,8 @@ impl From<Options> for CertifyOptions {
             tolerance: o.tolerance,
             max_boxes: o.max_boxes,
             max_seconds: o.max_seconds,
-            max_outliers: o.max_outliers,
-        }
+            max_outliers,
+        })
     }
 }
 
@@ -101,7 +108,7 @@ fn certify_files(
         uncertainty: u,
         uncertainty_name: uncertainty,
     };
-    run(py, inputs, options.into())
+    run(py, inputs, options.try_into()?)
 }
 
 /// Certifies from the three inputs as text in the files' formats (TOML, CSV, TOML), each with
@@ -129,7 +136,7 @@ fn certify_text(
         uncertainty: u,
         uncertainty_name: un,
     };
-    run(py, inputs, options.into())
+    run(py, inputs, options.try_into()?)
 }
 
 /// Writes the simulated data set of `gough simulate` into `out`; `outliers` are 1-based

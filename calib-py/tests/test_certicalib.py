@@ -119,6 +119,11 @@ def test_outliers_are_named_and_tolerated(data):
     values = np.array(truth["a"] + truth["b"] + [truth["l"]])
     assert np.all(leg.outer[:, 0] <= values) and np.all(values <= leg.outer[:, 1])
     same_legs(tolerant.to_dict(), cli_report(data, "--legs", "2", "--max-outliers", "1"))
+    auto = certicalib.certify(*files(data), legs=[2], max_outliers="auto").legs[0]
+    assert auto.outliers_tolerated == 1 and auto.outliers == [5]
+    assert np.array_equal(auto.outer, leg.outer)
+    with pytest.raises(ValueError, match="max_outliers"):
+        certicalib.certify(*files(data), legs=[2], max_outliers="many")
 
 
 def test_bad_input_raises_value_error_naming_file_line_and_field(data, tmp_path):

@@ -5,8 +5,8 @@ use super::DataFiles;
 use calib_arm::certification::{arm_settings, certify_arm, RunOptions};
 use calib_arm::files::{read_measurements, read_robot, read_uncertainty};
 use calib_core::Status;
-use calib_pipeline::verdict::ConfigurationNames;
-use calib_pipeline::Depth;
+use calib_pipeline::verdict::{self, ConfigurationNames};
+use calib_pipeline::{smallest_consistent, Depth, OutlierBudget};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -32,9 +32,10 @@ pub struct Args {
     max_seconds: Option<f64>,
     /// Tolerate up to Q bad configurations: the boxes then contain every parameter vector that
     /// fits all but at most Q configurations, and the configurations proved to be outliers are
-    /// listed. Costs about C(configurations, Q) certifications.
-    #[arg(long, value_name = "Q", default_value_t = 0)]
-    max_outliers: usize,
+    /// listed. Costs about C(configurations, Q) certifications. `auto`: the smallest Q that is not
+    /// proved empty (tries Q = 0, 1, 2, … in turn; every Q below it is proved too few).
+    #[arg(long, value_name = "Q|auto", default_value = "0")]
+    max_outliers: OutlierBudget,
     /// Also fit by least squares and show where the fit stands against the certified box.
     #[arg(long)]
     lsq: bool,
@@ -57,18 +58,10 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     if a.max_seconds.is_some_and(|s| s.is_nan() || s <= 0.0) {
         return Err("--max-seconds: expected a positive number".into());
     }
-    if a.max_outliers >= data.readings.len() {
-        return Err(format!(
-            "--max-outliers {}: must be smaller than the number of configurations ({})",
-            a.max_outliers,
-            data.readings.len()
-        )
-        .into());
-    }
+    a.max_outliers.check(data.readings.len())?;
     let settings = arm_settings()
         .with_hull_tolerance(a.tolerance)
-        .with_hull_budget(a.max_boxes, a.max_seconds)
-        .with_max_outliers(a.max_outliers);
+        .with_hull_budget(a.max_boxes, a.max_seconds);
     let options = RunOptions {
         depth: if a.hull { Depth::Hull } else { Depth::Fast },
         lsq: a.lsq,
@@ -78,7 +71,15 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         arm.free().iter().filter(|f| **f).count(),
         data.readings.len()
     ));
-    let run = certify_arm(&arm, &data.readings, &u, options, &settings)?;
+    let (q, run) = smallest_consistent(
+        a.max_outliers,
+        data.readings.len(),
+        |q| {
+            let settings = settings.clone().with_max_outliers(q);
+            certify_arm(&arm, &data.readings, &u, options, &settings)
+        },
+        |run| run.outcome.status == Status::Empty,
+    )?;
     bar.finish_and_clear();
     let file = file_name(&a.files.measurements);
     let names = ConfigurationNames {
@@ -86,9 +87,12 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         lines: &data.lines,
     };
     print_identifiability(&run);
-    print_outcome(&run, &names, a.max_outliers);
+    if a.max_outliers == OutlierBudget::Auto {
+        println!("{}", verdict::auto_outliers(q, run.outcome.status));
+    }
+    print_outcome(&run, &names, q);
     if let Some(path) = &a.json {
-        write_json(path, &run, &names, a.max_outliers)?;
+        write_json(path, &run, &names, q)?;
         println!("wrote {}", path.display());
     }
     Ok(if run.outcome.status == Status::Empty {

@@ -12,6 +12,7 @@ use calib_gough::plot;
 use calib_gough::report::{ratios, table, write_atomically};
 use calib_gough::verdict::{self, ConfigurationNames};
 use calib_gough::PARAMETER_NAMES;
+use calib_pipeline::OutlierBudget;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -41,9 +42,11 @@ pub struct Args {
     max_seconds: Option<f64>,
     /// Tolerate up to Q bad configurations per leg: the boxes then contain every parameter vector
     /// that fits all but at most Q configurations, and the configurations proved to be outliers
-    /// are listed. Costs about C(configurations, Q) certifications per leg.
-    #[arg(long, value_name = "Q", default_value_t = 0)]
-    max_outliers: usize,
+    /// are listed. Costs about C(configurations, Q) certifications per leg. `auto`: per leg, the
+    /// smallest Q that is not proved empty (tries Q = 0, 1, 2, … in turn; every Q below it is
+    /// proved too few).
+    #[arg(long, value_name = "Q|auto", default_value = "0")]
+    max_outliers: OutlierBudget,
     /// Also run the paper's 128-box bisection sweep and report its hull x2.
     #[arg(long)]
     sweep: bool,
@@ -169,7 +172,6 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                 })
                 .collect(),
             names,
-            max_outliers: a.max_outliers,
             sections: Vec::new(),
         }
         .to_html()?;
@@ -186,7 +188,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     Ok(if any_empty { 2 } else { 0 })
 }
 
-fn print_leg(r: &LegResult, names: &ConfigurationNames<'_>, max_outliers: usize) {
+fn print_leg(r: &LegResult, names: &ConfigurationNames<'_>, budget: OutlierBudget) {
     println!(
         "== leg {} — {:?} ({} iterations to x1, {} boxes, {:.3} s)",
         r.leg + 1,
@@ -206,7 +208,10 @@ fn print_leg(r: &LegResult, names: &ConfigurationNames<'_>, max_outliers: usize)
         rows.push(("inner", Some(inner)));
     }
     print!("{}", table(&rows));
-    for (k, sentence) in verdict::verdict(r, names, max_outliers).iter().enumerate() {
+    if budget == OutlierBudget::Auto {
+        println!("{}", verdict::auto_outliers(r.tolerated, r.status));
+    }
+    for (k, sentence) in verdict::verdict(r, names).iter().enumerate() {
         // The verdict, then its evidence indented under it.
         let indent = if k >= 2 { "  " } else { "" };
         println!("{indent}{sentence}");
@@ -219,7 +224,7 @@ fn print_leg(r: &LegResult, names: &ConfigurationNames<'_>, max_outliers: usize)
     if let Some(line) = verdict::touching_x0(r) {
         println!("note: {line}");
     }
-    if let Some(line) = verdict::outliers(r, names, max_outliers) {
+    if let Some(line) = verdict::outliers(r, names) {
         println!("{line}");
     }
     if let Some((n, inner, outer)) = r.paving {
@@ -262,7 +267,10 @@ fn settings(a: &Args) -> Vec<(String, String)> {
         ("outer box".into(), mode),
         (
             "outliers tolerated per leg".into(),
-            a.max_outliers.to_string(),
+            match a.max_outliers {
+                OutlierBudget::Fixed(q) => q.to_string(),
+                OutlierBudget::Auto => "auto: per leg, the smallest number not proved empty".into(),
+            },
         ),
         ("128-box sweep (x2)".into(), yes_no(a.sweep)),
         (

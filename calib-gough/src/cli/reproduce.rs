@@ -393,7 +393,6 @@ fn certificate(
             file: "measurements.csv",
             lines: &lines,
         },
-        max_outliers: 0,
         sections: vec![comparison],
     };
     Ok(page.to_html()?)

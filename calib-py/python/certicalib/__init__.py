@@ -79,6 +79,9 @@ class LegResult:
     conflict: Optional[List[int]]
     #: With ``max_outliers``: the configurations (1-based) proved to be outliers.
     outliers: List[int]
+    #: How many outliers this leg's result tolerates (with ``max_outliers="auto"``, the smallest
+    #: number not proved empty).
+    outliers_tolerated: int
     #: Whether the tight hull met its tolerance (``None`` with ``fast=True``).
     converged: Optional[bool]
     #: Wall-clock seconds for this leg.
@@ -116,6 +119,7 @@ class Report:
                 else np.asarray(leg["witness"], dtype=np.float64),
                 conflict=leg.get("conflict"),
                 outliers=list(leg.get("outliers", [])),
+                outliers_tolerated=int(leg.get("outliers_tolerated", 0)),
                 converged=leg.get("converged"),
                 seconds=leg["seconds"],
             )
@@ -131,10 +135,12 @@ class Report:
         return f"<certicalib.Report {verdicts}>"
 
 
-def _options(legs: Optional[Sequence[int]], sweep: bool, max_outliers: int, fast: bool,
-             tolerance: float, max_boxes: int, max_seconds: Optional[float]) -> Dict[str, Any]:
+def _options(legs: Optional[Sequence[int]], sweep: bool, max_outliers: Union[int, str],
+             fast: bool, tolerance: float, max_boxes: int,
+             max_seconds: Optional[float]) -> Dict[str, Any]:
     return dict(legs=None if legs is None else [int(v) for v in legs], sweep=bool(sweep),
-                max_outliers=int(max_outliers), fast=bool(fast), tolerance=float(tolerance),
+                max_outliers=str(max_outliers) if isinstance(max_outliers, str)
+                else str(int(max_outliers)), fast=bool(fast), tolerance=float(tolerance),
                 max_boxes=int(max_boxes), max_seconds=max_seconds)
 
 
@@ -218,7 +224,8 @@ def _uncertainty_text(u: UncertaintyData) -> str:
 def certify(robot: Union[PathLike, RobotData],
             measurements: Union[PathLike, MeasurementData],
             uncertainty: Union[PathLike, UncertaintyData], *,
-            legs: Optional[Sequence[int]] = None, sweep: bool = False, max_outliers: int = 0,
+            legs: Optional[Sequence[int]] = None, sweep: bool = False,
+            max_outliers: Union[int, str] = 0,
             fast: bool = False, tolerance: float = 0.05, max_boxes: int = 200_000,
             max_seconds: Optional[float] = None) -> Report:
     """Certify every leg (or ``legs``, 1-based) of a Gough platform, as ``gough certify`` does.
@@ -235,7 +242,8 @@ def certify(robot: Union[PathLike, RobotData],
       half-widths of the measurement errors.
 
     ``sweep`` adds the paper's 128-box sweep (``x2``); ``max_outliers`` tolerates that many bad
-    configurations per leg; ``fast`` computes only the paper's fixed point x1 (reported as
+    configurations per leg (``"auto"``: per leg, the smallest number not proved empty, in
+    ``LegResult.outliers_tolerated``); ``fast`` computes only the paper's fixed point x1 (reported as
     ``outer``); ``tolerance``, ``max_boxes`` and ``max_seconds`` are the tight hull's stop rule.
     The interpreter is released while the work runs. Malformed input raises ``ValueError`` naming
     the file (or in-memory input), the line and the field.

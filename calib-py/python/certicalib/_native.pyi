@@ -8,7 +8,7 @@ _Path = Union[str, PathLike]
 class _Options(TypedDict):
     legs: Optional[List[int]]
     sweep: bool
-    max_outliers: int
+    max_outliers: str  # a number or "auto"
     fast: bool
     tolerance: float
     max_boxes: int
