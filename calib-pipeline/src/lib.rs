@@ -9,6 +9,7 @@
 #![warn(missing_docs)]
 
 mod error;
+pub mod html;
 pub mod identify;
 pub mod lsq;
 mod outcome;

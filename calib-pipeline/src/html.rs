@@ -1,0 +1,315 @@
+//! The building blocks of a calibration certificate, for any robot: one self-contained HTML page
+//! (inline SVG figures and styles, no scripts, fonts, images or links to fetch) that says what was
+//! proved, from which data, with which software and settings.
+//!
+//! Pages built from these blocks are well-formed XML as well as HTML (every element closed, every
+//! attribute quoted, no named entities), so that they can be checked by an XML parser.
+//!
+//! Printed bounds are rounded so that the printed boxes keep their meaning: initial and outer
+//! boxes outward ([`outward`]: the printed box contains the certified one), inner bounds inward
+//! ([`inward`]: every printed inner bound is still attained by a certified consistent parameter
+//! vector).
+
+use calib_core::{Interval, Status};
+use sha2::{Digest, Sha256};
+use std::fmt::Write as _;
+
+/// One input of a run, identified by its SHA-256.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Input {
+    /// What the input is ("robot geometry", "measurements", ...).
+    pub role: String,
+    /// Its name as given (a path, or a description of generated data).
+    pub name: String,
+    /// The SHA-256 of its bytes, in lowercase hexadecimal.
+    pub sha256: String,
+    /// Its size in bytes.
+    pub bytes: usize,
+}
+
+impl Input {
+    /// The input `name` with contents `bytes`.
+    pub fn new(role: &str, name: &str, bytes: &[u8]) -> Input {
+        Input {
+            role: role.into(),
+            name: name.into(),
+            sha256: sha256_hex(bytes),
+            bytes: bytes.len(),
+        }
+    }
+}
+
+/// The SHA-256 of `bytes` in lowercase hexadecimal (what `sha256sum` prints).
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes)
+        .iter()
+        .fold(String::with_capacity(64), |mut s, b| {
+            let _ = write!(s, "{b:02x}");
+            s
+        })
+}
+
+/// A figure on the page: an inline SVG and its caption.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Figure {
+    /// What the figure shows.
+    pub caption: String,
+    /// The SVG document.
+    pub svg: String,
+}
+
+/// A plain table: a header row and rows of cells (text, escaped on output).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Table {
+    /// Column headings.
+    pub header: Vec<String>,
+    /// Rows of cells.
+    pub rows: Vec<Vec<String>>,
+}
+
+/// An extra section after the legs (e.g. the comparison with the paper in `gough reproduce`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Section {
+    /// The heading.
+    pub heading: String,
+    /// Paragraphs of text.
+    pub paragraphs: Vec<String>,
+    /// Tables, each with a caption.
+    pub tables: Vec<(String, Table)>,
+    /// Figures.
+    pub figures: Vec<Figure>,
+}
+
+/// The certicalib version that writes the certificate.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// The current time in RFC 3339 (UTC, whole seconds), for [`Certificate::date`].
+pub fn now() -> String {
+    humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
+}
+
+/// The command line as typed (arguments with spaces quoted), for the certificate.
+pub fn command_line() -> String {
+    let args: Vec<String> = std::env::args()
+        .map(|a| {
+            if a.is_empty() || a.contains(char::is_whitespace) {
+                format!("'{a}'")
+            } else {
+                a
+            }
+        })
+        .collect();
+    args.join(" ")
+}
+
+/// `text` with the five XML special characters escaped.
+pub fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// Decimals printed for bounds: 1e-5 of the unit (0.1 µm for cm, 0.01 µm for mm, 0.036" for
+/// degrees), below any error bound a calibration works with.
+pub const DECIMALS: usize = 5;
+
+/// `v` printed with [`DECIMALS`] decimals, rounded down (`down`) or up: the printed number is
+/// `<= v` (or `>= v`) exactly, checked on the parsed text.
+fn rounded(v: f64, down: bool) -> String {
+    if !v.is_finite() {
+        return format!("{v}");
+    }
+    let step = 10f64.powi(-(DECIMALS as i32));
+    let mut x = v;
+    for _ in 0..8 {
+        let s = format!("{x:.DECIMALS$}");
+        let p: f64 = s.parse().unwrap_or(v);
+        let ok = if down { p <= v } else { p >= v };
+        if ok {
+            return s;
+        }
+        x = if down { p - step } else { p + step };
+    }
+    // Unreachable for finite values; fall back to the exact shortest representation.
+    format!("{v:?}")
+}
+
+/// `[lo, hi]` rounded outward: the printed interval contains `v`.
+pub fn outward(v: Interval) -> String {
+    if v.is_empty() {
+        return "empty".into();
+    }
+    format!("[{}, {}]", rounded(v.inf(), true), rounded(v.sup(), false))
+}
+
+/// `[lo, hi]` rounded inward: the printed interval lies inside `v`; exact (shortest round-trip
+/// digits) when `v` is too narrow for rounded bounds.
+pub fn inward(v: Interval) -> String {
+    if v.is_empty() {
+        return "empty".into();
+    }
+    let (lo, hi) = (rounded(v.inf(), false), rounded(v.sup(), true));
+    match (lo.parse::<f64>(), hi.parse::<f64>()) {
+        (Ok(a), Ok(b)) if a <= b => format!("[{lo}, {hi}]"),
+        _ => format!("[{:?}, {:?}]", v.inf(), v.sup()),
+    }
+}
+
+/// The page's style sheet (inline: the page fetches nothing).
+pub const STYLE: &str = "
+body { font-family: sans-serif; max-width: 1240px; margin: 1.5em auto; padding: 0 1em; color: #222; line-height: 1.4; }
+h1 { margin-bottom: 0.1em; } .subtitle { color: #555; margin-top: 0; }
+h2 { border-bottom: 2px solid #ddd; padding-bottom: 0.2em; margin-top: 1.8em; }
+table { border-collapse: collapse; margin: 0.6em 0 1em; font-size: 0.92em; }
+th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; vertical-align: top; }
+th { background: #f2f2f2; }
+td.num { font-family: monospace; text-align: right; white-space: nowrap; }
+code, .hash { font-family: monospace; font-size: 0.92em; word-break: break-all; }
+.badge { display: inline-block; padding: 0.05em 0.55em; border-radius: 0.7em; color: white; font-size: 0.85em; vertical-align: middle; }
+.consistent { background: #2a7d2a; } .empty { background: #b52a2a; } .undecided { background: #b07800; }
+.summary { background: #f7f7f4; border: 1px solid #ddd; padding: 0.2em 1.2em 0.6em; }
+.summary h2 { margin-top: 0.5em; }
+.evidence { margin: 0.2em 0; } .note { color: #555; font-size: 0.9em; }
+figure { margin: 1em 0; } figcaption { color: #444; font-size: 0.9em; }
+svg { max-width: 100%; height: auto; }
+@media print { .leg, .section { page-break-before: always; } body { max-width: none; } }
+";
+
+/// The verdict as a coloured badge.
+pub fn badge(status: Status) -> String {
+    let class = match status {
+        Status::Consistent => "consistent",
+        Status::Empty => "empty",
+        Status::Undecided => "undecided",
+    };
+    format!(
+        "<span class=\"badge {class}\">{}</span>",
+        crate::verdict::short_verdict(status)
+    )
+}
+
+/// A two-column table of `(name, value)` rows under `header`.
+pub fn pairs(h: &mut String, header: &[&str; 2], rows: &[(String, String)]) {
+    let _ = writeln!(
+        h,
+        "<table>\n<tr><th>{}</th><th>{}</th></tr>",
+        header[0], header[1]
+    );
+    for (k, v) in rows {
+        let _ = writeln!(h, "<tr><td>{}</td><td>{}</td></tr>", escape(k), escape(v));
+    }
+    h.push_str("</table>\n");
+}
+
+/// A figure: its SVG and caption.
+pub fn figure(h: &mut String, f: &Figure) {
+    let _ = writeln!(
+        h,
+        "<figure>\n{}\n<figcaption>{}</figcaption>\n</figure>",
+        f.svg.trim(),
+        escape(&f.caption)
+    );
+}
+
+/// An extra section: heading, paragraphs, tables, figures.
+pub fn section(h: &mut String, s: &Section) {
+    let _ = writeln!(
+        h,
+        "<section class=\"section\">\n<h2>{}</h2>",
+        escape(&s.heading)
+    );
+    for p in &s.paragraphs {
+        let _ = writeln!(h, "<p>{}</p>", escape(p));
+    }
+    for (caption, t) in &s.tables {
+        let _ = writeln!(
+            h,
+            "<p class=\"note\">{}</p>\n<table>\n<tr>",
+            escape(caption)
+        );
+        for c in &t.header {
+            let _ = write!(h, "<th>{}</th>", escape(c));
+        }
+        h.push_str("</tr>\n");
+        for row in &t.rows {
+            h.push_str("<tr>");
+            for c in row {
+                let _ = write!(h, "<td class=\"num\">{}</td>", escape(c));
+            }
+            h.push_str("</tr>\n");
+        }
+        h.push_str("</table>\n");
+    }
+    for f in &s.figures {
+        figure(h, f);
+    }
+    h.push_str("</section>\n");
+}
+
+/// The start of a certificate page up to its `<h1>` and subtitle (`title` names what was
+/// calibrated; `date` is [`now`]).
+pub fn page_start(title: &str, date: &str) -> String {
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"/>\n\
+         <meta name=\"generator\" content=\"certicalib {VERSION}\"/>\n\
+         <title>Calibration certificate — {t}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
+         <h1>Calibration certificate</h1>\n<p class=\"subtitle\">{t} · certicalib {VERSION} · {d}</p>\n",
+        t = escape(title),
+        d = escape(date)
+    )
+}
+
+/// The end of a certificate page.
+pub const PAGE_END: &str = "</body>\n</html>\n";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sha256_matches_known_digests() {
+        assert_eq!(
+            sha256_hex(b""),
+            "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855"
+        );
+        assert_eq!(
+            sha256_hex(b"abc"),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
+        );
+    }
+
+    #[test]
+    fn printed_bounds_keep_their_meaning() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand::rngs::StdRng::seed_from_u64(11);
+        for _ in 0..20_000 {
+            let lo: f64 = rng.random_range(-100.0..100.0);
+            let hi = lo + rng.random_range(0.0..0.01) * rng.random_range(0.0..1.0f64).powi(4);
+            let v = Interval::new(lo, hi);
+            let parse = |s: &str| -> (f64, f64) {
+                let inner = s.trim_start_matches('[').trim_end_matches(']');
+                let (a, b) = inner.split_once(", ").unwrap();
+                (a.parse().unwrap(), b.parse().unwrap())
+            };
+            let (a, b) = parse(&outward(v));
+            assert!(a <= lo && hi <= b, "{v:?} printed {}", outward(v));
+            let text = inward(v);
+            let (a, b) = parse(&text);
+            assert!(lo <= a && b <= hi && a <= b, "{v:?} printed {text}");
+        }
+        assert_eq!(outward(Interval::new(1.0, 2.0)), "[1.00000, 2.00000]");
+        assert_eq!(rounded(0.123456, true), "0.12345");
+        assert_eq!(rounded(0.123451, false), "0.12346");
+        assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
+    }
+}
