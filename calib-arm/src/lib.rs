@@ -11,6 +11,7 @@
 #![warn(missing_docs)]
 #![allow(clippy::needless_range_loop)]
 
+pub mod certificate;
 pub mod certification;
 pub mod files;
 pub mod model;

@@ -140,6 +140,80 @@ fn certify_keeps_the_truth_and_reports_in_json() {
 }
 
 #[test]
+fn the_certificate_is_one_page_stating_the_certified_boxes_and_the_inputs() {
+    let dir = tempdir("report");
+    simulated(&dir, 12, &[]);
+    let page_path = dir.join("certificate.html");
+    let o = certify(&dir, &["--report", page_path.to_str().expect("utf-8")]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("certificate written to"), "{}", text(&o));
+    let page = std::fs::read_to_string(&page_path).expect("the certificate");
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..Default::default()
+    };
+    let doc = roxmltree::Document::parse_with_options(&page, options).expect("well-formed XML");
+    let cells = |row: roxmltree::Node| -> Vec<String> {
+        row.children()
+            .filter(|c| c.has_tag_name("td"))
+            .map(|c| c.text().unwrap_or_default().to_string())
+            .collect()
+    };
+    // The measurements' SHA-256 is what sha256sum prints for the file.
+    let data = std::fs::read(dir.join("measurements.csv")).expect("data");
+    let sha = calib_pipeline::html::sha256_hex(&data);
+    assert!(doc.descendants().any(|n| n.text() == Some(sha.as_str())));
+    // Every free parameter's printed outer box contains the truth, and its inner bounds.
+    let truth: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("truth.json")).expect("truth"))
+            .expect("json");
+    let parse = |s: &str| -> (f64, f64) {
+        let (a, b) = s
+            .trim_matches(|c| c == '[' || c == ']')
+            .split_once(", ")
+            .expect("an interval");
+        (a.parse().expect("lo"), b.parse().expect("hi"))
+    };
+    let mut rows = 0;
+    for row in doc.descendants().filter(|n| n.has_tag_name("tr")) {
+        let c = cells(row);
+        let Some(t) = c.first().and_then(|name| truth[name].as_f64()) else {
+            continue;
+        };
+        let (lo, hi) = parse(&c[3]);
+        assert!(lo <= t && t <= hi, "{}: {t} outside {}", c[0], c[3]);
+        let (a, b) = parse(&c[4]);
+        assert!(
+            lo <= a && b <= hi,
+            "{}: inner {} outside outer {}",
+            c[0],
+            c[4],
+            c[3]
+        );
+        rows += 1;
+    }
+    assert!(rows >= 10, "{rows} parameter rows");
+    assert!(
+        page.contains("least-squares solution"),
+        "--report implies --lsq"
+    );
+    assert_eq!(
+        doc.descendants().filter(|n| n.has_tag_name("svg")).count(),
+        1
+    );
+    // An unwritable destination is an error naming it, and nothing is left behind.
+    let bad = dir.join("missing").join("c.html");
+    let o = certify(&dir, &["--report", bad.to_str().expect("utf-8")]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(
+        text(&o).contains("cannot write the certificate"),
+        "{}",
+        text(&o)
+    );
+    assert!(!dir.join("missing").exists());
+}
+
+#[test]
 fn a_shifted_configuration_is_proved_and_named_then_tolerated() {
     let dir = tempdir("outlier");
     simulated(&dir, 12, &["--outlier", "4:0.5"]);

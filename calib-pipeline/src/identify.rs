@@ -45,7 +45,7 @@ pub struct Combination {
 }
 
 /// The identifiability of a parameter set on a set of configurations.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Identifiability {
     /// Singular values of the scaled identification Jacobian, largest first.
     pub singular_values: Vec<f64>,

@@ -1,10 +1,15 @@
 //! `arm certify`.
 
-use super::output::{file_name, print_identifiability, print_outcome, spinner, write_json};
+use super::output::{
+    file_name, print_identifiability, print_outcome, spinner, write_certificate, write_json,
+};
 use super::DataFiles;
+use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{arm_settings, certify_arm, RunOptions};
-use calib_arm::files::{read_measurements, read_robot, read_uncertainty};
+use calib_arm::files::{parse_measurements, parse_robot, parse_uncertainty};
 use calib_core::Status;
+use calib_pipeline::html::{command_line, now, Input};
+use calib_pipeline::read_text;
 use calib_pipeline::verdict::{self, ConfigurationNames};
 use calib_pipeline::{smallest_consistent, Depth, OutlierBudget};
 use std::path::PathBuf;
@@ -42,12 +47,23 @@ pub struct Args {
     /// Write the JSON report to this file.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
+    /// Write the calibration certificate to this file: one self-contained HTML page (figures
+    /// inline, nothing fetched; open it in any browser, print it to PDF) with the verdict and its
+    /// evidence in words, identifiability, a table and a figure of every free parameter against
+    /// its prior box, the least-squares solution (implies --lsq), the input files' SHA-256 and
+    /// the settings.
+    #[arg(long, value_name = "FILE")]
+    report: Option<PathBuf>,
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
-    let arm = read_robot(&a.files.robot)?;
-    let data = read_measurements(&a.files.measurements, arm.joints.len())?;
-    let u = read_uncertainty(&a.uncertainty)?;
+    // Each file is read once: what is hashed for the certificate is what is parsed.
+    let texts = [&a.files.robot, &a.files.measurements, &a.uncertainty].map(|p| read_text(p));
+    let [robot_text, data_text, u_text] = texts;
+    let (robot_text, data_text, u_text) = (robot_text?, data_text?, u_text?);
+    let arm = parse_robot(&a.files.robot, &robot_text)?;
+    let data = parse_measurements(&a.files.measurements, &data_text, arm.joints.len())?;
+    let u = parse_uncertainty(&a.uncertainty, &u_text)?;
     if !(a.tolerance > 0.0 && a.tolerance.is_finite()) {
         return Err(format!(
             "--tolerance: expected a positive number, found {}",
@@ -64,7 +80,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         .with_hull_budget(a.max_boxes, a.max_seconds);
     let options = RunOptions {
         depth: if a.hull { Depth::Hull } else { Depth::Fast },
-        lsq: a.lsq,
+        lsq: a.lsq || a.report.is_some(),
     };
     let bar = spinner(&format!(
         "certifying {} parameters on {} configurations",
@@ -95,9 +111,61 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         write_json(path, &run, &names, q)?;
         println!("wrote {}", path.display());
     }
+    if let Some(path) = &a.report {
+        let input = |role: &str, file: &PathBuf, text: &str| {
+            Input::new(role, &file.display().to_string(), text.as_bytes())
+        };
+        let page = ArmCertificate {
+            title: format!(
+                "{}-axis arm, {} configurations",
+                arm.joints.len(),
+                data.readings.len()
+            ),
+            command: command_line(),
+            date: now(),
+            inputs: vec![
+                input("robot geometry", &a.files.robot, &robot_text),
+                input("measurements", &a.files.measurements, &data_text),
+                input("error bounds", &a.uncertainty, &u_text),
+            ],
+            uncertainty: u,
+            settings: run_settings(&a, q),
+            run: &run,
+            names,
+            tolerated: q,
+            truth: None,
+        };
+        write_certificate(path, &page)?;
+    }
     Ok(if run.outcome.status == Status::Empty {
         2
     } else {
         0
     })
+}
+
+/// The settings of the run, in words, for the certificate (`q`: the outliers tolerated).
+fn run_settings(a: &Args, q: usize) -> Vec<(String, String)> {
+    let mode = if a.hull {
+        format!(
+            "tight hull: refine until outer width <= {} x inner width (--tolerance {}), at most \
+             {} boxes{}",
+            1.0 + a.tolerance,
+            a.tolerance,
+            a.max_boxes,
+            a.max_seconds
+                .map_or(String::new(), |s| format!(" and {s} s"))
+        )
+    } else {
+        "the paper's fixed point x1 with certified inner bounds (no --hull)".to_string()
+    };
+    let outliers = match a.max_outliers {
+        OutlierBudget::Fixed(q) => q.to_string(),
+        OutlierBudget::Auto => format!("auto: {q}, the smallest number not proved empty"),
+    };
+    vec![
+        ("outer box".into(), mode),
+        ("outliers tolerated".into(), outliers),
+        ("threads".into(), rayon::current_num_threads().to_string()),
+    ]
 }

@@ -1,10 +1,12 @@
 //! `arm demo`: the main job on the embedded default.
 
-use super::output::{print_identifiability, print_outcome, spinner, write_json};
+use super::output::{print_identifiability, print_outcome, spinner, write_certificate, write_json};
 use calib_arm::builtin_arm;
+use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{arm_settings, certify_arm, RunOptions};
 use calib_arm::simulate::{simulate, Uncertainty};
-use calib_arm::write::write_data_set;
+use calib_arm::write::{measurements_csv, robot_toml, uncertainty_toml, write_data_set};
+use calib_pipeline::html::{command_line, now, Input};
 use calib_pipeline::verdict::ConfigurationNames;
 use calib_pipeline::Depth;
 use std::path::PathBuf;
@@ -23,9 +25,12 @@ pub struct Args {
     /// With --hull: stop refining after this many seconds.
     #[arg(long, value_name = "SECONDS", default_value_t = 120.0)]
     max_seconds: f64,
-    /// Write the data set and report.json into this folder.
+    /// Write the data set, report.json and certificate.html into this folder.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// Write the calibration certificate (one self-contained HTML page) to this file.
+    #[arg(long, value_name = "FILE")]
+    report: Option<PathBuf>,
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
@@ -79,6 +84,60 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         let path = dir.join("report.json");
         write_json(&path, &run, &names, 0)?;
         println!("wrote the data set and report.json to {}", dir.display());
+    }
+    let pages: Vec<PathBuf> = a
+        .out
+        .iter()
+        .map(|d| d.join("certificate.html"))
+        .chain(a.report.clone())
+        .collect();
+    if !pages.is_empty() {
+        let joints = arm.joints.len();
+        let generated = |what: &str| format!("{what} (built-in arm, simulated, seed {})", a.seed);
+        let page = ArmCertificate {
+            title: format!(
+                "built-in {joints}-axis arm, {} simulated configurations",
+                a.configs
+            ),
+            command: command_line(),
+            date: now(),
+            inputs: vec![
+                Input::new(
+                    "robot geometry",
+                    &generated("robot.toml"),
+                    robot_toml(&arm).as_bytes(),
+                ),
+                Input::new(
+                    "measurements",
+                    &generated("measurements.csv"),
+                    measurements_csv(&sim.readings, joints).as_bytes(),
+                ),
+                Input::new(
+                    "error bounds",
+                    &generated("uncertainty.toml"),
+                    uncertainty_toml(&sim.uncertainty).as_bytes(),
+                ),
+            ],
+            uncertainty: sim.uncertainty,
+            settings: vec![(
+                "outer box".into(),
+                if a.hull {
+                    format!(
+                        "tight hull: outer width <= 1.1 x inner width, at most {} s",
+                        a.max_seconds
+                    )
+                } else {
+                    "the paper's fixed point x1 with certified inner bounds (no --hull)".into()
+                },
+            )],
+            run: &run,
+            names,
+            tolerated: 0,
+            truth: Some(&sim.truth),
+        };
+        for path in &pages {
+            write_certificate(path, &page)?;
+        }
     }
     Ok(0)
 }

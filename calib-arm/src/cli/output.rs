@@ -1,27 +1,14 @@
 //! What `arm certify` and `arm demo` print: the identifiability findings, the verdict, a table of
 //! the parameters, and the JSON report.
 
+use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{units, ArmRun};
 use calib_core::{Interval, Status};
+use calib_pipeline::html::outward;
 use calib_pipeline::report::OutcomeReport;
 use calib_pipeline::verdict::{self, ConfigurationNames};
 use calib_pipeline::{is_fixed, write_atomically};
 use std::path::Path;
-
-/// Decimals shown in the table (the JSON report has every bound exactly).
-const DECIMALS: i32 = 5;
-
-/// `[lo, hi]` rounded outward to [`DECIMALS`] decimals, so the printed box still contains the
-/// certified one.
-fn outward(v: Interval) -> String {
-    let s = 10f64.powi(DECIMALS);
-    let d = DECIMALS as usize;
-    format!(
-        "[{:.d$}, {:.d$}]",
-        (v.inf() * s).floor() / s,
-        (v.sup() * s).ceil() / s
-    )
-}
 
 /// The identifiability findings, before certification.
 pub fn print_identifiability(run: &ArmRun) {
@@ -170,4 +157,12 @@ pub fn file_name(path: &Path) -> String {
         || path.display().to_string(),
         |f| f.to_string_lossy().into(),
     )
+}
+
+/// Writes the certificate page (atomically) and says where.
+pub fn write_certificate(path: &Path, page: &ArmCertificate<'_>) -> Result<(), String> {
+    write_atomically(path, &page.to_html())
+        .map_err(|e| format!("{}: cannot write the certificate: {e}", path.display()))?;
+    println!("certificate written to {}", path.display());
+    Ok(())
 }
