@@ -18,7 +18,9 @@ use crate::Arm7Point;
 use calib_core::{Interval, Settings};
 use calib_pipeline::identify::{analyse, identification_jacobian, Identifiability};
 use calib_pipeline::lsq::{least_squares, Fit};
-use calib_pipeline::{certify_model, Depth, Outcome};
+use calib_pipeline::report::OutcomeReport;
+use calib_pipeline::verdict::{self, ConfigurationNames};
+use calib_pipeline::{certify_model, smallest_consistent, Depth, Outcome, OutlierBudget};
 
 /// What one run on an arm's data found (every value in the files' units: mm and degrees).
 #[derive(Clone, Debug, PartialEq)]
@@ -89,6 +91,102 @@ pub fn fit_arm(arm: &Arm, readings: &[Reading]) -> Result<Fit, String> {
     dispatch(arm, readings, &exact, Job::Fit, &Settings::default())?
         .fit
         .ok_or_else(|| "no fit was made".to_string())
+}
+
+/// What `arm certify` computes, as options (the command line's, and the Python package's).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CertifyRequest {
+    /// x1 only, or the tight hull.
+    pub depth: Depth,
+    /// The hull's tolerance: stop at `wid(outer) <= (1 + tol) wid(inner)`.
+    pub tolerance: f64,
+    /// The hull's box budget.
+    pub max_boxes: usize,
+    /// The hull's time budget.
+    pub max_seconds: Option<f64>,
+    /// Tolerated outliers: a number, or the smallest number not proved empty.
+    pub max_outliers: OutlierBudget,
+    /// Also the least-squares fit.
+    pub lsq: bool,
+}
+
+impl Default for CertifyRequest {
+    fn default() -> Self {
+        CertifyRequest {
+            depth: Depth::Fast,
+            tolerance: 0.10,
+            max_boxes: 10_000,
+            max_seconds: None,
+            max_outliers: OutlierBudget::Fixed(0),
+            lsq: false,
+        }
+    }
+}
+
+impl CertifyRequest {
+    /// The kernel settings for `configs` configurations (outliers are set per try); errors name
+    /// the option as the command line spells it.
+    pub fn settings(&self, configs: usize) -> Result<Settings, String> {
+        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
+            return Err(format!(
+                "--tolerance: expected a positive number, found {}",
+                self.tolerance
+            ));
+        }
+        if self.max_seconds.is_some_and(|s| s.is_nan() || s <= 0.0) {
+            return Err("--max-seconds: expected a positive number".into());
+        }
+        self.max_outliers.check(configs)?;
+        Ok(arm_settings()
+            .with_hull_tolerance(self.tolerance)
+            .with_hull_budget(self.max_boxes, self.max_seconds))
+    }
+}
+
+/// Certifies `arm` as `arm certify` does: with [`OutlierBudget::Auto`], with the smallest number
+/// of tolerated outliers not proved empty. Returns that number and the run.
+pub fn certify_request(
+    arm: &Arm,
+    readings: &[Reading],
+    u: &Uncertainty,
+    request: &CertifyRequest,
+) -> Result<(usize, ArmRun), String> {
+    let settings = request.settings(readings.len())?;
+    let options = RunOptions {
+        depth: request.depth,
+        lsq: request.lsq,
+    };
+    smallest_consistent(
+        request.max_outliers,
+        readings.len(),
+        |q| {
+            certify_arm(
+                arm,
+                readings,
+                u,
+                options,
+                &settings.clone().with_max_outliers(q),
+            )
+        },
+        |run| run.outcome.status == calib_core::Status::Empty,
+    )
+}
+
+/// The JSON report of a run (the layout of [`calib_pipeline::report`]) with `tolerated` outliers.
+pub fn json_report(run: &ArmRun, names: &ConfigurationNames<'_>, tolerated: usize) -> String {
+    let o = &run.outcome;
+    let mut sentences = verdict::verdict(o, names, tolerated);
+    sentences.extend(verdict::not_determined(o));
+    sentences.extend(verdict::outliers(o, names, tolerated));
+    let mut report = OutcomeReport::new(
+        o,
+        &units(o.names.len().saturating_sub(9) / 5),
+        sentences,
+        run.identifiability.sentences(&o.names),
+        run.fit.as_ref().map(|f| &f.x[..]),
+    );
+    report.outliers_tolerated = tolerated;
+    report.to_json()
 }
 
 /// The kernel settings the `arm` commands start from: the defaults, with

@@ -8,6 +8,7 @@
 //!                     "inner": [lo, hi] | null, "ratio": r | null, "witness": v | null,
 //!                     "lsq": v | null }, ... ],
 //!   "conflict": [configuration, ...] | null, "outliers": [configuration, ...],
+//!   "outliers_tolerated": q (only when q > 0),
 //!   "verdict": ["sentence", ...], "identifiability": ["sentence", ...],
 //!   "converged": true | false | null, "iterations": n, "boxes": n, "seconds": s }
 //! ```
@@ -54,6 +55,9 @@ pub struct OutcomeReport {
     pub conflict: Option<Vec<usize>>,
     /// With outliers tolerated: the configurations (1-based) proved to be outliers.
     pub outliers: Vec<usize>,
+    /// How many outliers the result tolerates (absent when none).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub outliers_tolerated: usize,
     /// The verdict in words.
     pub verdict: Vec<String>,
     /// The identifiability findings in words.
@@ -66,6 +70,11 @@ pub struct OutcomeReport {
     pub boxes: usize,
     /// Wall-clock seconds.
     pub seconds: f64,
+}
+
+/// Whether a count is zero (to leave it out of the JSON).
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 impl OutcomeReport {
@@ -103,6 +112,7 @@ impl OutcomeReport {
             parameters,
             conflict: o.conflict.as_deref().map(one_based),
             outliers: one_based(&o.outliers),
+            outliers_tolerated: 0,
             verdict,
             identifiability,
             converged: o.converged,

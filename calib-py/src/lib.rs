@@ -1,12 +1,14 @@
 //! The native half of the `certicalib` Python package: thin PyO3 wrappers around
-//! `calib_gough::certification`, `calib_gough::simulate` and `calib_gough::lsq`, so that Python
-//! gets exactly what `gough certify`, `gough simulate` and `gough lsq` compute. Results cross the
-//! boundary as JSON text (the CLI's report schema); the Python side turns them into objects with
-//! numpy arrays. Every data error becomes a `ValueError` naming the file, line and field; the long
+//! `calib_gough::certification`, `calib_gough::simulate` and `calib_gough::lsq`, and
+//! `calib_arm::certification` and `calib_arm::simulate`, so that Python gets exactly what
+//! `gough certify`, `gough simulate`, `gough lsq`, `arm certify` and `arm simulate` compute.
+//! Results cross the boundary as JSON text (the CLI's report schema); the Python side turns them
+//! into objects with numpy arrays. Every data error becomes a `ValueError` naming the file, line and field; the long
 //! work runs with the interpreter detached (other Python threads keep running).
 //!
 //! (No `#![deny(unsafe_code)]` here: PyO3's macros expand to the FFI glue, which is unsafe code.)
 
+use calib_arm::certification::{certify_request, json_report, CertifyRequest};
 use calib_gough::certification::{certify_legs, report, CertifyOptions};
 use calib_gough::files::{
     check_uncertainty, parse_measurements, parse_robot, parse_uncertainty, read_measurements,
@@ -14,6 +16,8 @@ use calib_gough::files::{
 };
 use calib_gough::lsq::fit_legs;
 use calib_gough::Uncertainty;
+use calib_pipeline::verdict::ConfigurationNames;
+use calib_pipeline::Depth;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use std::path::PathBuf;
@@ -190,6 +194,106 @@ fn lsq(py: Python<'_>, robot: PathBuf, measurements: PathBuf) -> PyResult<String
     serde_json::to_string(&legs).map_err(value_error)
 }
 
+/// The options of `arm_certify_files`, passed from Python as one dict (the keyword arguments of
+/// `certicalib.certify_arm`).
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
+struct ArmOptions {
+    hull: bool,
+    tolerance: f64,
+    max_boxes: usize,
+    max_seconds: Option<f64>,
+    /// A number or `auto`.
+    max_outliers: String,
+    lsq: bool,
+}
+
+impl TryFrom<ArmOptions> for CertifyRequest {
+    type Error = PyErr;
+
+    fn try_from(o: ArmOptions) -> PyResult<Self> {
+        Ok(CertifyRequest {
+            depth: if o.hull { Depth::Hull } else { Depth::Fast },
+            tolerance: o.tolerance,
+            max_boxes: o.max_boxes,
+            max_seconds: o.max_seconds,
+            max_outliers: o
+                .max_outliers
+                .parse()
+                .map_err(|e| value_error(format!("max_outliers: {e}")))?,
+            lsq: o.lsq,
+        })
+    }
+}
+
+/// Certifies a serial arm from the three files `arm certify` reads; returns the JSON report of
+/// `arm certify --json`.
+#[pyfunction]
+fn arm_certify_files(
+    py: Python<'_>,
+    robot: PathBuf,
+    measurements: PathBuf,
+    uncertainty: PathBuf,
+    options: ArmOptions,
+) -> PyResult<String> {
+    let request: CertifyRequest = options.try_into()?;
+    let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
+    let data = calib_arm::files::read_measurements(&measurements, arm.joints.len())
+        .map_err(value_error)?;
+    let u = calib_arm::files::read_uncertainty(&uncertainty).map_err(value_error)?;
+    let (q, run) = py
+        .detach(|| certify_request(&arm, &data.readings, &u, &request))
+        .map_err(value_error)?;
+    let file = measurements
+        .file_name()
+        .map_or_else(String::new, |f| f.to_string_lossy().into_owned());
+    let names = ConfigurationNames {
+        file: &file,
+        lines: &data.lines,
+    };
+    Ok(json_report(&run, &names, q))
+}
+
+/// Writes the simulated data set of `arm simulate` into `out` (the built-in arm, or `robot`);
+/// `outliers` are 1-based `(configuration, delta_mm)`. Returns the contents of `truth.json`.
+#[pyfunction]
+#[pyo3(signature = (out, configs=50, seed=1, robot=None, outliers=Vec::new()))]
+fn arm_simulate(
+    py: Python<'_>,
+    out: PathBuf,
+    configs: usize,
+    seed: u64,
+    robot: Option<PathBuf>,
+    outliers: Vec<(usize, f64)>,
+) -> PyResult<String> {
+    if configs == 0 {
+        return Err(value_error("configs: at least one configuration"));
+    }
+    let arm = match robot {
+        Some(path) => calib_arm::files::read_robot(&path).map_err(value_error)?,
+        None => calib_arm::builtin_arm(),
+    };
+    let zero_based = outliers
+        .iter()
+        .map(|&(c, d)| {
+            if c == 0 || c > configs || !d.is_finite() {
+                Err(value_error(format!(
+                    "outlier ({c}, {d}): configuration must be 1..={configs}, delta finite"
+                )))
+            } else {
+                Ok((c - 1, d))
+            }
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    py.detach(|| {
+        let u = calib_arm::simulate::Uncertainty::TRACKER;
+        let sim = calib_arm::simulate::simulate(&arm, configs, seed, u, 1.0, &zero_based);
+        calib_arm::write::write_data_set(&out, &arm, &sim)
+    })
+    .map_err(|e| value_error(format!("{}: cannot write the data set: {e}", out.display())))?;
+    std::fs::read_to_string(out.join("truth.json")).map_err(value_error)
+}
+
 /// The parameter names, in order.
 #[pyfunction]
 fn parameter_names() -> Vec<&'static str> {
@@ -208,6 +312,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(certify_text, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(lsq, m)?)?;
+    m.add_function(wrap_pyfunction!(arm_certify_files, m)?)?;
+    m.add_function(wrap_pyfunction!(arm_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(parameter_names, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())

@@ -5,13 +5,13 @@ use super::output::{
 };
 use super::DataFiles;
 use calib_arm::certificate::ArmCertificate;
-use calib_arm::certification::{arm_settings, certify_arm, RunOptions};
+use calib_arm::certification::{certify_request, CertifyRequest};
 use calib_arm::files::{parse_measurements, parse_robot, parse_uncertainty};
 use calib_core::Status;
 use calib_pipeline::html::{command_line, now, Input};
 use calib_pipeline::read_text;
 use calib_pipeline::verdict::{self, ConfigurationNames};
-use calib_pipeline::{smallest_consistent, Depth, OutlierBudget};
+use calib_pipeline::{Depth, OutlierBudget};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -64,38 +64,22 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let arm = parse_robot(&a.files.robot, &robot_text)?;
     let data = parse_measurements(&a.files.measurements, &data_text, arm.joints.len())?;
     let u = parse_uncertainty(&a.uncertainty, &u_text)?;
-    if !(a.tolerance > 0.0 && a.tolerance.is_finite()) {
-        return Err(format!(
-            "--tolerance: expected a positive number, found {}",
-            a.tolerance
-        )
-        .into());
-    }
-    if a.max_seconds.is_some_and(|s| s.is_nan() || s <= 0.0) {
-        return Err("--max-seconds: expected a positive number".into());
-    }
-    a.max_outliers.check(data.readings.len())?;
-    let settings = arm_settings()
-        .with_hull_tolerance(a.tolerance)
-        .with_hull_budget(a.max_boxes, a.max_seconds);
-    let options = RunOptions {
+    let request = CertifyRequest {
         depth: if a.hull { Depth::Hull } else { Depth::Fast },
+        tolerance: a.tolerance,
+        max_boxes: a.max_boxes,
+        max_seconds: a.max_seconds,
+        max_outliers: a.max_outliers,
         lsq: a.lsq || a.report.is_some(),
     };
+    // Option errors before any work.
+    request.settings(data.readings.len())?;
     let bar = spinner(&format!(
         "certifying {} parameters on {} configurations",
         arm.free().iter().filter(|f| **f).count(),
         data.readings.len()
     ));
-    let (q, run) = smallest_consistent(
-        a.max_outliers,
-        data.readings.len(),
-        |q| {
-            let settings = settings.clone().with_max_outliers(q);
-            certify_arm(&arm, &data.readings, &u, options, &settings)
-        },
-        |run| run.outcome.status == Status::Empty,
-    )?;
+    let (q, run) = certify_request(&arm, &data.readings, &u, &request)?;
     bar.finish_and_clear();
     let file = file_name(&a.files.measurements);
     let names = ConfigurationNames {

@@ -2,10 +2,9 @@
 //! the parameters, and the JSON report.
 
 use calib_arm::certificate::ArmCertificate;
-use calib_arm::certification::{units, ArmRun};
+use calib_arm::certification::{json_report, units, ArmRun};
 use calib_core::{Interval, Status};
 use calib_pipeline::html::outward;
-use calib_pipeline::report::OutcomeReport;
 use calib_pipeline::verdict::{self, ConfigurationNames};
 use calib_pipeline::{is_fixed, write_atomically};
 use std::path::Path;
@@ -123,18 +122,7 @@ pub fn write_json(
     names: &ConfigurationNames<'_>,
     max_outliers: usize,
 ) -> Result<(), String> {
-    let o = &run.outcome;
-    let mut sentences = verdict::verdict(o, names, max_outliers);
-    sentences.extend(verdict::not_determined(o));
-    sentences.extend(verdict::outliers(o, names, max_outliers));
-    let report = OutcomeReport::new(
-        o,
-        &units(o.names.len().saturating_sub(9) / 5),
-        sentences,
-        run.identifiability.sentences(&o.names),
-        run.fit.as_ref().map(|f| &f.x[..]),
-    );
-    write_atomically(path, &report.to_json())
+    write_atomically(path, &json_report(run, names, max_outliers))
         .map_err(|e| format!("{}: cannot write: {e}", path.display()))
 }
 

@@ -18,6 +18,17 @@ It runs the same Rust code as the ``gough`` command-line tool and gives the same
 
 Units are cm and degrees; parameters per leg are ``a_x a_y a_z b_x b_y b_z l``
 (``PARAMETER_NAMES``).
+
+Serial arms tracked by a laser tracker go through :func:`certify_arm` (what ``arm certify``
+computes; mm and degrees) and :func:`simulate_arm`:
+
+>>> arm_dir = tempfile.mkdtemp()
+>>> truth = certicalib.simulate_arm(arm_dir, configs=20, seed=3)
+>>> arm = certicalib.certify_arm(os.path.join(arm_dir, "robot.toml"),
+...                              os.path.join(arm_dir, "measurements.csv"),
+...                              os.path.join(arm_dir, "uncertainty.toml"))
+>>> arm.status, arm.outer.shape
+('consistent', (39, 2))
 """
 
 from __future__ import annotations
@@ -33,7 +44,7 @@ import numpy as np
 from . import _native
 
 __all__ = ["certify", "simulate", "lsq", "Report", "LegResult", "LeastSquaresFit",
-           "PARAMETER_NAMES", "__version__"]
+           "certify_arm", "simulate_arm", "ArmReport", "PARAMETER_NAMES", "__version__"]
 
 __version__: str = _native.version()
 
@@ -300,3 +311,104 @@ def lsq(robot: PathLike, measurements: PathLike) -> List[LeastSquaresFit]:
     return [LeastSquaresFit(leg=f["leg"], converged=f["converged"],
                             x=np.asarray(f["x"], dtype=np.float64), rms=f["rms"],
                             max_length_error=f["max_length_error"]) for f in fits]
+
+
+class ArmReport:
+    """The result of :func:`certify_arm` (one parameter vector for the whole arm). Boxes are
+    float64 arrays of shape (n, 2): (lower, upper) per parameter in the order of ``names``, in the
+    units of ``units`` (mm or degrees); ``None`` where the data were proved inconsistent.
+    :meth:`to_dict` gives the JSON report of ``arm certify --json``."""
+
+    def __init__(self, text: str) -> None:
+        self._dict: Dict[str, Any] = json.loads(text)
+        params = self._dict["parameters"]
+
+        def column(key: str) -> Optional[np.ndarray]:
+            values = [p[key] for p in params]
+            if any(v is None for v in values):
+                return None
+            return np.asarray(values, dtype=np.float64)
+
+        #: ``"consistent"``, ``"empty"`` or ``"undecided"``.
+        self.status: str = self._dict["status"]
+        #: Parameter names (``theta1, d1, a1, alpha1, beta1, ..., tool_z``).
+        self.names: Tuple[str, ...] = tuple(p["name"] for p in params)
+        #: Units per parameter (``"mm"`` or ``"°"``).
+        self.units: Tuple[str, ...] = tuple(p["unit"] for p in params)
+        #: Whether each parameter is fixed (radius 0 in the robot file).
+        self.fixed: np.ndarray = np.asarray([p["fixed"] for p in params], dtype=bool)
+        #: The prior box (nominal ± radius).
+        self.x0: np.ndarray = column("x0").reshape(-1, 2)
+        #: The certified outer box: contains every consistent parameter vector.
+        self.outer: Optional[np.ndarray] = _box(None if column("outer") is None
+                                                else [p["outer"] for p in params])
+        #: Bounds attained by parameter vectors proved consistent.
+        self.inner: Optional[np.ndarray] = _box(None if column("inner") is None
+                                                else [p["inner"] for p in params])
+        #: A certified consistent parameter vector, or ``None``.
+        self.witness: Optional[np.ndarray] = column("witness")
+        #: The least-squares solution (with ``lsq=True``), or ``None``.
+        self.lsq: Optional[np.ndarray] = column("lsq")
+        #: For an empty verdict: a minimal set of conflicting configurations (1-based).
+        self.conflict: Optional[List[int]] = self._dict.get("conflict")
+        #: The configurations (1-based) proved to be outliers.
+        self.outliers: List[int] = list(self._dict.get("outliers", []))
+        #: How many outliers the result tolerates.
+        self.outliers_tolerated: int = int(self._dict.get("outliers_tolerated", 0))
+        #: The verdict and its evidence, in words.
+        self.verdict: List[str] = list(self._dict["verdict"])
+        #: The identifiability findings, in words.
+        self.identifiability: List[str] = list(self._dict["identifiability"])
+        #: Whether the tight hull met its tolerance (``None`` without ``hull=True``).
+        self.converged: Optional[bool] = self._dict.get("converged")
+        #: Wall-clock seconds.
+        self.seconds: float = self._dict["seconds"]
+
+    @property
+    def ratio(self) -> Optional[np.ndarray]:
+        """``wid(outer) / wid(inner)`` per parameter (NaN for fixed ones), or ``None``."""
+        if self.outer is None or self.inner is None:
+            return None
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = (self.outer[:, 1] - self.outer[:, 0]) / (self.inner[:, 1] - self.inner[:, 0])
+        r[self.fixed] = np.nan
+        return r
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The JSON report as plain Python data."""
+        return copy.deepcopy(self._dict)
+
+    def __repr__(self) -> str:
+        return f"<certicalib.ArmReport {self.status}, {int((~self.fixed).sum())} free parameters>"
+
+
+def certify_arm(robot: PathLike, measurements: PathLike, uncertainty: PathLike, *,
+                hull: bool = False, tolerance: float = 0.10, max_boxes: int = 10_000,
+                max_seconds: Optional[float] = None, max_outliers: Union[int, str] = 0,
+                lsq: bool = False) -> ArmReport:
+    """Certify a serial arm from the files ``arm certify`` reads (``robot.toml``,
+    ``measurements.csv``, ``uncertainty.toml``; mm and degrees), with the same options: ``hull``
+    refines to the tight hull (``tolerance``, ``max_boxes``, ``max_seconds``), ``max_outliers``
+    tolerates bad configurations (``"auto"``: the smallest number not proved empty), ``lsq`` adds
+    the least-squares fit. The interpreter is released while the work runs. Malformed input raises
+    ``ValueError`` naming the file, the line and the field."""
+    opts = dict(hull=bool(hull), tolerance=float(tolerance), max_boxes=int(max_boxes),
+                max_seconds=max_seconds,
+                max_outliers=str(max_outliers) if isinstance(max_outliers, str)
+                else str(int(max_outliers)), lsq=bool(lsq))
+    return ArmReport(_native.arm_certify_files(os.fspath(robot), os.fspath(measurements),
+                                               os.fspath(uncertainty), opts))
+
+
+def simulate_arm(out: PathLike, *, configs: int = 50, seed: int = 1,
+                 robot: Optional[PathLike] = None,
+                 outliers: Sequence[Tuple[int, float]] = ()) -> Dict[str, Any]:
+    """Write a simulated data set into the folder ``out``, as ``arm simulate`` does (the built-in
+    6-axis arm, or the arm of ``robot``; tracker ±0.01 mm, encoders ±0.001°): ``robot.toml``,
+    ``measurements.csv``, ``uncertainty.toml`` and ``truth.json``. ``outliers`` are
+    ``(configuration, delta_mm)`` with 1-based configurations. Returns the truth by name."""
+    text = _native.arm_simulate(os.fspath(out), int(configs), int(seed),
+                                None if robot is None else os.fspath(robot),
+                                [(int(c), float(d)) for c, d in outliers])
+    return json.loads(text)
+

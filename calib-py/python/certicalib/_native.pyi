@@ -28,3 +28,17 @@ def simulate(
 def lsq(robot: _Path, measurements: _Path) -> str: ...
 def parameter_names() -> list: ...
 def version() -> str: ...
+
+class _ArmOptions(TypedDict):
+    hull: bool
+    tolerance: float
+    max_boxes: int
+    max_seconds: Optional[float]
+    max_outliers: str  # a number or "auto"
+    lsq: bool
+
+def arm_certify_files(robot: _Path, measurements: _Path, uncertainty: _Path, options: _ArmOptions) -> str: ...
+def arm_simulate(
+    out: _Path, configs: int = ..., seed: int = ..., robot: Optional[_Path] = ...,
+    outliers: Sequence[Tuple[int, float]] = ...,
+) -> str: ...

@@ -1,0 +1,122 @@
+"""The Python package's serial arm against the arm CLI: the same JSON report, the truth inside the
+certified box, outliers found with max_outliers="auto", ValueError naming the file on bad input."""
+
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import certicalib
+
+REPO = Path(__file__).resolve().parents[2]
+
+# A 3-joint arm with small priors (seconds to certify; the built-in 6-axis arm takes longer).
+ROBOT = """
+[[joint]]
+theta_deg = 0.0
+d = 120.0
+a = 0.0
+alpha_deg = 90.0
+radius = [0.0, 0.0, 0.01, 0.001, 0.0]
+
+[[joint]]
+theta_deg = 2.0
+d = 0.0
+a = -400.0
+alpha_deg = 0.0
+radius = [0.001, 0.0, 0.01, 0.001, 0.001]
+
+[[joint]]
+theta_deg = -1.0
+d = 15.0
+a = -350.0
+alpha_deg = 0.0
+radius = [0.001, 0.0, 0.01, 0.001, 0.0]
+
+[base]
+xyz = [900.0, -200.0, 100.0]
+rpy_deg = [0.5, -0.4, 30.0]
+radius = [0.02, 0.02, 0.02, 0.002, 0.002, 0.002]
+
+[tool]
+xyz = [10.0, 5.0, 60.0]
+radius = 0.01
+"""
+
+
+def arm_binary() -> Path:
+    """The arm CLI: $ARM_BIN, else a build in the repository's target folder (built if missing)."""
+    if os.environ.get("ARM_BIN"):
+        return Path(os.environ["ARM_BIN"])
+    for profile in ("release", "debug"):
+        path = REPO / "target" / profile / "arm"
+        if path.exists():
+            return path
+    subprocess.run(["cargo", "build", "-p", "calib-arm", "--bin", "arm"], cwd=REPO, check=True)
+    return REPO / "target" / "debug" / "arm"
+
+
+def simulated(d: Path, **kwargs) -> dict:
+    design = d / "design.toml"
+    design.write_text(ROBOT)
+    return certicalib.simulate_arm(d, configs=12, seed=5, robot=design, **kwargs)
+
+
+def files(d: Path):
+    return d / "robot.toml", d / "measurements.csv", d / "uncertainty.toml"
+
+
+def test_the_report_is_the_cli_report_and_keeps_the_truth(tmp_path):
+    truth = simulated(tmp_path)
+    report = certicalib.certify_arm(*files(tmp_path), lsq=True)
+    assert report.status == "consistent"
+    free = ~report.fixed
+    values = np.array([truth[name] for name in report.names])
+    assert np.all(report.outer[free, 0] <= values[free])
+    assert np.all(values[free] <= report.outer[free, 1])
+    assert np.all(report.outer[:, 0] <= report.inner[:, 0])
+    assert np.all(report.inner[:, 1] <= report.outer[:, 1])
+    assert report.lsq is not None and report.lsq.shape == (len(report.names),)
+    assert np.all(report.ratio[free] >= 1.0)
+    out = tmp_path / "cli.json"
+    robot, meas, unc = files(tmp_path)
+    subprocess.run([str(arm_binary()), "certify", "--robot", str(robot), "--measurements",
+                    str(meas), "--uncertainty", str(unc), "--lsq", "--json", str(out)],
+                   check=True, capture_output=True)
+    cli = json.loads(out.read_text())
+    mine = report.to_dict()
+    for key in ("status", "parameters", "conflict", "outliers", "verdict", "identifiability"):
+        assert mine[key] == cli[key], key
+
+
+def test_auto_outliers_name_the_shifted_configuration(tmp_path):
+    simulated(tmp_path, outliers=[(4, 0.5)])
+    strict = certicalib.certify_arm(*files(tmp_path))
+    assert strict.status == "empty" and strict.outer is None and 4 in strict.conflict
+    auto = certicalib.certify_arm(*files(tmp_path), max_outliers="auto")
+    assert auto.status == "consistent"
+    assert auto.outliers_tolerated == 1 and auto.outliers == [4]
+    fixed = certicalib.certify_arm(*files(tmp_path), max_outliers=1)
+    assert np.array_equal(fixed.outer, auto.outer)
+    with pytest.raises(ValueError, match="max_outliers"):
+        certicalib.certify_arm(*files(tmp_path), max_outliers="several")
+
+
+def test_bad_input_raises_value_error_naming_the_file(tmp_path):
+    simulated(tmp_path)
+    robot = tmp_path / "robot.toml"
+    robot.write_text(robot.read_text().replace("d = 120.0", "d = oops", 1))
+    with pytest.raises(ValueError, match="robot.toml"):
+        certicalib.certify_arm(*files(tmp_path))
+    with pytest.raises(ValueError, match="configuration must be"):
+        certicalib.simulate_arm(tmp_path / "x", configs=5, outliers=[(9, 0.5)])
+
+
+def test_the_module_examples_run():
+    import doctest
+
+    result = doctest.testmod(certicalib)
+    assert result.attempted >= 8 and result.failed == 0
