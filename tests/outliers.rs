@@ -52,6 +52,22 @@ fn a_gross_outlier_is_named_and_tolerated() {
     let conflict = strict.conflict.expect("an empty verdict names a conflict");
     assert!(conflict.contains(&7), "{conflict:?}");
     assert_minimal(&x0, &boxes, &conflict);
+    // Without the conflict search: the same verdict and proof, no conflict.
+    let quiet = Settings::default().with_conflict_sets(false);
+    let verdict_only = certify(&GoughLeg, &x0, &boxes, &quiet);
+    assert_eq!(
+        (
+            verdict_only.status,
+            verdict_only.emptiness,
+            verdict_only.conflict
+        ),
+        (strict.status, strict.emptiness, None)
+    );
+    let hull_only = hull(&GoughLeg, &x0, &boxes, &quiet);
+    assert_eq!(
+        (hull_only.status, hull_only.conflict),
+        (Status::Empty, None)
+    );
     let q1 = Settings::default().with_max_outliers(1);
     let c = certify(&GoughLeg, &x0, &boxes, &q1);
     assert_eq!(c.status, Status::Consistent);

@@ -8,8 +8,8 @@ use crate::certification::{units, ArmRun};
 use crate::simulate::Uncertainty;
 use calib_core::{Interval, Status};
 use calib_pipeline::html::{
-    badge, escape, figure, inward, outward, page_start, pairs, Figure, Input, DECIMALS, PAGE_END,
-    VERSION,
+    badge, escape, figure, inputs_section, inward, outward, page_start, Figure, Input, Provenance,
+    DECIMALS, PAGE_END,
 };
 use calib_pipeline::is_fixed;
 use calib_pipeline::verdict::{self, ConfigurationNames, Standing};
@@ -324,44 +324,25 @@ impl ArmCertificate<'_> {
     }
 
     fn inputs(&self, h: &mut String) {
-        h.push_str("<section id=\"inputs\">\n<h2>Inputs and settings</h2>\n");
-        h.push_str("<table>\n<tr><th>input</th><th>file</th><th>SHA-256</th><th>bytes</th></tr>\n");
-        for i in &self.inputs {
-            let _ = writeln!(
-                h,
-                "<tr><td>{}</td><td><code>{}</code></td><td class=\"hash\">{}</td><td class=\"num\">{}</td></tr>",
-                escape(&i.role),
-                escape(&i.name),
-                i.sha256,
-                i.bytes
-            );
-        }
-        let _ = writeln!(
-            h,
-            "</table>\n<p>{} measured configurations. Measurement error bounds (half-widths of \
-             the measurement boxes):</p>",
-            self.names.lines.len()
-        );
         let u = &self.uncertainty;
-        pairs(
-            h,
-            &["error", "bound"],
-            &[
-                ("joint readings".into(), format!("± {} °", u.joint_deg)),
-                (
-                    "tracked point, per coordinate".into(),
-                    format!("± {} mm", u.pos),
-                ),
-            ],
-        );
-        let mut settings = vec![
-            ("software".to_string(), format!("certicalib {VERSION}")),
-            ("date".to_string(), self.date.clone()),
-            ("command".to_string(), self.command.clone()),
+        let bounds = [
+            ("joint readings".to_string(), format!("± {} °", u.joint_deg)),
+            (
+                "tracked point, per coordinate".to_string(),
+                format!("± {} mm", u.pos),
+            ),
         ];
-        settings.extend(self.settings.iter().cloned());
-        pairs(h, &["setting", "value"], &settings);
-        h.push_str("</section>\n");
+        inputs_section(
+            h,
+            &Provenance {
+                inputs: &self.inputs,
+                configurations: self.names.lines.len(),
+                error_bounds: &bounds,
+                date: &self.date,
+                command: &self.command,
+                settings: &self.settings,
+            },
+        );
     }
 }
 

@@ -151,7 +151,12 @@ pub fn certify_request(
     u: &Uncertainty,
     request: &CertifyRequest,
 ) -> Result<(usize, ArmRun), String> {
-    let settings = request.settings(readings.len())?;
+    let mut settings = request.settings(readings.len())?;
+    if request.max_outliers == OutlierBudget::Auto {
+        // Every result `auto` keeps is consistent, or tolerates outliers: a conflict set (sought
+        // only for an empty verdict with none tolerated) would be thrown away.
+        settings = settings.with_conflict_sets(false);
+    }
     let options = RunOptions {
         depth: request.depth,
         lsq: request.lsq,

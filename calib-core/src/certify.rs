@@ -96,7 +96,7 @@ pub fn certify_with<
         return certify_relaxed(model, x0, measurements, settings, ws);
     }
     let mut out = certify_plain(model, x0, measurements, settings, ws);
-    if out.status == Status::Empty {
+    if out.status == Status::Empty && settings.conflict_sets {
         let used = match out.emptiness {
             Some(EmptinessProof::CheapRejection { measurement }) => vec![measurement],
             _ => Vec::new(),

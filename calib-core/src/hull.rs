@@ -184,7 +184,7 @@ where
     M: VectorModel<NX, NM, NR> + Sync,
 {
     let mut out = hull_core(model, x0, measurements, settings, engine);
-    if out.status == Status::Empty && settings.max_outliers == 0 {
+    if out.status == Status::Empty && settings.max_outliers == 0 && settings.conflict_sets {
         // The conflict set, with the prover that gave the verdict: the contraction alone when it
         // proved x0 empty at once, else the hull (with a bounded budget per subset).
         let plain = settings.clone();

@@ -59,6 +59,11 @@ pub struct Settings {
     /// [`crate::hull`] stops starting new rounds after this many seconds (default: no limit; a
     /// time limit makes the result depend on the machine's speed).
     pub hull_max_seconds: Option<f64>,
+    /// For an `Empty` verdict without outliers tolerated, [`crate::certify`] and [`crate::hull`]
+    /// also search a minimal set of conflicting measurements (default true; more certifications
+    /// of subsets). Off when only the verdict matters, e.g. while searching the smallest number
+    /// of outliers to tolerate.
+    pub conflict_sets: bool,
 }
 
 impl Default for Settings {
@@ -77,6 +82,7 @@ impl Default for Settings {
             hull_max_boxes: 200_000,
             hull_max_seconds: None,
             max_outliers: 0,
+            conflict_sets: true,
         }
     }
 }
@@ -110,6 +116,12 @@ impl Settings {
     /// The settings with up to `q` outliers tolerated (see [`Settings::max_outliers`]).
     pub fn with_max_outliers(mut self, q: usize) -> Self {
         self.max_outliers = q;
+        self
+    }
+
+    /// The settings with the conflict-set search on or off (see [`Settings::conflict_sets`]).
+    pub fn with_conflict_sets(mut self, on: bool) -> Self {
+        self.conflict_sets = on;
         self
     }
 

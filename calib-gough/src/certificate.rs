@@ -16,7 +16,9 @@ use crate::plot::{self, PlotError, Points};
 use crate::verdict::{self, ConfigurationNames, Standing};
 use crate::PARAMETER_NAMES;
 use calib_core::{Interval, Status};
-use calib_pipeline::html::{badge, figure, inward, outward, page_start, pairs, section, PAGE_END};
+use calib_pipeline::html::{
+    badge, figure, inputs_section, inward, outward, page_start, section, Provenance, PAGE_END,
+};
 pub use calib_pipeline::html::{
     command_line, escape, now, sha256_hex, Figure, Input, Section, Table, DECIMALS, VERSION,
 };
@@ -238,33 +240,17 @@ impl Certificate<'_> {
     }
 
     fn inputs(&self, h: &mut String) {
-        h.push_str("<section id=\"inputs\">\n<h2>Inputs and settings</h2>\n");
-        h.push_str("<table>\n<tr><th>input</th><th>file</th><th>SHA-256</th><th>bytes</th></tr>\n");
-        for i in &self.inputs {
-            let _ = writeln!(
-                h,
-                "<tr><td>{}</td><td><code>{}</code></td><td class=\"hash\">{}</td><td class=\"num\">{}</td></tr>",
-                escape(&i.role),
-                escape(&i.name),
-                i.sha256,
-                i.bytes
-            );
-        }
-        let _ = writeln!(
+        inputs_section(
             h,
-            "</table>\n<p>{} measured configurations. Measurement error bounds (half-widths of \
-             the measurement boxes):</p>",
-            self.configurations
+            &Provenance {
+                inputs: &self.inputs,
+                configurations: self.configurations,
+                error_bounds: &self.error_bounds,
+                date: &self.date,
+                command: &self.command,
+                settings: &self.settings,
+            },
         );
-        pairs(h, &["error", "bound"], &self.error_bounds);
-        let mut settings = vec![
-            ("software".to_string(), format!("certicalib {VERSION}")),
-            ("date".to_string(), self.date.clone()),
-            ("command".to_string(), self.command.clone()),
-        ];
-        settings.extend(self.settings.iter().cloned());
-        pairs(h, &["setting", "value"], &settings);
-        h.push_str("</section>\n");
     }
 
     fn leg(&self, h: &mut String, leg: &LegEntry<'_>) -> Result<(), PlotError> {

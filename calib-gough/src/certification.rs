@@ -278,7 +278,12 @@ pub fn certify_legs(
     options: &CertifyOptions,
     done: &(dyn Fn() + Sync),
 ) -> Result<Vec<LegResult>, String> {
-    let (legs, settings) = options.validate(robot.len(), configs.len())?;
+    let (legs, mut settings) = options.validate(robot.len(), configs.len())?;
+    if options.max_outliers == OutlierBudget::Auto {
+        // Every result `auto` keeps is consistent, or tolerates outliers: a conflict set (sought
+        // only for an empty verdict with none tolerated) would be thrown away.
+        settings = settings.with_conflict_sets(false);
+    }
     Ok(legs
         .par_iter()
         .map(|&leg| {

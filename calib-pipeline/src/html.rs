@@ -255,6 +255,55 @@ pub fn section(h: &mut String, s: &Section) {
     h.push_str("</section>\n");
 }
 
+/// What a run was made from, for the "Inputs and settings" section.
+#[derive(Clone, Copy, Debug)]
+pub struct Provenance<'a> {
+    /// The inputs with their hashes.
+    pub inputs: &'a [Input],
+    /// Number of measured configurations.
+    pub configurations: usize,
+    /// The measurement error bounds in words: `(what, "± value unit")`.
+    pub error_bounds: &'a [(String, String)],
+    /// When the run was made.
+    pub date: &'a str,
+    /// The command line.
+    pub command: &'a str,
+    /// The run's settings, as `(name, value)`.
+    pub settings: &'a [(String, String)],
+}
+
+/// The "Inputs and settings" section: each input with its SHA-256 and size, the error bounds,
+/// the software version, date, command and settings.
+pub fn inputs_section(h: &mut String, p: &Provenance<'_>) {
+    h.push_str("<section id=\"inputs\">\n<h2>Inputs and settings</h2>\n");
+    h.push_str("<table>\n<tr><th>input</th><th>file</th><th>SHA-256</th><th>bytes</th></tr>\n");
+    for i in p.inputs {
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td><code>{}</code></td><td class=\"hash\">{}</td><td class=\"num\">{}</td></tr>",
+            escape(&i.role),
+            escape(&i.name),
+            i.sha256,
+            i.bytes
+        );
+    }
+    let _ = writeln!(
+        h,
+        "</table>\n<p>{} measured configurations. Measurement error bounds (half-widths of \
+         the measurement boxes):</p>",
+        p.configurations
+    );
+    pairs(h, &["error", "bound"], p.error_bounds);
+    let mut settings = vec![
+        ("software".to_string(), format!("certicalib {VERSION}")),
+        ("date".to_string(), p.date.to_string()),
+        ("command".to_string(), p.command.to_string()),
+    ];
+    settings.extend(p.settings.iter().cloned());
+    pairs(h, &["setting", "value"], &settings);
+    h.push_str("</section>\n");
+}
+
 /// The start of a certificate page up to its `<h1>` and subtitle (`title` names what was
 /// calibrated; `date` is [`now`]).
 pub fn page_start(title: &str, date: &str) -> String {

@@ -13,38 +13,9 @@ import certicalib
 
 REPO = Path(__file__).resolve().parents[2]
 
-# A 3-joint arm with small priors (seconds to certify; the built-in 6-axis arm takes longer).
-ROBOT = """
-[[joint]]
-theta_deg = 0.0
-d = 120.0
-a = 0.0
-alpha_deg = 90.0
-radius = [0.0, 0.0, 0.01, 0.001, 0.0]
-
-[[joint]]
-theta_deg = 2.0
-d = 0.0
-a = -400.0
-alpha_deg = 0.0
-radius = [0.001, 0.0, 0.01, 0.001, 0.001]
-
-[[joint]]
-theta_deg = -1.0
-d = 15.0
-a = -350.0
-alpha_deg = 0.0
-radius = [0.001, 0.0, 0.01, 0.001, 0.0]
-
-[base]
-xyz = [900.0, -200.0, 100.0]
-rpy_deg = [0.5, -0.4, 30.0]
-radius = [0.02, 0.02, 0.02, 0.002, 0.002, 0.002]
-
-[tool]
-xyz = [10.0, 5.0, 60.0]
-radius = 0.01
-"""
+# A 3-joint arm with small priors (seconds to certify; the built-in 6-axis arm takes longer),
+# shared with the arm CLI tests.
+ROBOT = (REPO / "calib-arm" / "tests" / "data" / "small_arm.toml").read_text()
 
 
 def arm_binary() -> Path:
