@@ -51,6 +51,8 @@ pub struct LegEntry<'a> {
     pub nominal: [f64; 7],
     /// Least-squares solutions for this leg, when least squares was run (none otherwise).
     pub least_squares: &'a [[f64; 7]],
+    /// What these configurations cannot determine, in words (none when all is determined).
+    pub identifiability: &'a [String],
 }
 
 /// Everything the certificate states.
@@ -294,6 +296,13 @@ impl Certificate<'_> {
             );
         }
         least_squares_in_words(h, leg);
+        for s in leg.identifiability {
+            let _ = writeln!(
+                h,
+                "<p class=\"evidence\">Identifiability: {}</p>",
+                escape(s)
+            );
+        }
         self.parameter_table(h, leg);
         let layers = plot::leg_layers(r);
         let points = (!leg.least_squares.is_empty()).then_some(Points {

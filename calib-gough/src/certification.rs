@@ -6,6 +6,7 @@ use crate::measurement::{leg_boxes, measured, Configuration, Uncertainty};
 use crate::report::{bounds, LegReport, Report};
 use crate::{GoughLeg, PARAMETER_NAMES};
 use calib_core::{certify, hull, pave, sweep, EmptinessProof, Hull, Interval, Settings, Status};
+use calib_pipeline::identify::{analyse, identification_jacobian};
 use calib_pipeline::{smallest_consistent, Outcome, OutlierBudget};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -211,6 +212,24 @@ pub fn report(results: &[LegResult], seconds: f64) -> Report {
         legs: results.iter().map(LegResult::report).collect(),
         seconds,
     }
+}
+
+/// The identifiability of one leg's parameters on the configurations, in words (see
+/// [`calib_pipeline::identify`]): the identification Jacobian at the nominal geometry, columns
+/// scaled by the prior half-widths, rows by the error bounds. Empty when every free parameter is
+/// determined (to first order).
+pub fn identifiability(
+    spec: &LegSpec,
+    leg: usize,
+    configs: &[Configuration],
+    u: &Uncertainty,
+) -> Vec<String> {
+    let nominal = spec.nominal.params();
+    let x0: [Interval; 7] = core::array::from_fn(|j| measured(nominal[j], spec.radius[j]));
+    let boxes = leg_boxes(configs, u, leg);
+    let (free, jacobian) = identification_jacobian(&GoughLeg, &nominal, &x0, &boxes);
+    let names: Vec<String> = PARAMETER_NAMES.iter().map(|s| s.to_string()).collect();
+    analyse(&free, jacobian).sentences(&names)
 }
 
 /// Certifies one leg (0-based) of `spec` against the configurations.

@@ -131,6 +131,11 @@ fn certify_writes_a_self_contained_certificate_for_consistent_and_empty_legs() {
         .collect();
     assert_eq!(lsq.len(), 2, "{lsq:?}");
     assert!(
+        text.lines()
+            .any(|l| l.starts_with("Identifiability: weakly determined")),
+        "what the configurations barely determine is on the page"
+    );
+    assert!(
         lsq[1].contains("lies in x0, where no parameter vector fits the measurements")
             || lsq[1].contains("lies outside x0 (in "),
         "{}",

@@ -3,7 +3,9 @@
 use super::DataFiles;
 use calib_core::Status;
 use calib_gough::certificate::{self, Certificate, Input, LegEntry};
-use calib_gough::certification::{certify_legs, report, CertifyOptions, LegResult};
+use calib_gough::certification::{
+    certify_legs, identifiability, report, CertifyOptions, LegResult,
+};
 use calib_gough::files::{
     check_uncertainty, parse_measurements, parse_robot, parse_uncertainty, read_text,
 };
@@ -104,10 +106,18 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         file: &file,
         lines: &data.lines,
     };
+    let findings: Vec<Vec<String>> = results
+        .iter()
+        .map(|r| identifiability(&robot[r.leg], r.leg, &data.configs, &u))
+        .collect();
     let mut any_empty = false;
-    for r in &results {
+    for (r, found) in results.iter().zip(&findings) {
         any_empty |= r.status == Status::Empty;
         print_leg(r, &names, a.max_outliers);
+        for s in found {
+            println!("identifiability: {s}");
+        }
+        println!();
     }
     println!("total: {} legs in {total:.3} s", results.len());
     if let Some(dir) = &a.plots {
@@ -165,10 +175,12 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             seconds: total,
             legs: results
                 .iter()
-                .map(|r| LegEntry {
+                .zip(&findings)
+                .map(|(r, found)| LegEntry {
                     result: r,
                     nominal: robot[r.leg].nominal.params(),
                     least_squares: std::slice::from_ref(&fits[r.leg]),
+                    identifiability: found,
                 })
                 .collect(),
             names,
@@ -230,7 +242,6 @@ fn print_leg(r: &LegResult, names: &ConfigurationNames<'_>, budget: OutlierBudge
     if let Some((n, inner, outer)) = r.paving {
         println!("paving: {n} boxes, inner volume {inner:.3e}, outer volume {outer:.3e}");
     }
-    println!();
 }
 
 /// The last component of a path, as shown in messages ("measurements.csv").

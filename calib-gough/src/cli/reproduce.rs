@@ -388,6 +388,7 @@ fn certificate(
             result: leg,
             nominal: sim.nominal[0].params(),
             least_squares: fits,
+            identifiability: &[],
         }],
         names: ConfigurationNames {
             file: "measurements.csv",
