@@ -20,7 +20,9 @@ use calib_pipeline::identify::{analyse, identification_jacobian, Identifiability
 use calib_pipeline::lsq::{least_squares, Fit};
 use calib_pipeline::report::OutcomeReport;
 use calib_pipeline::verdict::{self, ConfigurationNames};
-use calib_pipeline::{certify_model, smallest_consistent, Depth, Outcome, OutlierBudget};
+use calib_pipeline::{
+    certify_model, check_hull_options, smallest_consistent, Depth, Outcome, OutlierBudget,
+};
 
 /// What one run on an arm's data found (every value in the files' units: mm and degrees).
 #[derive(Clone, Debug, PartialEq)]
@@ -127,15 +129,7 @@ impl CertifyRequest {
     /// The kernel settings for `configs` configurations (outliers are set per try); errors name
     /// the option as the command line spells it.
     pub fn settings(&self, configs: usize) -> Result<Settings, String> {
-        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
-            return Err(format!(
-                "--tolerance: expected a positive number, found {}",
-                self.tolerance
-            ));
-        }
-        if self.max_seconds.is_some_and(|s| s.is_nan() || s <= 0.0) {
-            return Err("--max-seconds: expected a positive number".into());
-        }
+        check_hull_options(self.tolerance, self.max_seconds)?;
         self.max_outliers.check(configs)?;
         Ok(arm_settings()
             .with_hull_tolerance(self.tolerance)

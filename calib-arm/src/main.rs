@@ -6,14 +6,5 @@ mod cli;
 use clap::Parser;
 
 fn main() {
-    calib_pipeline::exit_quietly_when_output_closes();
-    let args = cli::Cli::parse();
-    let code = match cli::run(args) {
-        Ok(code) => code,
-        Err(e) => {
-            eprintln!("error: {e}");
-            1
-        }
-    };
-    std::process::exit(code);
+    calib_pipeline::main_with(|| cli::run(cli::Cli::parse()))
 }

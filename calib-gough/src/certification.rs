@@ -7,7 +7,7 @@ use crate::report::{bounds, LegReport, Report};
 use crate::{GoughLeg, PARAMETER_NAMES};
 use calib_core::{certify, hull, pave, sweep, EmptinessProof, Hull, Interval, Settings, Status};
 use calib_pipeline::identify::{analyse, identification_jacobian};
-use calib_pipeline::{smallest_consistent, Outcome, OutlierBudget};
+use calib_pipeline::{check_hull_options, smallest_consistent, Outcome, OutlierBudget};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -70,19 +70,7 @@ impl CertifyOptions {
                 ));
             }
         }
-        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
-            return Err(format!(
-                "--tolerance: expected a positive number, found {}",
-                self.tolerance
-            ));
-        }
-        if let Some(s) = self.max_seconds {
-            if s.is_nan() || s <= 0.0 {
-                return Err(format!(
-                    "--max-seconds: expected a positive number, found {s}"
-                ));
-            }
-        }
+        check_hull_options(self.tolerance, self.max_seconds)?;
         self.max_outliers.check(configs)?;
         let tolerated = match self.max_outliers {
             OutlierBudget::Fixed(q) => q,

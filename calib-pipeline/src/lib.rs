@@ -22,5 +22,8 @@ pub mod verdict;
 pub use error::{read_text, toml_error, DataError, MAX_MAGNITUDE};
 pub use outcome::{certify_model, is_fixed, Depth, Outcome};
 pub use outlier_budget::{smallest_consistent, OutlierBudget};
-pub use output::{exit_quietly_when_output_closes, write_atomically, CLOSED_OUTPUT_STATUS};
+pub use output::{
+    check_hull_options, exit_quietly_when_output_closes, main_with, write_atomically,
+    CLOSED_OUTPUT_STATUS,
+};
 pub use table::{parse_number_table, NumberTable};

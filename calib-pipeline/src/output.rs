@@ -45,6 +45,36 @@ pub fn exit_quietly_when_output_closes() {
     }));
 }
 
+/// The `main` of a robot's command-line tool: installs [`exit_quietly_when_output_closes`], runs
+/// `run` (which parses the arguments and does the work), prints an error as `error: …` on
+/// standard error, and exits with `run`'s code, or 1 after an error.
+pub fn main_with(run: impl FnOnce() -> Result<i32, Box<dyn std::error::Error>>) -> ! {
+    exit_quietly_when_output_closes();
+    let code = run().unwrap_or_else(|e| {
+        eprintln!("error: {e}");
+        1
+    });
+    std::process::exit(code)
+}
+
+/// The checks every robot's `certify` makes of its hull options; errors name the option as the
+/// command line spells it.
+pub fn check_hull_options(tolerance: f64, max_seconds: Option<f64>) -> Result<(), String> {
+    if !(tolerance > 0.0 && tolerance.is_finite()) {
+        return Err(format!(
+            "--tolerance: expected a positive number, found {tolerance}"
+        ));
+    }
+    if let Some(s) = max_seconds {
+        if s.is_nan() || s <= 0.0 {
+            return Err(format!(
+                "--max-seconds: expected a positive number, found {s}"
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Whether a panic message is the standard library's for writing to a closed stdout or stderr.
 fn is_closed_output(message: &str) -> bool {
     message.starts_with("failed printing to std") && message.contains("Broken pipe")
@@ -63,6 +93,22 @@ mod tests {
             "failed printing to stdout: No space left on device"
         ));
         assert!(!is_closed_output("index out of bounds: Broken pipe"));
+    }
+
+    #[test]
+    fn hull_options_are_checked_by_name() {
+        assert!(check_hull_options(0.05, None).is_ok());
+        assert!(check_hull_options(0.05, Some(10.0)).is_ok());
+        for tol in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(check_hull_options(tol, None)
+                .unwrap_err()
+                .starts_with("--tolerance"));
+        }
+        for s in [0.0, -2.0, f64::NAN] {
+            assert!(check_hull_options(0.05, Some(s))
+                .unwrap_err()
+                .starts_with("--max-seconds"));
+        }
     }
 
     #[test]
