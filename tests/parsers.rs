@@ -1,8 +1,9 @@
 //! Property tests of every input parser (`robot.toml`, `uncertainty.toml`, `measurements.csv` of
-//! the hexapod and of the arm, and the shared number table): on random text, on valid files
-//! truncated or mutated, with huge, tiny and non-finite numbers and odd Unicode, a parser returns
-//! a value or a [`DataError`] naming the file it was given — it never panics. Random bytes go
-//! through the `read_*` functions (a file that is not UTF-8 is an error naming it too).
+//! the hexapod and of the arm, the hexapod's `poses.csv`, and the shared number table): on random
+//! text, on valid files truncated or mutated, with huge, tiny and non-finite numbers and odd
+//! Unicode, a parser returns a value or a [`DataError`] naming the file it was given — it never
+//! panics. Random bytes go through the `read_*` functions (a file that is not UTF-8 is an error
+//! naming it too).
 
 use calib_pipeline::{parse_number_table, DataError, MAX_MAGNITUDE};
 use proptest::prelude::*;
@@ -23,6 +24,9 @@ fn gough_uncertainty(f: &Path, t: &str) -> Result<(), DataError> {
 }
 fn gough_measurements(f: &Path, t: &str) -> Result<(), DataError> {
     calib_gough::files::parse_measurements(f, t, 6).map(|_| ())
+}
+fn gough_poses(f: &Path, t: &str) -> Result<(), DataError> {
+    calib_gough::files::parse_poses(f, t).map(|_| ())
 }
 fn arm_robot(f: &Path, t: &str) -> Result<(), DataError> {
     calib_arm::files::parse_robot(f, t).map(|_| ())
@@ -63,6 +67,7 @@ fn valid_files() -> Vec<(&'static str, Parser, String)> {
     vec![
         ("gough robot.toml", gough_robot as Parser, gr),
         ("gough uncertainty.toml", gough_uncertainty, gu),
+        ("gough poses.csv", gough_poses, poses_csv(&gm)),
         ("gough measurements.csv", gough_measurements, gm),
         (
             "arm robot.toml",
@@ -85,6 +90,14 @@ fn valid_files() -> Vec<(&'static str, Parser, String)> {
             "a,b,c\n1,2,3\n-4.5e1, 6 ,7\n".to_string(),
         ),
     ]
+}
+
+/// The poses of a measurements file: its first seven columns.
+fn poses_csv(measurements: &str) -> String {
+    measurements
+        .lines()
+        .map(|l| l.split(',').take(7).collect::<Vec<_>>().join(",") + "\n")
+        .collect()
 }
 
 /// Runs `parser` on `text`: it must return, and an error must name [`FILE`].
@@ -280,6 +293,7 @@ proptest! {
         prop_assert!(calib_gough::files::read_robot(&path).map_or_else(named, |_| true));
         prop_assert!(calib_gough::files::read_uncertainty(&path).map_or_else(named, |_| true));
         prop_assert!(calib_gough::files::read_measurements(&path, 6).map_or_else(named, |_| true));
+        prop_assert!(calib_gough::files::read_poses(&path).map_or_else(named, |_| true));
         prop_assert!(calib_arm::files::read_robot(&path).map_or_else(named, |_| true));
         prop_assert!(calib_arm::files::read_uncertainty(&path).map_or_else(named, |_| true));
         prop_assert!(calib_arm::files::read_measurements(&path, 6).map_or_else(named, |_| true));

@@ -1,7 +1,7 @@
 //! Reading the data files: `robot.toml`, `uncertainty.toml`, `measurements.csv` (units: cm and
 //! degrees). Every malformed input is a [`DataError`] naming the file, the line and the field.
 
-use crate::geometry::Leg;
+use crate::geometry::{Leg, Pose};
 use crate::measurement::{Configuration, Orientation, Uncertainty};
 use serde::Deserialize;
 use std::path::Path;
@@ -332,6 +332,52 @@ pub fn parse_measurements(file: &Path, text: &str, legs: usize) -> Result<Measur
         rodrigues,
         lines,
     })
+}
+
+/// The columns of a poses file: the platform centre (cm, base frame) and the rotation as a unit
+/// axis and an angle in degrees — the measurement columns without the leg readings.
+pub const POSE_COLUMNS: [&str; 7] = ["px", "py", "pz", "ax", "ay", "az", "angle_deg"];
+
+/// Reads a poses file (see [`parse_poses`]).
+pub fn read_poses(file: &Path) -> Result<Vec<Pose>, DataError> {
+    parse_poses(file, &read_text(file)?)
+}
+
+/// Parses a poses file: header `px,py,pz,ax,ay,az,angle_deg` ([`POSE_COLUMNS`]), one pose per
+/// row, at least 7 rows; each axis within 1e-3 of unit length (normalised on reading).
+pub fn parse_poses(file: &Path, text: &str) -> Result<Vec<Pose>, DataError> {
+    let header: Vec<String> = POSE_COLUMNS.iter().map(|c| c.to_string()).collect();
+    let table = calib_pipeline::parse_number_table(file, text, &header)?;
+    let mut poses = Vec::with_capacity(table.rows.len());
+    for (row, &line) in table.rows.iter().zip(&table.lines) {
+        let axis = [row[3], row[4], row[5]];
+        let norm = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+        if norm.is_nan() || (norm - 1.0).abs() > 1e-3 {
+            return Err(error(
+                file,
+                Some(line),
+                Some("ax,ay,az"),
+                format!("the rotation axis has length {norm}; expected a unit vector"),
+            ));
+        }
+        poses.push(Pose {
+            p: [row[0], row[1], row[2]],
+            axis: axis.map(|c| c / norm),
+            angle_deg: row[6],
+        });
+    }
+    if poses.len() < 7 {
+        return Err(error(
+            file,
+            None,
+            None,
+            format!(
+                "{} poses; at least 7 are needed (one per unknown parameter of a leg)",
+                poses.len()
+            ),
+        ));
+    }
+    Ok(poses)
 }
 
 #[cfg(test)]

@@ -94,6 +94,22 @@ pub fn simulate(
     noise_scale: f64,
     perturbation: f64,
 ) -> Simulation {
+    let mut pose_rng = StdRng::seed_from_u64(seed.wrapping_add(0x5eed));
+    let poses: Vec<Pose> = (0..configs).map(|_| random_pose(&mut pose_rng)).collect();
+    simulate_at(truth, &poses, seed, uncertainty, noise_scale, perturbation)
+}
+
+/// [`simulate`] at the given poses instead of random ones (the same noise model and nominal
+/// geometry for the same seed).
+pub fn simulate_at(
+    truth: &[Leg],
+    poses: &[Pose],
+    seed: u64,
+    uncertainty: Uncertainty,
+    noise_scale: f64,
+    perturbation: f64,
+) -> Simulation {
+    let configs = poses.len();
     let mut rng = StdRng::seed_from_u64(seed);
     let inside = perturbation * (1.0 - 1e-9);
     let nominal = truth
@@ -103,14 +119,11 @@ pub fn simulate(
             Leg::from_params(&x)
         })
         .collect();
-    let mut poses = Vec::with_capacity(configs);
     let mut exact_lengths = Vec::with_capacity(configs);
     let mut measured = Vec::with_capacity(configs);
     let mut noise = |h: f64| rng.random_range(-1.0..=1.0) * h * noise_scale;
-    let mut pose_rng = StdRng::seed_from_u64(seed.wrapping_add(0x5eed));
-    for _ in 0..configs {
-        let pose = random_pose(&mut pose_rng);
-        let lengths: Vec<f64> = truth.iter().map(|leg| leg_reading(leg, &pose)).collect();
+    for pose in poses {
+        let lengths: Vec<f64> = truth.iter().map(|leg| leg_reading(leg, pose)).collect();
         let noisy = Configuration {
             p: pose.p.map(|v| v + noise(uncertainty.pos)),
             orientation: Orientation::AxisAngle {
@@ -119,14 +132,13 @@ pub fn simulate(
             },
             lengths: lengths.iter().map(|v| v + noise(uncertainty.len)).collect(),
         };
-        poses.push(pose);
         exact_lengths.push(lengths);
         measured.push(noisy);
     }
     Simulation {
         truth: truth.to_vec(),
         nominal,
-        poses,
+        poses: poses.to_vec(),
         exact_lengths,
         measured,
         uncertainty,
@@ -149,6 +161,25 @@ pub fn write_data_set(
             "--configs {configs}: at least 7 configurations are needed"
         ));
     }
+    let mut pose_rng = StdRng::seed_from_u64(seed.wrapping_add(0x5eed));
+    let poses: Vec<Pose> = (0..configs).map(|_| random_pose(&mut pose_rng)).collect();
+    write_data_set_at(dir, &poses, seed, noise_scale, outliers)
+}
+
+/// [`write_data_set`] at the given poses (`gough simulate --poses`): one configuration per pose.
+pub fn write_data_set_at(
+    dir: &Path,
+    poses: &[Pose],
+    seed: u64,
+    noise_scale: f64,
+    outliers: &[(usize, usize, f64)],
+) -> Result<Simulation, String> {
+    let configs = poses.len();
+    if configs < 7 {
+        return Err(format!(
+            "{configs} poses: at least 7 configurations are needed (one per unknown of a leg)"
+        ));
+    }
     if !(noise_scale.is_finite() && noise_scale >= 0.0) {
         return Err("--noise-scale: expected a finite number >= 0".into());
     }
@@ -163,7 +194,7 @@ pub fn write_data_set(
         ));
     }
     let u = Uncertainty::PAPER;
-    let mut sim = simulate(&builtin_hexapod(), configs, seed, u, noise_scale, 0.1);
+    let mut sim = simulate_at(&builtin_hexapod(), poses, seed, u, noise_scale, 0.1);
     for &(c, l, d) in outliers {
         sim.measured[c].lengths[l] += d;
     }

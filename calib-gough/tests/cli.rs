@@ -454,3 +454,83 @@ fn a_closed_output_ends_the_program_quietly() {
         "{stderr}"
     );
 }
+
+#[test]
+fn simulate_measures_at_given_poses() {
+    let dir = tempdir("poses");
+    // Nine poses: the corners of the workspace box at alternating tilts, and its centre.
+    let mut csv = String::from("px,py,pz,ax,ay,az,angle_deg\n");
+    let mut poses = Vec::new();
+    for (k, (x, y, z)) in [
+        (-5.0, -5.0, 55.0),
+        (5.0, -5.0, 55.0),
+        (-5.0, 5.0, 55.0),
+        (5.0, 5.0, 55.0),
+        (-5.0, -5.0, 65.0),
+        (5.0, -5.0, 65.0),
+        (-5.0, 5.0, 65.0),
+        (5.0, 5.0, 65.0),
+        (0.0, 0.0, 60.0),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let axis = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]][k % 3];
+        let angle = 5.0 + k as f64;
+        csv.push_str(&format!(
+            "{x},{y},{z},{},{},{},{angle}\n",
+            axis[0], axis[1], axis[2]
+        ));
+        poses.push([x, y, z, angle]);
+    }
+    let poses_file = dir.join("poses.csv");
+    std::fs::write(&poses_file, &csv).unwrap();
+    let out = dir.join("data");
+    let o = gough(&[
+        "simulate",
+        "--poses",
+        poses_file.to_str().unwrap(),
+        "--seed",
+        "3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // One configuration per pose, each within the position and angle error bounds of its pose.
+    let data = std::fs::read_to_string(out.join("measurements.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = data
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), poses.len());
+    for (row, pose) in rows.iter().zip(&poses) {
+        for i in 0..3 {
+            assert!(
+                (row[i] - pose[i]).abs() <= 5e-4 * (1.0 + 1e-12),
+                "{row:?} {pose:?}"
+            );
+        }
+        assert!(
+            (row[6] - pose[3]).abs() <= 1e-3 * (1.0 + 1e-12),
+            "{row:?} {pose:?}"
+        );
+    }
+    // Certified as any data set: consistent, truth inside.
+    let certified = certify(&out, &["--fast"]);
+    assert_eq!(certified.status.code(), Some(0));
+    // A bad poses file: file, line and field named, nothing written.
+    std::fs::write(&poses_file, csv.replace("5,0,1,0,6", "5,0,2,0,6")).unwrap();
+    let fresh = dir.join("never");
+    let o = gough(&[
+        "simulate",
+        "--poses",
+        poses_file.to_str().unwrap(),
+        "--out",
+        fresh.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("poses.csv, line 3, field `ax,ay,az`"), "{err}");
+    assert!(!fresh.exists());
+}

@@ -83,7 +83,7 @@ pub struct Section {
 /// The certicalib version that writes the certificate.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
-/// The current time in RFC 3339 (UTC, whole seconds), for [`Certificate::date`].
+/// The current time in RFC 3339 (UTC, whole seconds), for the date a certificate states.
 pub fn now() -> String {
     humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
 }

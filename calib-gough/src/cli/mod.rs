@@ -58,8 +58,13 @@ enum Command {
     /// Write a simulated data set (robot.toml, measurements.csv, uncertainty.toml, truth.json) for
     /// the built-in hexapod, whose leg 1 is the paper's Table I.
     ///
-    /// Example:
+    /// Examples:
     ///   gough simulate --configs 21 --seed 7 --out data/ --outlier 5:2:0.1
+    ///   gough simulate --poses poses.csv --seed 7 --out data/
+    ///
+    /// --poses measures at the poses of a CSV (header px,py,pz,ax,ay,az,angle_deg) instead of
+    /// random ones, with the same noise model: a measurement plan can be tried before the robot
+    /// is measured.
     #[command(verbatim_doc_comment)]
     Simulate(simulate::Args),
     /// The paper's Section V experiment on an embedded default (no files): exact-data check, then

@@ -1,13 +1,19 @@
 //! `gough simulate`.
 
-use calib_gough::simulate::write_data_set;
+use calib_gough::files::read_poses;
+use calib_gough::simulate::{write_data_set, write_data_set_at};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Number of measured configurations.
+    /// Number of measured configurations (random poses of the default workspace: centre within
+    /// ± 5 cm horizontally, 55–65 cm high, rotation up to 15°).
     #[arg(long, default_value_t = 21)]
     configs: usize,
+    /// Measure at these poses instead of random ones: a CSV with header
+    /// px,py,pz,ax,ay,az,angle_deg (cm, unit axis, degrees), one configuration per row.
+    #[arg(long, value_name = "FILE", conflicts_with = "configs")]
+    poses: Option<PathBuf>,
     /// Random seed (the same seed gives the same files).
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -41,12 +47,17 @@ fn parse_outlier(s: &str, configs: usize) -> Result<(usize, usize, f64), String>
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    let poses = a.poses.as_deref().map(read_poses).transpose()?;
+    let configs = poses.as_ref().map_or(a.configs, Vec::len);
     let outliers = a
         .outlier
         .iter()
-        .map(|s| parse_outlier(s, a.configs))
+        .map(|s| parse_outlier(s, configs))
         .collect::<Result<Vec<_>, _>>()?;
-    write_data_set(&a.out, a.configs, a.seed, a.noise_scale, &outliers)?;
-    println!("wrote {} configurations to {}", a.configs, a.out.display());
+    match &poses {
+        Some(poses) => write_data_set_at(&a.out, poses, a.seed, a.noise_scale, &outliers)?,
+        None => write_data_set(&a.out, configs, a.seed, a.noise_scale, &outliers)?,
+    };
+    println!("wrote {configs} configurations to {}", a.out.display());
     Ok(0)
 }
