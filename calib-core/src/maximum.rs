@@ -1,0 +1,272 @@
+//! A certified global maximum of a function over a box: an upper bound proved over the whole box
+//! and a lower bound attained at an explicit point, so that the true maximum lies between them.
+//!
+//! This is the question behind an accuracy certificate ("how far from the commanded pose can the
+//! calibrated robot be, anywhere in its workspace and for every parameter vector the data allow?"):
+//! the function's inputs are the workspace coordinates, the parameters and the actuator errors,
+//! all in one box.
+//!
+//! # The method (interval branch and bound)
+//!
+//! The boxes still to examine are kept in a queue ordered by the upper end of `f`'s enclosure
+//! over them ([`Objective::enclose`], intersected with the mean-value form when a gradient is
+//! available). The lower bound is the largest lower end of `f`'s
+//! enclosure at any point evaluated so far ([`Objective::at`]): `f` attains at least that value
+//! there. Each step takes the box with the largest upper end, splits it at the midpoint of its
+//! widest side (relative to the domain), and for each half
+//!
+//! * with a gradient enclosure ([`Objective::gradient`]) whose component `j` excludes 0, moves
+//!   the half to its face where `f` grows (`f` is monotone in `x_j` on the whole half, so the
+//!   maximum over the half is on that face);
+//! * drops it when the upper end of its enclosure is below the lower bound (no point in it can be
+//!   the maximiser);
+//! * evaluates `f` at its midpoint to raise the lower bound, and queues it.
+//!
+//! **Soundness.** Every point of the domain lies in a queued box or in a dropped one, and a box
+//! is dropped only when `f` is below the lower bound everywhere on it, which `f` attains. So
+//! `max f <= max(upper ends over the queue)`, which is the reported upper bound, and
+//! `max f >= lower`. Failures (a NaN or unbounded enclosure) never drop a box: the upper bound is
+//! then `+∞`.
+
+use crate::Interval;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// A function to maximise, evaluated rigorously.
+pub trait Objective<const N: usize> {
+    /// An enclosure of `f` over the box `x`: every `f(p)` with `p` in `x` lies in it.
+    fn enclose(&self, x: &[Interval; N]) -> Interval;
+
+    /// An enclosure of `f` at the point `x` (by default [`Objective::enclose`] of the thin box).
+    fn at(&self, x: &[f64; N]) -> Interval {
+        self.enclose(&x.map(Interval::point))
+    }
+
+    /// An enclosure of `f`'s gradient over the box `x`, when available (it lets the search move a
+    /// box to a face where `f` is monotone). By default none.
+    fn gradient(&self, _x: &[Interval; N]) -> Option<[Interval; N]> {
+        None
+    }
+}
+
+/// When to stop [`maximize`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaximumSettings {
+    /// Stop once `upper - lower <= rel_tol · |lower|` (default 0.01).
+    pub rel_tol: f64,
+    /// … or `upper - lower <= abs_tol` (default 0).
+    pub abs_tol: f64,
+    /// Examine at most this many boxes (default 100 000).
+    pub max_boxes: usize,
+}
+
+impl Default for MaximumSettings {
+    fn default() -> Self {
+        MaximumSettings {
+            rel_tol: 0.01,
+            abs_tol: 0.0,
+            max_boxes: 100_000,
+        }
+    }
+}
+
+/// The certified bracket of a maximum.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Maximum<const N: usize> {
+    /// Proved: `f(x) <= upper` for every `x` in the domain (`+∞` when an enclosure failed).
+    pub upper: f64,
+    /// Attained: `f(argmax) >= lower` (proved by an enclosure of `f` at `argmax`).
+    pub lower: f64,
+    /// A point of the domain where `f >= lower`.
+    pub argmax: [f64; N],
+    /// The queued box whose enclosure gives `upper`: where a larger value could still hide.
+    pub frontier: [Interval; N],
+    /// Boxes examined.
+    pub boxes: usize,
+    /// Whether the tolerance was met (else the box budget ran out; both bounds stay valid).
+    pub converged: bool,
+}
+
+/// A queued box, ordered by the upper end of `f` over it.
+struct Queued<const N: usize> {
+    sup: f64,
+    b: [Interval; N],
+}
+
+impl<const N: usize> PartialEq for Queued<N> {
+    fn eq(&self, other: &Self) -> bool {
+        self.sup.total_cmp(&other.sup) == Ordering::Equal
+    }
+}
+impl<const N: usize> Eq for Queued<N> {}
+impl<const N: usize> PartialOrd for Queued<N> {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl<const N: usize> Ord for Queued<N> {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.sup.total_cmp(&other.sup)
+    }
+}
+
+/// The upper end of an enclosure, `+∞` when it failed (NaN or empty): a failure never drops a box.
+fn upper_end(v: Interval) -> f64 {
+    let s = v.sup();
+    if s.is_nan() || v.is_empty() {
+        f64::INFINITY
+    } else {
+        s
+    }
+}
+
+/// Maximises `f` over `domain` (see the module documentation). `domain` must be bounded and
+/// non-empty; otherwise the result is the trivial bracket `[-∞, +∞]` at its midpoint.
+///
+/// ```
+/// use calib_core::{maximize, Interval, MaximumSettings, Objective};
+///
+/// /// `x (1 - x)`, largest at `x = 1/2`.
+/// struct Parabola;
+/// impl Objective<1> for Parabola {
+///     fn enclose(&self, x: &[Interval; 1]) -> Interval {
+///         x[0] * (Interval::point(1.0) - x[0])
+///     }
+///     fn gradient(&self, x: &[Interval; 1]) -> Option<[Interval; 1]> {
+///         Some([Interval::point(1.0) - Interval::point(2.0) * x[0]])
+///     }
+/// }
+/// let m = maximize(&Parabola, &[Interval::new(0.0, 1.0)], &MaximumSettings::default());
+/// assert!(m.converged && m.lower <= 0.25 && 0.25 <= m.upper && m.upper <= 0.25 * 1.01);
+/// ```
+pub fn maximize<O: Objective<N>, const N: usize>(
+    f: &O,
+    domain: &[Interval; N],
+    settings: &MaximumSettings,
+) -> Maximum<N> {
+    let mid = |b: &[Interval; N]| b.map(|v| v.mid());
+    let mut out = Maximum {
+        upper: f64::INFINITY,
+        lower: f64::NEG_INFINITY,
+        argmax: mid(domain),
+        frontier: *domain,
+        boxes: 0,
+        converged: false,
+    };
+    if domain.iter().any(|v| v.is_empty() || !v.is_bounded()) {
+        return out;
+    }
+    let probe = |p: [f64; N], out: &mut Maximum<N>| {
+        let v = f.at(&p);
+        // Only a real enclosure proves a value: an empty or NaN one proves nothing.
+        if !v.is_empty() && v.inf() > out.lower {
+            out.lower = v.inf();
+            out.argmax = p;
+        }
+    };
+    probe(mid(domain), &mut out);
+    let mut queue = BinaryHeap::new();
+    queue.push(Queued {
+        sup: upper_end(enclosure(f, domain)),
+        b: *domain,
+    });
+    out.boxes = 1;
+    // Boxes too small to split keep their bound for good: the largest such bound, and its box.
+    let mut settled: Option<Queued<N>> = None;
+    loop {
+        let top = match (queue.peek(), &settled) {
+            (Some(q), Some(s)) if s.sup > q.sup => s,
+            (Some(q), _) => q,
+            (None, Some(s)) => s,
+            (None, None) => {
+                // Every box was below the lower bound, which is then the maximum (attained).
+                out.upper = out.lower;
+                out.converged = true;
+                return out;
+            }
+        };
+        out.upper = top.sup.max(out.lower);
+        out.frontier = top.b;
+        let gap = out.upper - out.lower;
+        if gap <= settings.abs_tol || gap <= settings.rel_tol * out.lower.abs() {
+            out.converged = true;
+            return out;
+        }
+        if out.boxes >= settings.max_boxes {
+            return out;
+        }
+        let Some(Queued { sup, b }) = queue.pop() else {
+            // Only settled boxes are left and the gap is still open: nothing more to do.
+            return out;
+        };
+        let Some((l, r)) = split(&b, domain) else {
+            if settled.as_ref().is_none_or(|s| sup > s.sup) {
+                settled = Some(Queued { sup, b });
+            }
+            continue;
+        };
+        for half in [l, r] {
+            let half = to_rising_faces(f, half);
+            out.boxes += 1;
+            let sup = upper_end(enclosure(f, &half));
+            if sup < out.lower {
+                continue;
+            }
+            probe(mid(&half), &mut out);
+            queue.push(Queued { sup, b: half });
+        }
+    }
+}
+
+/// `f` over `b`: [`Objective::enclose`], intersected with the mean-value form
+/// `f(m) + Σ_j g_j (b_j - m_j)` (`m` the midpoint, `g` the gradient's enclosure over `b`) when
+/// the gradient is available. Both contain every value of `f` on `b`, so their intersection does;
+/// the mean-value form shrinks quadratically with the box, the natural one only linearly.
+fn enclosure<O: Objective<N>, const N: usize>(f: &O, b: &[Interval; N]) -> Interval {
+    let natural = f.enclose(b);
+    let Some(g) = f.gradient(b) else {
+        return natural;
+    };
+    let m = b.map(|v| v.mid());
+    let mut mean_value = f.at(&m);
+    for j in 0..N {
+        mean_value += g[j] * (b[j] - Interval::point(m[j]));
+    }
+    if natural.is_empty() || mean_value.is_empty() || mean_value.sup().is_nan() {
+        return natural;
+    }
+    natural.intersection(mean_value)
+}
+
+/// `b` moved to its faces where `f` grows, in every coordinate where the gradient's enclosure
+/// excludes 0 (the maximum over `b` lies on those faces).
+fn to_rising_faces<O: Objective<N>, const N: usize>(f: &O, mut b: [Interval; N]) -> [Interval; N] {
+    if let Some(g) = f.gradient(&b) {
+        for j in 0..N {
+            if g[j].inf() > 0.0 {
+                b[j] = Interval::point(b[j].sup());
+            } else if g[j].sup() < 0.0 {
+                b[j] = Interval::point(b[j].inf());
+            }
+        }
+    }
+    b
+}
+
+/// Splits `b` at the midpoint of its widest side relative to `domain` (`None` when no side can
+/// be split).
+fn split<const N: usize>(
+    b: &[Interval; N],
+    domain: &[Interval; N],
+) -> Option<([Interval; N], [Interval; N])> {
+    let rel = |j: usize| b[j].wid() / domain[j].wid().max(f64::MIN_POSITIVE);
+    let j = (0..N).max_by(|&a, &c| rel(a).total_cmp(&rel(c)))?;
+    let (lo, hi, m) = (b[j].inf(), b[j].sup(), b[j].mid());
+    if !(lo < m && m < hi) {
+        return None;
+    }
+    let (mut l, mut r) = (*b, *b);
+    l[j] = Interval::new(lo, m);
+    r[j] = Interval::new(m, hi);
+    Some((l, r))
+}
