@@ -70,8 +70,13 @@ pub struct Workspace<const NX: usize> {
     /// Primal LP points (in `x` coordinates) at the minimum and maximum of each parameter from the
     /// last step: `extreme_points[2j]` for the minimum of `x_j`, `[2j + 1]` for the maximum.
     pub(crate) extreme_points: Vec<[f64; NX]>,
+    /// The optimal LP points of the current step (shifted coordinates), to skip the LPs whose
+    /// bound one of them already attains.
+    optima: Vec<[f64; NX]>,
     /// LP solves and LP failures since creation (for reports).
     pub lp_solves: usize,
+    /// LPs skipped since creation because a point of the same step already attained their bound.
+    pub lp_skipped: usize,
     /// LP solves that failed or whose Farkas ray did not check (the bound stayed where it was or
     /// came from the partial multipliers).
     pub lp_failures: usize,
@@ -94,7 +99,9 @@ impl<const NX: usize> Workspace<NX> {
             zeros: [0.0; NX],
             primal: [0.0; NX],
             extreme_points: vec![[0.0; NX]; 2 * NX],
+            optima: Vec::with_capacity(2 * NX),
             lp_solves: 0,
+            lp_skipped: 0,
             lp_failures: 0,
         }
     }
@@ -491,11 +498,33 @@ fn bound_by_linear_programs<const NX: usize>(
     let rows = ws.poly.rows();
     ws.dual.resize(rows, 0.0);
     let mut out = *x;
+    ws.optima.clear();
+    let skip = ws.lp.skips_attained_bounds(NX);
     for j in 0..NX {
         if ws.poly.is_frozen(j) {
             continue;
         }
         for sense in [1.0, -1.0] {
+            let slot = 2 * j + usize::from(sense < 0.0);
+            // An optimal point of an earlier LP of this step that lies in the current bounds and
+            // on this face: the LP's bound cannot move the face (the minimum of `±y_j` is at
+            // most that point's value, and the face bounds it from below), so the LP is skipped.
+            // The box is the one the LP would give; only the LP engine's warm start differs.
+            let (lo, hi) = (ws.poly.lo(), ws.poly.hi());
+            let on_face = ws.optima.iter().filter(|_| skip).find(|p| {
+                (if sense > 0.0 {
+                    p[j] <= lo[j]
+                } else {
+                    p[j] >= hi[j]
+                }) && (0..NX).all(|i| lo[i] <= p[i] && p[i] <= hi[i])
+            });
+            if let Some(p) = on_face {
+                ws.lp_skipped += 1;
+                for (i, v) in p.iter().enumerate() {
+                    ws.extreme_points[slot][i] = xm[i].mid() + v;
+                }
+                continue;
+            }
             ws.objective = [0.0; NX];
             ws.objective[j] = sense;
             ws.lp_solves += 1;
@@ -524,9 +553,11 @@ fn bound_by_linear_programs<const NX: usize>(
             }
             ws.poly.set_bounds(j, new_lo, new_hi);
             if status == LpStatus::Optimal {
-                let slot = 2 * j + usize::from(sense < 0.0);
                 for (i, p) in ws.primal.iter().enumerate() {
                     ws.extreme_points[slot][i] = xm[i].mid() + p;
+                }
+                if skip {
+                    ws.optima.push(ws.primal);
                 }
             }
         }

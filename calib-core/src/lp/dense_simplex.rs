@@ -353,6 +353,13 @@ impl LpBackend for DenseSimplex {
         self.large.forget();
     }
 
+    /// The small engine walks on from the previous objective's optimum; the large one
+    /// ([`ScaledSimplex`]) remembers a basis per objective, which skipped solves would leave
+    /// stale.
+    fn skips_attained_bounds(&self, dim: usize) -> bool {
+        dim <= SMALL_DIM
+    }
+
     fn minimize(
         &mut self,
         p: &Polyhedron,

@@ -52,6 +52,16 @@ pub trait LpBackend: Send {
     /// contraction calls it before each box: boxes reach worker threads in an unpredictable
     /// order, and the results must not depend on it. The default has nothing to forget.
     fn forget(&mut self) {}
+
+    /// Whether the contraction should skip an LP whose bound an optimal point of an earlier LP of
+    /// the same step already attains (for problems of `dim` variables). Skipping never changes
+    /// the box the LP would give, but it changes where the engine's next solve starts: an engine
+    /// that walks on from the previous objective's optimum gains, one that remembers a basis per
+    /// objective loses (measured: the Gough leg's hull 20-25% faster, the 44-variable arm 20%
+    /// slower). The default does not skip.
+    fn skips_attained_bounds(&self, _dim: usize) -> bool {
+        false
+    }
 }
 
 /// Which LP engine the kernel uses.
