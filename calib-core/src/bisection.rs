@@ -51,6 +51,25 @@ pub struct SweepResult<const NX: usize> {
     pub boxes_contracted: usize,
 }
 
+/// Splits `b` at the midpoint of its widest side relative to `reference` (`None` when no side
+/// can be split: the midpoint equals a bound). Used by [`crate::hull`] (relative to the outer
+/// box) and [`crate::maximize`] (relative to the domain).
+pub(crate) fn split_widest<const NX: usize>(
+    b: &[Interval; NX],
+    reference: &[Interval; NX],
+) -> Option<([Interval; NX], [Interval; NX])> {
+    let rel = |j: usize| b[j].wid() / reference[j].wid().max(f64::MIN_POSITIVE);
+    let j = (0..NX).max_by(|&a, &c| rel(a).total_cmp(&rel(c)))?;
+    let (lo, hi, m) = (b[j].inf(), b[j].sup(), b[j].mid());
+    if !(lo < m && m < hi) {
+        return None;
+    }
+    let (mut l, mut r) = (*b, *b);
+    l[j] = Interval::new(lo, m);
+    r[j] = Interval::new(m, hi);
+    Some((l, r))
+}
+
 /// The `2^n` sub-boxes of `x` split at `fraction` of each width from the lower (or upper) bound.
 fn split_all<const NX: usize>(
     x: &[Interval; NX],

@@ -37,6 +37,7 @@
 //! merged in a fixed order, so the result does not depend on the number of threads (it does depend
 //! on the time budget, when one is set and reached).
 
+use crate::bisection::split_widest;
 use crate::certificate::{find_witness, inner_points, FailFirst};
 use crate::certify::{certify, hull_box, MAX_SUBSETS};
 use crate::contract::{contract, is_fixed, EmptinessProof, Workspace};
@@ -610,7 +611,7 @@ where
         let mut atomic = Vec::new();
         for (i, faces) in picked {
             let Piece { b, set, .. } = self.cover[*i];
-            match split(&b, &outer) {
+            match split_widest(&b, &outer) {
                 Some((l, r)) => {
                     jobs.push((l, faces, set));
                     jobs.push((r, faces, set));
@@ -673,25 +674,6 @@ where
 
 /// A contracted half, the certified points pushed from its LP extreme points, and its subset.
 type Refined<const NX: usize> = ([Interval; NX], Vec<[f64; NX]>, usize);
-
-/// Splits `b` at the midpoint of its widest dimension relative to `outer` (`None` when no
-/// dimension can be split: the midpoint equals a bound).
-fn split<const NX: usize>(
-    b: &[Interval; NX],
-    outer: &[Interval; NX],
-) -> Option<([Interval; NX], [Interval; NX])> {
-    let rel = |j: usize| b[j].wid() / outer[j].wid().max(f64::MIN_POSITIVE);
-    let j = (0..NX).max_by(|&a, &c| rel(a).total_cmp(&rel(c)))?;
-    let (lo, hi) = (b[j].inf(), b[j].sup());
-    let m = b[j].mid();
-    if !(lo < m && m < hi) {
-        return None;
-    }
-    let (mut l, mut r) = (*b, *b);
-    l[j] = Interval::new(lo, m);
-    r[j] = Interval::new(m, hi);
-    Some((l, r))
-}
 
 /// Local optimisation of one parameter over the solution set: from `start`, successive linear
 /// programs move towards the face (see the module documentation) inside `region`; each step is

@@ -28,6 +28,7 @@
 //! `max f >= lower`. Failures (a NaN or unbounded enclosure) never drop a box: the upper bound is
 //! then `+∞`.
 
+use crate::bisection::split_widest;
 use crate::Interval;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -199,7 +200,7 @@ pub fn maximize<O: Objective<N>, const N: usize>(
             // Only settled boxes are left and the gap is still open: nothing more to do.
             return out;
         };
-        let Some((l, r)) = split(&b, domain) else {
+        let Some((l, r)) = split_widest(&b, domain) else {
             if settled.as_ref().is_none_or(|s| sup > s.sup) {
                 settled = Some(Queued { sup, b });
             }
@@ -251,22 +252,4 @@ fn to_rising_faces<O: Objective<N>, const N: usize>(f: &O, mut b: [Interval; N])
         }
     }
     b
-}
-
-/// Splits `b` at the midpoint of its widest side relative to `domain` (`None` when no side can
-/// be split).
-fn split<const N: usize>(
-    b: &[Interval; N],
-    domain: &[Interval; N],
-) -> Option<([Interval; N], [Interval; N])> {
-    let rel = |j: usize| b[j].wid() / domain[j].wid().max(f64::MIN_POSITIVE);
-    let j = (0..N).max_by(|&a, &c| rel(a).total_cmp(&rel(c)))?;
-    let (lo, hi, m) = (b[j].inf(), b[j].sup(), b[j].mid());
-    if !(lo < m && m < hi) {
-        return None;
-    }
-    let (mut l, mut r) = (*b, *b);
-    l[j] = Interval::new(lo, m);
-    r[j] = Interval::new(m, hi);
-    Some((l, r))
 }
