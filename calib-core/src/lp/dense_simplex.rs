@@ -354,7 +354,7 @@ impl LpBackend for DenseSimplex {
     }
 
     /// The small engine walks on from the previous objective's optimum; the large one
-    /// ([`ScaledSimplex`]) remembers a basis per objective, which skipped solves would leave
+    /// (the scaled simplex) remembers a basis per objective, which skipped solves would leave
     /// stale.
     fn skips_attained_bounds(&self, dim: usize) -> bool {
         dim <= SMALL_DIM
