@@ -49,9 +49,9 @@ pub struct Args {
     json: Option<PathBuf>,
     /// Write the calibration certificate to this file: one self-contained HTML page (figures
     /// inline, nothing fetched; open it in any browser, print it to PDF) with the verdict and its
-    /// evidence in words, identifiability, a table and a figure of every free parameter against
-    /// its prior box, the least-squares solution (implies --lsq), the input files' SHA-256 and
-    /// the settings.
+    /// evidence in words, identifiability, a table and a figure of every free parameter's prior,
+    /// outer and inner bounds, the least-squares solution (implies --lsq), the input files'
+    /// SHA-256 and the settings.
     #[arg(long, value_name = "FILE")]
     report: Option<PathBuf>,
 }

@@ -38,7 +38,13 @@ enum Command {
     ///
     /// Example:
     ///   arm certify --robot robot.toml --measurements measurements.csv \
-    ///               --uncertainty uncertainty.toml --json report.json
+    ///               --uncertainty uncertainty.toml --json report.json \
+    ///               --report certificate.html
+    ///
+    /// --report writes the calibration certificate: one self-contained HTML page (verdict and
+    /// evidence, identifiability, every free parameter's boxes in a table and a figure, inputs
+    /// with SHA-256, settings) to archive or print. --max-outliers auto finds the smallest number
+    /// of bad configurations that explains the data.
     ///
     /// What the boxes mean, per parameter:
     ///   outer  every parameter vector that fits all configurations (one reading of each within
