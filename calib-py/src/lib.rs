@@ -143,10 +143,11 @@ fn certify_text(
     run(py, inputs, options.try_into()?)
 }
 
-/// Writes the simulated data set of `gough simulate` into `out`; `outliers` are 1-based
+/// Writes the simulated data set of `gough simulate` into `out`, at random poses or (with
+/// `poses`, a poses CSV) at the poses of `gough simulate --poses`; `outliers` are 1-based
 /// `(configuration, leg, delta)`. Returns the contents of `truth.json`.
 #[pyfunction]
-#[pyo3(signature = (out, configs=21, seed=7, noise_scale=1.0, outliers=Vec::new()))]
+#[pyo3(signature = (out, configs=21, seed=7, noise_scale=1.0, outliers=Vec::new(), poses=None))]
 fn simulate(
     py: Python<'_>,
     out: PathBuf,
@@ -154,7 +155,12 @@ fn simulate(
     seed: u64,
     noise_scale: f64,
     outliers: Vec<(usize, usize, f64)>,
+    poses: Option<PathBuf>,
 ) -> PyResult<String> {
+    let poses = poses
+        .map(|p| calib_gough::files::read_poses(&p))
+        .transpose()
+        .map_err(value_error)?;
     let zero_based = outliers
         .iter()
         .map(|&(c, l, d)| {
@@ -167,8 +173,13 @@ fn simulate(
             }
         })
         .collect::<PyResult<Vec<_>>>()?;
-    py.detach(|| {
-        calib_gough::simulate::write_data_set(&out, configs, seed, noise_scale, &zero_based)
+    py.detach(|| match &poses {
+        Some(poses) => {
+            calib_gough::simulate::write_data_set_at(&out, poses, seed, noise_scale, &zero_based)
+        }
+        None => {
+            calib_gough::simulate::write_data_set(&out, configs, seed, noise_scale, &zero_based)
+        }
     })
     .map_err(value_error)?;
     std::fs::read_to_string(out.join("truth.json")).map_err(value_error)

@@ -172,3 +172,25 @@ def test_the_example_script_runs(tmp_path):
                             capture_output=True, text=True, cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert "leg 6: consistent" in result.stdout
+
+
+def test_simulate_at_given_poses_matches_the_cli(tmp_path):
+    rows = [[x, y, z, 0.0, 0.0, 1.0, 5.0 + k]
+            for k, (x, y, z) in enumerate([(-5, -5, 55), (5, -5, 55), (-5, 5, 55), (5, 5, 55),
+                                           (-5, -5, 65), (5, -5, 65), (-5, 5, 65), (5, 5, 65)])]
+    poses = tmp_path / "poses.csv"
+    poses.write_text("px,py,pz,ax,ay,az,angle_deg\n"
+                     + "".join(",".join(str(v) for v in r) + "\n" for r in rows))
+    mine = tmp_path / "mine"
+    truth = certicalib.simulate(mine, seed=3, poses=poses)
+    assert truth["p"] == len(rows)
+    cli = tmp_path / "cli"
+    subprocess.run([str(gough_binary()), "simulate", "--poses", str(poses), "--seed", "3",
+                    "--out", str(cli)], check=True, capture_output=True)
+    for name in ("measurements.csv", "robot.toml", "uncertainty.toml", "truth.json"):
+        assert (mine / name).read_bytes() == (cli / name).read_bytes(), name
+    poses.write_text(poses.read_text().replace("0.0,0.0,1.0,5.0", "0.0,0.0,3.0,5.0", 1))
+    with pytest.raises(ValueError, match="poses.csv, line 2"):
+        certicalib.simulate(tmp_path / "never", poses=poses)
+    assert not (tmp_path / "never").exists()
+

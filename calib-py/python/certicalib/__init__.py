@@ -278,13 +278,17 @@ def certify(robot: Union[PathLike, RobotData],
 
 
 def simulate(out: PathLike, *, configs: int = 21, seed: int = 7, noise_scale: float = 1.0,
-             outliers: Sequence[Tuple[int, int, float]] = ()) -> Dict[str, Any]:
+             outliers: Sequence[Tuple[int, int, float]] = (),
+             poses: Optional[PathLike] = None) -> Dict[str, Any]:
     """Write a simulated data set of the built-in hexapod into the folder ``out``, as
     ``gough simulate`` does: ``robot.toml``, ``measurements.csv``, ``uncertainty.toml`` and
     ``truth.json``. ``outliers`` are ``(configuration, leg, delta_cm)`` with 1-based numbers.
-    Returns the truth (the contents of ``truth.json``) as a dict."""
+    ``poses``: a CSV with header ``px,py,pz,ax,ay,az,angle_deg`` to measure at instead of
+    ``configs`` random poses (``gough simulate --poses``). Returns the truth (the contents of
+    ``truth.json``) as a dict."""
     text = _native.simulate(os.fspath(out), int(configs), int(seed), float(noise_scale),
-                            [(int(c), int(l), float(d)) for c, l, d in outliers])
+                            [(int(c), int(l), float(d)) for c, l, d in outliers],
+                            None if poses is None else os.fspath(poses))
     return json.loads(text)
 
 
