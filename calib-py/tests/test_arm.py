@@ -2,7 +2,6 @@
 certified box, outliers found with max_outliers="auto", ValueError naming the file on bad input."""
 
 import json
-import os
 import subprocess
 from pathlib import Path
 
@@ -10,24 +9,12 @@ import numpy as np
 import pytest
 
 import certicalib
+from cli_binaries import REPO, repo_binary
 
-REPO = Path(__file__).resolve().parents[2]
 
 # A 3-joint arm with small priors (seconds to certify; the built-in 6-axis arm takes longer),
 # shared with the arm CLI tests.
 ROBOT = (REPO / "calib-arm" / "tests" / "data" / "small_arm.toml").read_text()
-
-
-def arm_binary() -> Path:
-    """The arm CLI: $ARM_BIN, else a build in the repository's target folder (built if missing)."""
-    if os.environ.get("ARM_BIN"):
-        return Path(os.environ["ARM_BIN"])
-    for profile in ("release", "debug"):
-        path = REPO / "target" / profile / "arm"
-        if path.exists():
-            return path
-    subprocess.run(["cargo", "build", "-p", "calib-arm", "--bin", "arm"], cwd=REPO, check=True)
-    return REPO / "target" / "debug" / "arm"
 
 
 def simulated(d: Path, **kwargs) -> dict:
@@ -54,7 +41,7 @@ def test_the_report_is_the_cli_report_and_keeps_the_truth(tmp_path):
     assert np.all(report.ratio[free] >= 1.0)
     out = tmp_path / "cli.json"
     robot, meas, unc = files(tmp_path)
-    subprocess.run([str(arm_binary()), "certify", "--robot", str(robot), "--measurements",
+    subprocess.run([str(repo_binary("arm")), "certify", "--robot", str(robot), "--measurements",
                     str(meas), "--uncertainty", str(unc), "--lsq", "--json", str(out)],
                    check=True, capture_output=True)
     cli = json.loads(out.read_text())

@@ -2,7 +2,6 @@
 ValueError naming file/line/field on bad input, outliers named, the JSON report's structure."""
 
 import json
-import os
 import shutil
 import subprocess
 import sys
@@ -12,21 +11,8 @@ import numpy as np
 import pytest
 
 import certicalib
+from cli_binaries import REPO, repo_binary
 
-REPO = Path(__file__).resolve().parents[2]
-
-
-def gough_binary() -> Path:
-    """The gough CLI: $GOUGH_BIN, else a build in the repository's target folder (built if
-    missing), so the comparison with the CLI always runs."""
-    if os.environ.get("GOUGH_BIN"):
-        return Path(os.environ["GOUGH_BIN"])
-    for profile in ("release", "debug"):
-        path = REPO / "target" / profile / "gough"
-        if path.exists():
-            return path
-    subprocess.run(["cargo", "build", "-p", "calib-gough", "--bin", "gough"], cwd=REPO, check=True)
-    return REPO / "target" / "debug" / "gough"
 
 
 @pytest.fixture(scope="module")
@@ -44,7 +30,7 @@ def files(d: Path):
 def cli_report(d: Path, *extra: str) -> dict:
     out = d / "cli.json"
     robot, meas, unc = files(d)
-    subprocess.run([str(gough_binary()), "certify", "--robot", str(robot), "--measurements",
+    subprocess.run([str(repo_binary("gough")), "certify", "--robot", str(robot), "--measurements",
                     str(meas), "--uncertainty", str(unc), "--json", str(out), *extra],
                    check=False, capture_output=True)
     return json.loads(out.read_text())
@@ -158,7 +144,7 @@ def test_least_squares_mirrors_the_cli(data):
     assert [f.leg for f in fits] == [1, 2, 3, 4, 5, 6]
     truth = json.loads((data / "truth.json").read_text())["legs"][0]
     assert fits[0].x.shape == (7,) and abs(fits[0].x[0] - truth["a"][0]) < 0.1
-    out = subprocess.run([str(gough_binary()), "lsq", "--robot", str(data / "robot.toml"),
+    out = subprocess.run([str(repo_binary("gough")), "lsq", "--robot", str(data / "robot.toml"),
                           "--measurements", str(data / "measurements.csv")],
                          check=True, capture_output=True, text=True).stdout
     row = out.splitlines()[1].split()
@@ -185,7 +171,7 @@ def test_simulate_at_given_poses_matches_the_cli(tmp_path):
     truth = certicalib.simulate(mine, seed=3, poses=poses)
     assert truth["p"] == len(rows)
     cli = tmp_path / "cli"
-    subprocess.run([str(gough_binary()), "simulate", "--poses", str(poses), "--seed", "3",
+    subprocess.run([str(repo_binary("gough")), "simulate", "--poses", str(poses), "--seed", "3",
                     "--out", str(cli)], check=True, capture_output=True)
     for name in ("measurements.csv", "robot.toml", "uncertainty.toml", "truth.json"):
         assert (mine / name).read_bytes() == (cli / name).read_bytes(), name
