@@ -1,5 +1,5 @@
 //! Property tests of every input parser (`robot.toml`, `uncertainty.toml`, `measurements.csv` of
-//! the hexapod and of the arm, the hexapod's `poses.csv`, and the shared number table): on random
+//! the hexapod and of the arm, the hexapod's `poses.csv` and `workspace.toml`, and the shared number table): on random
 //! text, on valid files truncated or mutated, with huge, tiny and non-finite numbers and odd
 //! Unicode, a parser returns a value or a [`DataError`] naming the file it was given — it never
 //! panics. Random bytes go through the `read_*` functions (a file that is not UTF-8 is an error
@@ -27,6 +27,9 @@ fn gough_measurements(f: &Path, t: &str) -> Result<(), DataError> {
 }
 fn gough_poses(f: &Path, t: &str) -> Result<(), DataError> {
     calib_gough::files::parse_poses(f, t).map(|_| ())
+}
+fn gough_workspace(f: &Path, t: &str) -> Result<(), DataError> {
+    calib_gough::workspace::parse_workspace(f, t).map(|_| ())
 }
 fn arm_robot(f: &Path, t: &str) -> Result<(), DataError> {
     calib_arm::files::parse_robot(f, t).map(|_| ())
@@ -69,6 +72,11 @@ fn valid_files() -> Vec<(&'static str, Parser, String)> {
         ("gough uncertainty.toml", gough_uncertainty, gu),
         ("gough poses.csv", gough_poses, poses_csv(&gm)),
         ("gough measurements.csv", gough_measurements, gm),
+        (
+            "gough workspace.toml",
+            gough_workspace,
+            include_str!("../calib-gough/tests/data/workspace.toml").to_string(),
+        ),
         (
             "arm robot.toml",
             arm_robot,
@@ -294,6 +302,7 @@ proptest! {
         prop_assert!(calib_gough::files::read_uncertainty(&path).map_or_else(named, |_| true));
         prop_assert!(calib_gough::files::read_measurements(&path, 6).map_or_else(named, |_| true));
         prop_assert!(calib_gough::files::read_poses(&path).map_or_else(named, |_| true));
+        prop_assert!(calib_gough::workspace::read_workspace(&path).map_or_else(named, |_| true));
         prop_assert!(calib_arm::files::read_robot(&path).map_or_else(named, |_| true));
         prop_assert!(calib_arm::files::read_uncertainty(&path).map_or_else(named, |_| true));
         prop_assert!(calib_arm::files::read_measurements(&path, 6).map_or_else(named, |_| true));

@@ -4,7 +4,9 @@
 
 use crate::robot::{Arm, Joint};
 use crate::simulate::{Reading, Uncertainty};
-use calib_pipeline::{parse_number_table, read_text, toml_error, DataError, MAX_MAGNITUDE};
+use calib_pipeline::{
+    line_at, parse_number_table, read_text, toml_error, DataError, MAX_MAGNITUDE,
+};
 use serde::Deserialize;
 use std::path::Path;
 use toml::Spanned;
@@ -98,7 +100,7 @@ pub fn read_robot(file: &Path) -> Result<Arm, DataError> {
 pub fn parse_robot(file: &Path, text: &str) -> Result<Arm, DataError> {
     let parsed: RobotFile =
         toml::from_str(text).map_err(|e| toml_error(file, text, &e, ROBOT_FORMAT))?;
-    let line = |span: std::ops::Range<usize>| Some(text[..span.start].lines().count().max(1));
+    let line = |span: std::ops::Range<usize>| Some(line_at(text, span.start));
     let err = |span: std::ops::Range<usize>, field: &str, what: String| {
         DataError::new(file, line(span), Some(field), what)
     };
@@ -215,7 +217,7 @@ pub fn parse_uncertainty(file: &Path, text: &str) -> Result<Uncertainty, DataErr
         if x.is_finite() && (0.0..=MAX_MAGNITUDE).contains(&x) {
             Ok(x)
         } else {
-            let line = Some(text[..v.span().start].lines().count().max(1));
+            let line = Some(line_at(text, v.span().start));
             Err(DataError::new(
                 file,
                 line,

@@ -6,7 +6,7 @@ use crate::measurement::{Configuration, Orientation, Uncertainty};
 use serde::Deserialize;
 use std::path::Path;
 
-pub use calib_pipeline::{read_text, DataError, MAX_MAGNITUDE};
+pub use calib_pipeline::{line_at, read_text, DataError, MAX_MAGNITUDE};
 
 fn error(
     file: &Path,
@@ -57,7 +57,7 @@ pub fn read_robot(file: &Path) -> Result<Vec<LegSpec>, DataError> {
 /// [`read_robot`] on text already in memory; `file` names it in errors (e.g. an array).
 pub fn parse_robot(file: &Path, text: &str) -> Result<Vec<LegSpec>, DataError> {
     let parsed: RobotFile = toml::from_str(text).map_err(|e| {
-        let line = e.span().map(|s| text[..s.start].lines().count().max(1));
+        let line = e.span().map(|s| line_at(text, s.start));
         error(file, line, None, format!("{}; expected [[leg]] tables with a = [x, y, z], b = [x, y, z], l = offset, radius = r", e.message()))
     })?;
     if parsed.leg.is_empty() {
@@ -117,7 +117,7 @@ pub fn read_uncertainty(file: &Path) -> Result<Uncertainty, DataError> {
 /// [`read_uncertainty`] on text already in memory; `file` names it in errors (e.g. an array).
 pub fn parse_uncertainty(file: &Path, text: &str) -> Result<Uncertainty, DataError> {
     let u: UncertaintyFile = toml::from_str(text).map_err(|e| {
-        let line = e.span().map(|s| text[..s.start].lines().count().max(1));
+        let line = e.span().map(|s| line_at(text, s.start));
         error(
             file,
             line,

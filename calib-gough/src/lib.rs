@@ -19,6 +19,7 @@ pub mod plot;
 pub mod report;
 pub mod simulate;
 pub mod verdict;
+pub mod workspace;
 
 pub use geometry::{leg_reading, Leg, Pose};
 pub use measurement::{leg_boxes, Configuration, Orientation, Uncertainty};

@@ -58,10 +58,20 @@ pub fn read_text(file: &Path) -> Result<String, DataError> {
         .map_err(|e| DataError::new(file, None, None, format!("cannot read the file: {e}")))
 }
 
+/// The 1-based line of byte `offset` of `text` (an offset at the start of a line is on that
+/// line, not the one before).
+pub fn line_at(text: &str, offset: usize) -> usize {
+    text.as_bytes()[..offset.min(text.len())]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
 /// A TOML parse error of `text` (the contents of `file`) as a [`DataError`] at the line the
 /// parser points to, with `expected` appended to its message.
 pub fn toml_error(file: &Path, text: &str, e: &toml::de::Error, expected: &str) -> DataError {
-    let line = e.span().map(|s| text[..s.start].lines().count().max(1));
+    let line = e.span().map(|s| line_at(text, s.start));
     DataError::new(file, line, None, format!("{}; {expected}", e.message()))
 }
 
@@ -75,6 +85,15 @@ mod tests {
         assert_eq!(e.to_string(), "robot.toml, line 4, field `joint[2].d`: bad");
         let e = DataError::new(Path::new("a.csv"), None, None, "empty");
         assert_eq!(e.to_string(), "a.csv: empty");
+    }
+
+    #[test]
+    fn offsets_at_a_line_start_are_on_that_line() {
+        let text = "a = 1\nb = 2\n";
+        assert_eq!(line_at(text, 0), 1);
+        assert_eq!(line_at(text, 5), 1);
+        assert_eq!(line_at(text, 6), 2);
+        assert_eq!(line_at(text, 99), 3);
     }
 
     #[test]

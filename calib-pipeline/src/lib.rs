@@ -19,7 +19,7 @@ pub mod report;
 mod table;
 pub mod verdict;
 
-pub use error::{read_text, toml_error, DataError, MAX_MAGNITUDE};
+pub use error::{line_at, read_text, toml_error, DataError, MAX_MAGNITUDE};
 pub use outcome::{certify_model, is_fixed, Depth, Outcome};
 pub use outlier_budget::{smallest_consistent, OutlierBudget};
 pub use output::{

@@ -1,0 +1,259 @@
+//! The workspace file `workspace.toml` (cm, degrees): the poses a measurement campaign (or a
+//! controller) may use, and sampling poses from it.
+//!
+//! ```toml
+//! x = [-5.0, 5.0]          # platform centre in the base frame
+//! y = [-5.0, 5.0]
+//! z = [55.0, 65.0]
+//! tilt_deg = 15.0          # rotation angle (axis-angle, any axis) at most this
+//! stroke = [0.0, 15.0]     # optional: every leg reading L_i must lie here
+//! ```
+//!
+//! The workspace is every pose meeting all of these; the stroke is checked with the leg readings
+//! of a given geometry (the nominal one when planning).
+
+use crate::files::{read_text, DataError, MAX_MAGNITUDE};
+use crate::geometry::{leg_reading, Leg, Pose};
+use calib_pipeline::{line_at, toml_error};
+use rand::rngs::StdRng;
+use rand::Rng;
+use serde::Deserialize;
+use std::path::Path;
+use toml::Spanned;
+
+/// A workspace (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Workspace {
+    /// Platform centre x range (cm).
+    pub x: [f64; 2],
+    /// Platform centre y range (cm).
+    pub y: [f64; 2],
+    /// Platform centre z range (cm).
+    pub z: [f64; 2],
+    /// The largest rotation angle, about any axis (degrees, in `[0, 180)`).
+    pub tilt_deg: f64,
+    /// Every leg reading must lie in this range (cm), when given.
+    pub stroke: Option<[f64; 2]>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WorkspaceFile {
+    x: Spanned<[f64; 2]>,
+    y: Spanned<[f64; 2]>,
+    z: Spanned<[f64; 2]>,
+    tilt_deg: Spanned<f64>,
+    stroke: Option<Spanned<[f64; 2]>>,
+}
+
+const FORMAT: &str = "expected x, y, z = [lo, hi] (cm, the platform centre in the base frame), \
+tilt_deg = the largest rotation angle (degrees) and optionally stroke = [lo, hi] (cm, every leg \
+reading)";
+
+/// How many random tries [`Workspace::sample`] makes before concluding that the stroke excludes
+/// (nearly) every pose.
+pub const SAMPLE_TRIES: usize = 100_000;
+
+/// Reads `workspace.toml` (see [`parse_workspace`]).
+pub fn read_workspace(file: &Path) -> Result<Workspace, DataError> {
+    parse_workspace(file, &read_text(file)?)
+}
+
+/// Parses `workspace.toml`: `x`, `y`, `z` as `[lo, hi]` with `lo <= hi`, `tilt_deg` in
+/// `[0, 180)`, optional `stroke = [lo, hi]`; all finite. Errors name the file, the line and the
+/// field; `file` names the text.
+pub fn parse_workspace(file: &Path, text: &str) -> Result<Workspace, DataError> {
+    let w: WorkspaceFile = toml::from_str(text).map_err(|e| toml_error(file, text, &e, FORMAT))?;
+    let err = |span: std::ops::Range<usize>, field: &str, message: String| {
+        let line = Some(line_at(text, span.start));
+        DataError::new(file, line, Some(field), message)
+    };
+    let range = |v: &Spanned<[f64; 2]>, field: &str| -> Result<[f64; 2], DataError> {
+        let [lo, hi] = *v.get_ref();
+        let finite = |t: f64| t.is_finite() && t.abs() <= MAX_MAGNITUDE;
+        if !(finite(lo) && finite(hi)) {
+            return Err(err(
+                v.span(),
+                field,
+                format!("expected finite numbers of magnitude below {MAX_MAGNITUDE:e}"),
+            ));
+        }
+        if lo > hi {
+            return Err(err(
+                v.span(),
+                field,
+                format!("[{lo}, {hi}]: expected [lo, hi] with lo <= hi"),
+            ));
+        }
+        Ok([lo, hi])
+    };
+    let tilt = *w.tilt_deg.get_ref();
+    if !(tilt.is_finite() && (0.0..180.0).contains(&tilt)) {
+        return Err(err(
+            w.tilt_deg.span(),
+            "tilt_deg",
+            format!("{tilt}: expected a rotation angle in [0, 180) degrees"),
+        ));
+    }
+    Ok(Workspace {
+        x: range(&w.x, "x")?,
+        y: range(&w.y, "y")?,
+        z: range(&w.z, "z")?,
+        tilt_deg: tilt,
+        stroke: w.stroke.as_ref().map(|s| range(s, "stroke")).transpose()?,
+    })
+}
+
+impl Workspace {
+    /// The workspace of the built-in simulator (`gough simulate`): centre within ± 5 cm
+    /// horizontally, 55–65 cm high, rotation up to 15°, leg readings within [0, 15] cm.
+    pub const SIMULATOR: Workspace = Workspace {
+        x: [-5.0, 5.0],
+        y: [-5.0, 5.0],
+        z: [55.0, 65.0],
+        tilt_deg: 15.0,
+        stroke: Some([0.0, 15.0]),
+    };
+
+    /// Whether `pose` lies in the workspace, its leg readings computed with `legs`.
+    pub fn contains(&self, pose: &Pose, legs: &[Leg]) -> bool {
+        let within = |v: f64, [lo, hi]: [f64; 2]| lo <= v && v <= hi;
+        within(pose.p[0], self.x)
+            && within(pose.p[1], self.y)
+            && within(pose.p[2], self.z)
+            && pose.angle_deg.abs() <= self.tilt_deg
+            && self
+                .stroke
+                .is_none_or(|s| legs.iter().all(|leg| within(leg_reading(leg, pose), s)))
+    }
+
+    /// A random pose of the workspace (readings of `legs` within the stroke), uniform in
+    /// position, axis and angle — a "random design" pose. With `extremes`, each coordinate
+    /// lies at an end of its range and the angle at `tilt_deg` with probability ½ each (design
+    /// candidates: informative poses lie on the workspace's boundary). `None` when
+    /// [`SAMPLE_TRIES`] tries all miss the stroke.
+    pub fn sample(&self, rng: &mut StdRng, legs: &[Leg], extremes: bool) -> Option<Pose> {
+        let mut draw = |[lo, hi]: [f64; 2], rng: &mut StdRng| {
+            if extremes && rng.random_bool(0.5) {
+                if rng.random_bool(0.5) {
+                    lo
+                } else {
+                    hi
+                }
+            } else {
+                lo + (hi - lo) * rng.random::<f64>()
+            }
+        };
+        for _ in 0..SAMPLE_TRIES {
+            let axis = random_axis(rng);
+            let p = [draw(self.x, rng), draw(self.y, rng), draw(self.z, rng)];
+            let angle_deg = draw([0.0, self.tilt_deg], rng);
+            let pose = Pose { p, axis, angle_deg };
+            if self.contains(&pose, legs) {
+                return Some(pose);
+            }
+        }
+        None
+    }
+
+    /// `count` poses by [`Workspace::sample`], or an error saying the stroke excludes the poses.
+    pub fn poses(
+        &self,
+        rng: &mut StdRng,
+        legs: &[Leg],
+        count: usize,
+        extremes: bool,
+    ) -> Result<Vec<Pose>, String> {
+        (0..count)
+            .map(|_| {
+                self.sample(rng, legs, extremes).ok_or_else(|| {
+                    format!(
+                        "no pose of {SAMPLE_TRIES} random tries in the workspace has every leg \
+                         reading within the stroke {:?} (nominal geometry): check `stroke`",
+                        self.stroke.unwrap_or_default()
+                    )
+                })
+            })
+            .collect()
+    }
+}
+
+/// A uniformly random unit vector.
+fn random_axis(rng: &mut StdRng) -> [f64; 3] {
+    loop {
+        let v: [f64; 3] = core::array::from_fn(|_| rng.random_range(-1.0..1.0));
+        let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        if n > 0.2 && n <= 1.0 {
+            return v.map(|c| c / n);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simulate::builtin_hexapod;
+    use rand::SeedableRng;
+
+    fn parse(text: &str) -> Result<Workspace, DataError> {
+        parse_workspace(Path::new("workspace.toml"), text)
+    }
+
+    #[test]
+    fn the_shared_sample_file_is_the_simulator_workspace() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/workspace.toml");
+        assert_eq!(read_workspace(&path).unwrap(), Workspace::SIMULATOR);
+    }
+
+    #[test]
+    fn bad_fields_are_named_with_their_line() {
+        let ok = "x = [-5, 5]\ny = [-5, 5]\nz = [55, 65]\ntilt_deg = 15\n";
+        assert_eq!(parse(ok).unwrap().stroke, None);
+        let cases = [
+            (
+                "x = [5, -5]\ny = [-5, 5]\nz = [55, 65]\ntilt_deg = 15\n",
+                1,
+                Some("x"),
+            ),
+            (
+                "x = [-5, 5]\ny = [-5, 5]\nz = [55, 65]\ntilt_deg = 200\n",
+                4,
+                Some("tilt_deg"),
+            ),
+            (&format!("{ok}stroke = [15, 0]\n"), 5, Some("stroke")),
+            (
+                "x = [-5, 5]\ny = [-5, 5]\nz = [55, nan]\ntilt_deg = 15\n",
+                3,
+                Some("z"),
+            ),
+            (
+                "x = [-5, 5]\ny = [-5]\nz = [55, 65]\ntilt_deg = 15\n",
+                2,
+                None,
+            ),
+            (&format!("{ok}tilt = 3\n"), 5, None),
+        ];
+        for (text, line, field) in cases {
+            let e = parse(text).unwrap_err();
+            assert_eq!((e.line, e.field.as_deref()), (Some(line), field), "{e}");
+        }
+        let e = parse("x = [-5, 5]\n").unwrap_err();
+        assert!(e.message.contains("missing field"), "{e}");
+    }
+
+    #[test]
+    fn sampled_poses_lie_in_the_workspace_and_an_impossible_stroke_is_an_error() {
+        let legs = builtin_hexapod();
+        let w = Workspace::SIMULATOR;
+        let mut rng = StdRng::seed_from_u64(3);
+        for extremes in [false, true] {
+            let poses = w.poses(&mut rng, &legs, 300, extremes).unwrap();
+            assert!(poses.iter().all(|p| w.contains(p, &legs)));
+        }
+        let tight = Workspace {
+            stroke: Some([100.0, 101.0]),
+            ..w
+        };
+        assert!(tight.poses(&mut rng, &legs, 1, false).is_err());
+    }
+}
