@@ -133,7 +133,7 @@ impl Workspace {
     /// candidates: informative poses lie on the workspace's boundary). `None` when
     /// [`SAMPLE_TRIES`] tries all miss the stroke.
     pub fn sample(&self, rng: &mut StdRng, legs: &[Leg], extremes: bool) -> Option<Pose> {
-        let mut draw = |[lo, hi]: [f64; 2], rng: &mut StdRng| {
+        let draw = |[lo, hi]: [f64; 2], rng: &mut StdRng| {
             if extremes && rng.random_bool(0.5) {
                 if rng.random_bool(0.5) {
                     lo
