@@ -9,6 +9,7 @@
 #![warn(missing_docs)]
 
 mod error;
+pub mod design;
 pub mod html;
 pub mod identify;
 pub mod lsq;

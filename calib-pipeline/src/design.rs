@@ -1,0 +1,361 @@
+//! Experiment design: which configurations to measure so that every parameter is determined.
+//!
+//! Robot-agnostic: a robot describes each candidate configuration by the rows it would add to the
+//! scaled identification Jacobian of each parameter *group* (the parameters certified together:
+//! one leg of a hexapod, the whole arm), as [`crate::identify::identification_jacobian`] builds
+//! them — parameter moves in prior half-widths, residuals in their first-order error bounds.
+//!
+//! **The first-order certified box.** Near the nominal geometry, a configuration with scaled row
+//! `r` keeps the parameter moves `δ` (in prior half-widths) with `|r·δ| <= 1`: the residual must
+//! stay within its error bound. The certified box of a design is, to first order, the bounding
+//! box of the polytope `P = {δ ∈ [-1, 1]^n : |r_k·δ| <= 1 for every chosen row}` — the paper's
+//! LP step (Section IV) applied to the linearised problem. Its width along parameter `j`,
+//! `2 max{δ_j : δ ∈ P}` (P is symmetric), is what [`linearized_widths`] computes, in units of the
+//! prior half-width (2 = nothing learnt).
+//!
+//! **Criteria.** [`Criterion::Certified`] chooses greedily the candidate that most reduces the sum
+//! of the logarithms of these widths over all parameters of all groups (the geometric mean of the
+//! certified widths, which is what a calibrator reads off the result); a candidate can only change
+//! the width along `j` if it cuts the current optimal vertex of that LP, so most LPs are skipped.
+//! [`Criterion::DOptimal`] is the classical index: greedily maximise `Σ_groups ln det(I + JᵀJ)`
+//! (the product of the singular values of the prior-regularised information matrix).
+//!
+//! These are predictions to choose poses by, not proofs; the robot crate checks a design by
+//! certifying simulated data measured at it.
+
+use calib_core::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
+use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
+
+/// The rows one candidate configuration adds to one parameter group's scaled identification
+/// Jacobian (one row per residual row; each of the group's `dim` columns a parameter).
+pub type CandidateRows = Vec<Vec<f64>>;
+
+/// One group of parameters certified together, and the rows each candidate adds to it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Group {
+    /// The number of parameters (columns).
+    pub dim: usize,
+    /// Per candidate, its rows.
+    pub rows: Vec<CandidateRows>,
+}
+
+/// How to rank designs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Criterion {
+    /// The geometric mean of the first-order certified widths (see the module documentation).
+    #[default]
+    Certified,
+    /// The product of the singular values of the prior-regularised information matrix
+    /// (classical D-optimality).
+    DOptimal,
+}
+
+impl std::str::FromStr for Criterion {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "certified" => Ok(Criterion::Certified),
+            "d-optimal" => Ok(Criterion::DOptimal),
+            other => Err(format!(
+                "unknown criterion `{other}`; expected `certified` or `d-optimal`"
+            )),
+        }
+    }
+}
+
+/// Rows whose first-order slab `|r·δ| <= 1` is cut by a vertex by more than this are re-solved.
+const CUT_TOL: f64 = 1e-9;
+
+/// An LP engine and its polyhedron, reused across solves.
+#[derive(Default)]
+struct Solver {
+    engine: DenseSimplex,
+    poly: Polyhedron,
+    c: Vec<f64>,
+    dual: Vec<f64>,
+    primal: Vec<f64>,
+}
+
+impl Solver {
+    /// Loads `[-1, 1]^dim` cut by `|r·δ| <= 1` for the rows of the chosen candidates (and the
+    /// extra rows).
+    fn load<'a>(&mut self, dim: usize, rows: impl Iterator<Item = &'a Vec<f64>>) {
+        self.poly.reset(&vec![-1.0; dim], &vec![1.0; dim]);
+        for r in rows {
+            self.poly.push_row(r, 1.0);
+            let neg: Vec<f64> = r.iter().map(|v| -v).collect();
+            self.poly.push_row(&neg, 1.0);
+        }
+    }
+
+    /// `max δ_j` over the loaded polytope, and the maximising vertex.
+    fn maximize(&mut self, j: usize) -> (f64, Vec<f64>) {
+        let n = self.poly.dim();
+        self.c.clear();
+        self.c.resize(n, 0.0);
+        self.c[j] = -1.0;
+        self.dual.clear();
+        self.dual.resize(self.poly.rows(), 0.0);
+        self.primal.clear();
+        self.primal.resize(n, 0.0);
+        let status = self
+            .engine
+            .minimize(&self.poly, &self.c, &mut self.dual, &mut self.primal);
+        match status {
+            // A prediction: the engine's optimum is used as it is (clamped to the prior).
+            LpStatus::Optimal => (self.primal[j].clamp(0.0, 1.0), self.primal.clone()),
+            // The polytope contains 0, so it is never empty; a failed solve predicts nothing
+            // learnt along j.
+            _ => {
+                let mut corner = vec![0.0; n];
+                corner[j] = 1.0;
+                (1.0, corner)
+            }
+        }
+    }
+}
+
+/// The first-order certified widths (in prior half-widths, 2 = the prior) of one group's
+/// parameters when the candidates `chosen` are measured (see the module documentation).
+pub fn linearized_widths(group: &Group, chosen: &[usize]) -> Vec<f64> {
+    let mut s = Solver::default();
+    s.load(group.dim, chosen.iter().flat_map(|&c| &group.rows[c]));
+    (0..group.dim).map(|j| 2.0 * s.maximize(j).0).collect()
+}
+
+/// The geometric mean, over all parameters of all groups, of [`linearized_widths`].
+pub fn linearized_geometric_mean(groups: &[Group], chosen: &[usize]) -> f64 {
+    let (sum, n) = groups.iter().fold((0.0, 0usize), |(s, n), g| {
+        let w = linearized_widths(g, chosen);
+        (s + w.iter().map(|v| v.ln()).sum::<f64>(), n + w.len())
+    });
+    if n == 0 {
+        2.0
+    } else {
+        (sum / n as f64).exp()
+    }
+}
+
+/// Per group and parameter: the half-width `max δ_j` and its optimal vertex.
+type Optima = Vec<Vec<(f64, Vec<f64>)>>;
+
+fn optima(groups: &[Group], chosen: &[usize]) -> Optima {
+    groups
+        .par_iter()
+        .map(|g| {
+            let mut s = Solver::default();
+            s.load(g.dim, chosen.iter().flat_map(|&c| &g.rows[c]));
+            (0..g.dim).map(|j| s.maximize(j)).collect()
+        })
+        .collect()
+}
+
+/// The decrease of `Σ ln(width)` if candidate `c` is added to `chosen`, given the current optima.
+fn certified_gain(
+    groups: &[Group],
+    chosen: &[usize],
+    current: &Optima,
+    c: usize,
+    s: &mut Solver,
+) -> f64 {
+    let mut gain = 0.0;
+    for (g, opt) in groups.iter().zip(current) {
+        let rows = &g.rows[c];
+        let mut loaded = false;
+        for (j, (half, vertex)) in opt.iter().enumerate() {
+            let cut = rows.iter().any(|r| {
+                let v: f64 = r.iter().zip(vertex).map(|(a, b)| a * b).sum();
+                v.abs() > 1.0 + CUT_TOL
+            });
+            if !cut {
+                continue;
+            }
+            if !loaded {
+                s.load(
+                    g.dim,
+                    chosen.iter().flat_map(|&k| &g.rows[k]).chain(rows.iter()),
+                );
+                loaded = true;
+            }
+            let (new, _) = s.maximize(j);
+            if *half > 0.0 && new > 0.0 {
+                gain += (half / new).ln();
+            }
+        }
+    }
+    gain
+}
+
+/// The increase of `Σ ln det(I + JᵀJ)` if candidate `c` is added, given the inverses of the
+/// current information matrices: `ln det(I + R M⁻¹ Rᵀ)` per group (matrix determinant lemma).
+fn d_gain(groups: &[Group], inverses: &[DMatrix<f64>], c: usize) -> f64 {
+    groups
+        .iter()
+        .zip(inverses)
+        .map(|(g, m_inv)| {
+            let rows = &g.rows[c];
+            if rows.is_empty() {
+                return 0.0;
+            }
+            let r = DMatrix::from_fn(rows.len(), g.dim, |i, j| rows[i][j]);
+            let s = DMatrix::identity(rows.len(), rows.len()) + &r * m_inv * r.transpose();
+            s.determinant().max(f64::MIN_POSITIVE).ln()
+        })
+        .sum()
+}
+
+/// The information matrices' inverses `(I + JᵀJ)⁻¹` of the chosen candidates, per group.
+fn information_inverses(groups: &[Group], chosen: &[usize]) -> Vec<DMatrix<f64>> {
+    groups
+        .iter()
+        .map(|g| {
+            let mut m = DMatrix::<f64>::identity(g.dim, g.dim);
+            for r in chosen.iter().flat_map(|&c| &g.rows[c]) {
+                let v = DVector::from_column_slice(r);
+                m += &v * v.transpose();
+            }
+            m.try_inverse()
+                .unwrap_or_else(|| DMatrix::identity(g.dim, g.dim))
+        })
+        .collect()
+}
+
+/// Chooses `count` more candidates greedily by `criterion`, after the candidates `start`
+/// (configurations already measured, never chosen again). Returns the chosen candidates in the
+/// order chosen (so that every prefix is itself a greedy design). Candidates are the indices of
+/// each group's `rows`; every group must have the same number of candidates.
+pub fn greedy_design(
+    groups: &[Group],
+    start: &[usize],
+    count: usize,
+    criterion: Criterion,
+    progress: &(dyn Fn() + Sync),
+) -> Vec<usize> {
+    let candidates = groups.first().map_or(0, |g| g.rows.len());
+    let mut taken = vec![false; candidates];
+    for &c in start {
+        taken[c] = true;
+    }
+    let mut chosen: Vec<usize> = start.to_vec();
+    let mut picked = Vec::with_capacity(count);
+    for _ in 0..count.min(candidates.saturating_sub(start.len())) {
+        let free: Vec<usize> = (0..candidates).filter(|&c| !taken[c]).collect();
+        let best = match criterion {
+            Criterion::Certified => {
+                let current = optima(groups, &chosen);
+                free.par_iter()
+                    .map_init(Solver::default, |s, &c| {
+                        (certified_gain(groups, &chosen, &current, c, s), c)
+                    })
+                    .reduce(|| (f64::NEG_INFINITY, usize::MAX), better)
+            }
+            Criterion::DOptimal => {
+                let inverses = information_inverses(groups, &chosen);
+                free.par_iter()
+                    .map(|&c| (d_gain(groups, &inverses, c), c))
+                    .reduce(|| (f64::NEG_INFINITY, usize::MAX), better)
+            }
+        };
+        let c = best.1;
+        if c == usize::MAX {
+            break;
+        }
+        taken[c] = true;
+        chosen.push(c);
+        picked.push(c);
+        progress();
+    }
+    picked
+}
+
+/// The larger gain; ties go to the lower candidate index (deterministic whatever the threads).
+fn better(a: (f64, usize), b: (f64, usize)) -> (f64, usize) {
+    match a.0.total_cmp(&b.0) {
+        std::cmp::Ordering::Greater => a,
+        std::cmp::Ordering::Less => b,
+        std::cmp::Ordering::Equal => {
+            if a.1 <= b.1 {
+                a
+            } else {
+                b
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two parameters; candidates are directions `(cos t, sin t)` scaled by `s`.
+    fn planar(angles: &[f64], s: f64) -> Group {
+        Group {
+            dim: 2,
+            rows: angles
+                .iter()
+                .map(|t| vec![vec![s * t.cos(), s * t.sin()]])
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn widths_of_a_polytope_known_in_closed_form() {
+        // |10 δ0| <= 1 and |10 δ1| <= 1: widths 0.2 each; with nothing measured, the prior (2).
+        let g = planar(&[0.0, std::f64::consts::FRAC_PI_2], 10.0);
+        let w = linearized_widths(&g, &[0, 1]);
+        assert!((w[0] - 0.2).abs() < 1e-12 && (w[1] - 0.2).abs() < 1e-12, "{w:?}");
+        assert_eq!(linearized_widths(&g, &[]), vec![2.0, 2.0]);
+        // One diagonal row |10(δ0 + δ1)/√2| <= 1 leaves the box's corners (1, -1) in: no gain.
+        let d = planar(&[std::f64::consts::FRAC_PI_4], 10.0);
+        assert_eq!(linearized_widths(&d, &[0]), vec![2.0, 2.0]);
+    }
+
+    #[test]
+    fn the_certified_criterion_picks_complementary_directions() {
+        // Candidates: three nearly parallel directions and one orthogonal; the second pick must
+        // be the orthogonal one (a D-optimal pick would agree here; the LP sees it too).
+        let g = planar(&[0.0, 0.01, 0.02, 1.5707], 10.0);
+        let picked = greedy_design(&[g.clone()], &[], 2, Criterion::Certified, &|| {});
+        assert!(picked.contains(&3), "{picked:?}");
+        let d = greedy_design(&[g.clone()], &[], 2, Criterion::DOptimal, &|| {});
+        assert!(d.contains(&3), "{d:?}");
+        // Starting from candidate 3 already measured, the next pick is one of the others.
+        let more = greedy_design(&[g], &[3], 1, Criterion::Certified, &|| {});
+        assert!(more.len() == 1 && more[0] != 3);
+    }
+
+    #[test]
+    fn greedy_gains_match_recomputed_widths() {
+        // The skipped LPs are exactly those whose optimum the candidate does not cut: the gain
+        // the greedy step computes equals the drop of Σ ln(width) recomputed from scratch.
+        let angles: Vec<f64> = (0..12).map(|k| 0.37 * k as f64).collect();
+        let g = planar(&angles, 3.0);
+        let groups = [g.clone(), planar(&angles, 5.0)];
+        let chosen = [0, 5];
+        let current = optima(&groups, &chosen);
+        let mut s = Solver::default();
+        let total = |ch: &[usize]| -> f64 {
+            groups
+                .iter()
+                .map(|g| linearized_widths(g, ch).iter().map(|w| w.ln()).sum::<f64>())
+                .sum()
+        };
+        for c in 1..12 {
+            if chosen.contains(&c) {
+                continue;
+            }
+            let gain = certified_gain(&groups, &chosen, &current, c, &mut s);
+            let recomputed = total(&chosen) - total(&[0, 5, c]);
+            assert!((gain - recomputed).abs() < 1e-9, "{c}: {gain} vs {recomputed}");
+        }
+    }
+
+    #[test]
+    fn criteria_parse_from_their_command_line_names() {
+        assert_eq!("certified".parse(), Ok(Criterion::Certified));
+        assert_eq!("d-optimal".parse(), Ok(Criterion::DOptimal));
+        assert!("a-optimal".parse::<Criterion>().is_err());
+    }
+}
