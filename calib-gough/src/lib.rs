@@ -10,6 +10,7 @@
 
 pub mod certificate;
 pub mod certification;
+pub mod design;
 pub mod files;
 pub mod geometry;
 pub mod lsq;

@@ -8,8 +8,8 @@
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
-mod error;
 pub mod design;
+mod error;
 pub mod html;
 pub mod identify;
 pub mod lsq;

@@ -1,6 +1,7 @@
 //! The `gough` subcommands.
 
 mod certify;
+mod design;
 mod lsq;
 mod reproduce;
 mod simulate;
@@ -67,6 +68,30 @@ enum Command {
     /// is measured.
     #[command(verbatim_doc_comment)]
     Simulate(simulate::Args),
+    /// Choose the configurations to measure: K poses of the workspace that determine every leg
+    /// parameter best, with the certified widths they are predicted to give next to a random
+    /// design of the same size and the classical D-optimal one.
+    ///
+    /// Examples:
+    ///   gough design --configs 21 --out poses.csv
+    ///   gough design --robot robot.toml --uncertainty uncertainty.toml \
+    ///                --workspace workspace.toml --configs 21 --out poses.csv
+    ///   gough design --robot robot.toml --extend measurements.csv --configs 5 --out next.csv
+    ///
+    /// How: 2000 candidate poses are drawn from the workspace (half of them on its boundary);
+    /// each adds one row per leg to the identification Jacobian at the nominal geometry. The
+    /// `certified` criterion picks, one pose at a time, the pose that most shrinks the
+    /// first-order certified box (the paper's LP step on the linearised problem: the geometric
+    /// mean of the widths); `d-optimal` maximises the product of the singular values instead.
+    /// The prediction printed is not first order: it is the tight certified hull of simulated
+    /// data measured at each design (the nominal geometry as the truth, noise within the error
+    /// bounds). Try a design end to end with `gough simulate --poses poses.csv`.
+    ///
+    /// --extend: the configurations of measurements.csv are kept, and the next ones are chosen
+    /// to shrink the certified box of all of them (new readings are predicted at a certified
+    /// consistent parameter vector of the measured data).
+    #[command(verbatim_doc_comment)]
+    Design(design::Args),
     /// The paper's Section V experiment on an embedded default (no files): exact-data check, then
     /// x0, x1, x2 (sweep) and xs (hull of Monte-Carlo least-squares solutions) next to the paper's
     /// Tables II–IV, and the tight certified hull (outer, inner) of this run.
@@ -86,6 +111,7 @@ pub fn run(cli: Cli) -> Result<i32, Box<dyn std::error::Error>> {
         Command::Certify(a) => certify::run(a),
         Command::Lsq(a) => lsq::run(a),
         Command::Simulate(a) => simulate::run(a),
+        Command::Design(a) => design::run(a),
         Command::Reproduce(a) => reproduce::run(a),
     }
 }

@@ -1,0 +1,319 @@
+//! Experiment design for the hexapod (`gough design`): which poses of a workspace to measure so
+//! that every leg parameter is determined, and the certified widths a design is predicted to give.
+//!
+//! Candidates are random poses of the [`Workspace`] (half of each coordinate and of the angle at
+//! an end of its range: informative poses lie on the boundary). Each candidate adds one row per
+//! leg to the leg's scaled identification Jacobian at the nominal geometry
+//! ([`calib_pipeline::identify::identification_jacobian`]); [`calib_pipeline::design`] chooses
+//! among them. The prediction of a design is a certification: simulated data measured at its
+//! poses (the nominal geometry as the truth, noise within the error bounds) certified with the
+//! robot file's prior — the tight hull `gough certify` reports.
+
+use crate::certification::{certify_legs, CertifyOptions, LegResult};
+use crate::files::LegSpec;
+use crate::geometry::{leg_reading, Leg, Pose};
+use crate::measurement::{leg_boxes, measured, Configuration, Orientation, Uncertainty};
+use crate::simulate::simulate_at;
+use crate::workspace::Workspace;
+use crate::GoughLeg;
+use calib_core::Interval;
+use calib_pipeline::design::{
+    exchange, greedy_design, linearized_geometric_mean, linearized_widths, Criterion, Group,
+};
+use calib_pipeline::identify::identification_jacobian;
+use rand::rngs::StdRng;
+use rand::SeedableRng;
+
+/// What `gough design` is asked.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DesignRequest {
+    /// The configurations to choose.
+    pub configs: usize,
+    /// How many candidate poses to draw from the workspace.
+    pub candidates: usize,
+    /// The criterion.
+    pub criterion: Criterion,
+    /// Seeds the candidates, the random design and the simulated noise.
+    pub seed: u64,
+}
+
+impl Default for DesignRequest {
+    fn default() -> Self {
+        DesignRequest {
+            configs: 21,
+            candidates: 2000,
+            criterion: Criterion::Certified,
+            seed: 1,
+        }
+    }
+}
+
+/// Exchange sweeps over a design (see [`calib_pipeline::design::exchange`]).
+pub const EXCHANGE_PASSES: usize = 3;
+
+/// A design and what it is predicted to give.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Design {
+    /// The chosen poses (greedy order, then improved by exchanges).
+    pub poses: Vec<Pose>,
+    /// Per leg and parameter, the first-order certified width of the design, of a random design
+    /// of the same size, and of measuring every candidate (the best this workspace allows from
+    /// these candidates), in cm.
+    pub first_order: Vec<[[f64; 7]; 3]>,
+    /// The number of greedily chosen poses whose first-order geometric mean width already
+    /// matches the random design's.
+    pub matching_prefix: Option<usize>,
+    /// The random design of the same size the design is compared with.
+    pub random: Vec<Pose>,
+}
+
+/// The geometry the poses are planned at, and their leg readings' boxes.
+fn nominal_legs(robot: &[LegSpec]) -> Vec<Leg> {
+    robot.iter().map(|s| s.nominal).collect()
+}
+
+/// The configuration a pose gives at the nominal geometry (exact readings).
+fn configuration(legs: &[Leg], pose: &Pose) -> Configuration {
+    Configuration {
+        p: pose.p,
+        orientation: Orientation::AxisAngle {
+            axis: pose.axis,
+            angle_deg: pose.angle_deg,
+        },
+        lengths: legs.iter().map(|l| leg_reading(l, pose)).collect(),
+    }
+}
+
+/// One [`Group`] per leg: the scaled identification rows each configuration adds (one per leg),
+/// at the nominal geometry, over the leg's free parameters (radius > 0). Also the free
+/// parameters of each leg.
+pub fn groups(
+    robot: &[LegSpec],
+    configs: &[Configuration],
+    u: &Uncertainty,
+) -> (Vec<Group>, Vec<Vec<usize>>) {
+    robot
+        .iter()
+        .enumerate()
+        .map(|(leg, spec)| {
+            let nominal = spec.nominal.params();
+            let x0: [Interval; 7] = core::array::from_fn(|j| measured(nominal[j], spec.radius[j]));
+            let boxes = leg_boxes(configs, u, leg);
+            let (free, j) = identification_jacobian(&GoughLeg, &nominal, &x0, &boxes);
+            let rows = (0..configs.len())
+                .map(|k| vec![j.row(k).iter().copied().collect()])
+                .collect();
+            (
+                Group {
+                    dim: free.len(),
+                    rows,
+                },
+                free,
+            )
+        })
+        .unzip()
+}
+
+/// First-order widths in cm (fixed parameters: 0) of the chosen configurations.
+fn widths_cm(
+    robot: &[LegSpec],
+    groups: &[Group],
+    free: &[Vec<usize>],
+    chosen: &[usize],
+) -> Vec<[f64; 7]> {
+    robot
+        .iter()
+        .zip(groups.iter().zip(free))
+        .map(|(spec, (g, free))| {
+            let w = linearized_widths(g, chosen);
+            let mut out = [0.0; 7];
+            for (c, &p) in free.iter().enumerate() {
+                out[p] = w[c] * spec.radius[p];
+            }
+            out
+        })
+        .collect()
+}
+
+/// The geometric mean of the positive entries.
+pub fn geometric_mean(widths: impl IntoIterator<Item = f64>) -> f64 {
+    let (s, n) = widths
+        .into_iter()
+        .filter(|w| *w > 0.0)
+        .fold((0.0, 0usize), |(s, n), w| (s + w.ln(), n + 1));
+    if n == 0 {
+        0.0
+    } else {
+        (s / n as f64).exp()
+    }
+}
+
+/// Designs `request.configs` poses of `workspace` for `robot` (see the module documentation).
+/// With `measured_already`, those configurations are kept and the design extends them (the
+/// sequential design of `--extend`). `progress` is called after each chosen pose. Errors: a
+/// workspace whose stroke excludes the poses, or too few candidates.
+pub fn design(
+    robot: &[LegSpec],
+    u: &Uncertainty,
+    workspace: &Workspace,
+    request: &DesignRequest,
+    measured_already: &[Configuration],
+    progress: &(dyn Fn() + Sync),
+) -> Result<Design, String> {
+    if request.configs == 0 {
+        return Err("--configs: expected at least 1 configuration".into());
+    }
+    if request.candidates < request.configs {
+        return Err(format!(
+            "--candidates {}: expected at least as many candidates as configurations ({})",
+            request.candidates, request.configs
+        ));
+    }
+    let legs = nominal_legs(robot);
+    let mut rng = StdRng::seed_from_u64(request.seed);
+    let candidates = workspace.poses(&mut rng, &legs, request.candidates, true)?;
+    let random = workspace.poses(&mut rng, &legs, request.configs, false)?;
+    let configs: Vec<Configuration> = measured_already
+        .iter()
+        .cloned()
+        .chain(
+            candidates
+                .iter()
+                .chain(&random)
+                .map(|p| configuration(&legs, p)),
+        )
+        .collect();
+    let (groups, free) = groups(robot, &configs, u);
+    let start: Vec<usize> = (0..measured_already.len()).collect();
+    let first_candidate = measured_already.len();
+    let first_random = first_candidate + candidates.len();
+    // The random poses are rows too (to compare designs), but never candidates.
+    let mut candidate_groups = groups.clone();
+    for g in &mut candidate_groups {
+        g.rows.truncate(first_random);
+    }
+    let greedy = |criterion, progress: &(dyn Fn() + Sync)| {
+        greedy_design(&candidate_groups, &start, request.configs, criterion, progress)
+    };
+    // Greedy order: every prefix is a greedy design of its own (for `matching_prefix`).
+    let sequence = greedy(request.criterion, progress);
+    let picked = match request.criterion {
+        Criterion::DOptimal => sequence.clone(),
+        // The greedy certified design and the D-optimal one, each improved by exchanges: the
+        // better of the two (greedy steps alone stop short of the D-optimal design's widths).
+        Criterion::Certified => [sequence.clone(), greedy(Criterion::DOptimal, &|| {})]
+            .map(|p| exchange(&candidate_groups, &start, &p, EXCHANGE_PASSES))
+            .into_iter()
+            .map(|p| {
+                let all: Vec<usize> = start.iter().chain(&p).copied().collect();
+                (linearized_geometric_mean(&candidate_groups, &all), p)
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, p)| p)
+            .unwrap_or_default(),
+    };
+    let with = |extra: &[usize]| -> Vec<usize> { start.iter().chain(extra).copied().collect() };
+    let random_rows: Vec<usize> = (first_random..configs.len()).collect();
+    let all_rows: Vec<usize> = (0..first_random).collect();
+    let designed = widths_cm(robot, &groups, &free, &with(&picked));
+    let random_w = widths_cm(robot, &groups, &free, &with(&random_rows));
+    let best = widths_cm(robot, &groups, &free, &all_rows);
+    let gm = |w: &[[f64; 7]]| geometric_mean(w.iter().flatten().copied());
+    let target = gm(&random_w);
+    let matching_prefix = (1..=sequence.len())
+        .find(|&m| gm(&widths_cm(robot, &groups, &free, &with(&sequence[..m]))) <= target);
+    Ok(Design {
+        poses: picked
+            .iter()
+            .map(|&c| candidates[c - first_candidate])
+            .collect(),
+        first_order: (0..robot.len())
+            .map(|leg| [designed[leg], random_w[leg], best[leg]])
+            .collect(),
+        matching_prefix,
+        random,
+    })
+}
+
+/// The certified prediction of measuring `poses` (after `measured_already`): simulated
+/// readings at `truth` (per leg; the nominal geometry when planning from scratch) with noise
+/// within the error bounds (seed `seed`), certified with the robot file's prior by the tight hull.
+pub fn predict(
+    robot: &[LegSpec],
+    u: &Uncertainty,
+    truth: &[Leg],
+    poses: &[Pose],
+    measured_already: &[Configuration],
+    seed: u64,
+) -> Result<Vec<LegResult>, String> {
+    let sim = simulate_at(truth, poses, seed, *u, 1.0, 0.0);
+    let configs: Vec<Configuration> = measured_already
+        .iter()
+        .cloned()
+        .chain(sim.measured)
+        .collect();
+    certify_legs(robot, &configs, u, &CertifyOptions::default(), &|| {})
+}
+
+/// The poses as a poses file (header [`crate::files::POSE_COLUMNS`]), shortest round-trip
+/// decimals.
+pub fn poses_csv(poses: &[Pose]) -> String {
+    let mut out = crate::files::POSE_COLUMNS.join(",") + "\n";
+    for p in poses {
+        let row: Vec<String> =
+            p.p.iter()
+                .chain(&p.axis)
+                .chain([&p.angle_deg])
+                .map(|v| format!("{v:?}"))
+                .collect();
+        out += &row.join(",");
+        out.push('\n');
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::files::parse_poses;
+    use crate::simulate::builtin_hexapod;
+    use std::path::Path;
+
+    fn robot() -> Vec<LegSpec> {
+        builtin_hexapod()
+            .into_iter()
+            .map(|nominal| LegSpec {
+                nominal,
+                radius: [0.1; 7],
+            })
+            .collect()
+    }
+
+    #[test]
+    fn designed_poses_lie_in_the_workspace_and_round_trip_through_the_poses_file() {
+        let w = Workspace::SIMULATOR;
+        let request = DesignRequest {
+            configs: 9,
+            candidates: 200,
+            ..DesignRequest::default()
+        };
+        let d = design(&robot(), &Uncertainty::PAPER, &w, &request, &[], &|| {}).unwrap();
+        assert_eq!(d.poses.len(), 9);
+        let legs = builtin_hexapod();
+        assert!(d
+            .poses
+            .iter()
+            .chain(&d.random)
+            .all(|p| w.contains(p, &legs)));
+        let back = parse_poses(Path::new("poses.csv"), &poses_csv(&d.poses)).unwrap();
+        for (a, b) in back.iter().zip(&d.poses) {
+            assert_eq!(a.p, b.p);
+            assert_eq!(a.angle_deg, b.angle_deg);
+            assert!(a
+                .axis
+                .iter()
+                .zip(&b.axis)
+                .all(|(x, y)| (x - y).abs() < 1e-15));
+        }
+    }
+}
