@@ -193,7 +193,13 @@ pub fn design(
         g.rows.truncate(first_random);
     }
     let greedy = |criterion, progress: &(dyn Fn() + Sync)| {
-        greedy_design(&candidate_groups, &start, request.configs, criterion, progress)
+        greedy_design(
+            &candidate_groups,
+            &start,
+            request.configs,
+            criterion,
+            progress,
+        )
     };
     // Greedy order: every prefix is a greedy design of its own (for `matching_prefix`).
     let sequence = greedy(request.criterion, progress);

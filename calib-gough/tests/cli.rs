@@ -55,6 +55,7 @@ fn truth_is_inside_every_leg_for_many_seeds() {
             weak.iter().any(|l| l.contains("az") && l.contains(" l")),
             "{stdout}"
         );
+        assert!(stdout.contains("gough design --robot"), "{stdout}");
     }
 }
 

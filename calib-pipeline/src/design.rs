@@ -274,7 +274,12 @@ pub fn greedy_design(
 fn log_widths(groups: &[Group], chosen: &[usize]) -> f64 {
     groups
         .par_iter()
-        .map(|g| linearized_widths(g, chosen).iter().map(|w| w.ln()).sum::<f64>())
+        .map(|g| {
+            linearized_widths(g, chosen)
+                .iter()
+                .map(|w| w.ln())
+                .sum::<f64>()
+        })
         .sum()
 }
 
@@ -282,12 +287,7 @@ fn log_widths(groups: &[Group], chosen: &[usize]) -> f64 {
 /// time): each chosen candidate in turn is taken out and the best candidate for the freed place
 /// put in, while that lowers `Σ ln(width)`; at most `passes` sweeps over the design. `start`
 /// stays. Returns the improved `picked` (same length).
-pub fn exchange(
-    groups: &[Group],
-    start: &[usize],
-    picked: &[usize],
-    passes: usize,
-) -> Vec<usize> {
+pub fn exchange(groups: &[Group], start: &[usize], picked: &[usize], passes: usize) -> Vec<usize> {
     let mut picked = picked.to_vec();
     let all = |p: &[usize]| -> Vec<usize> { start.iter().chain(p).copied().collect() };
     let mut best = log_widths(groups, &all(&picked));
@@ -375,10 +375,10 @@ mod tests {
     fn the_certified_criterion_picks_complementary_directions() {
         // Candidates: three nearly parallel directions and one orthogonal; the second pick must
         // be the orthogonal one (a D-optimal pick would agree here; the LP sees it too).
-        let g = planar(&[0.0, 0.01, 0.02, 1.5707], 10.0);
-        let picked = greedy_design(&[g.clone()], &[], 2, Criterion::Certified, &|| {});
+        let g = planar(&[0.0, 0.01, 0.02, 1.5], 10.0);
+        let picked = greedy_design(std::slice::from_ref(&g), &[], 2, Criterion::Certified, &|| {});
         assert!(picked.contains(&3), "{picked:?}");
-        let d = greedy_design(&[g.clone()], &[], 2, Criterion::DOptimal, &|| {});
+        let d = greedy_design(std::slice::from_ref(&g), &[], 2, Criterion::DOptimal, &|| {});
         assert!(d.contains(&3), "{d:?}");
         // Starting from candidate 3 already measured, the next pick is one of the others.
         let more = greedy_design(&[g], &[3], 1, Criterion::Certified, &|| {});
@@ -418,7 +418,7 @@ mod tests {
     fn exchanges_never_worsen_a_design_and_fix_a_bad_one() {
         // A design of two nearly parallel directions is improved by swapping one for the
         // orthogonal candidate.
-        let g = planar(&[0.0, 0.01, 0.02, 1.5707], 10.0);
+        let g = planar(&[0.0, 0.01, 0.02, 1.5], 10.0);
         let groups = [g];
         let before = log_widths(&groups, &[0, 1]);
         let after = exchange(&groups, &[], &[0, 1], 3);

@@ -119,6 +119,16 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         }
         println!();
     }
+    if findings.iter().any(|f| !f.is_empty()) {
+        println!(
+            "identifiability: to choose configurations that determine these parameters, run\n  \
+             gough design --robot {} --uncertainty {} --extend {} --configs 7 --out next.csv\n\
+             (or `gough design` without --extend to plan a new campaign)\n",
+            a.files.robot.display(),
+            a.uncertainty.display(),
+            a.files.measurements.display()
+        );
+    }
     println!("total: {} legs in {total:.3} s", results.len());
     if let Some(dir) = &a.plots {
         std::fs::create_dir_all(dir)
