@@ -261,6 +261,172 @@ pub fn predict(
     certify_legs(robot, &configs, u, &CertifyOptions::default(), &|| {})
 }
 
+/// A design with its predictions: what `gough design` prints and `--json` writes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    /// The design.
+    pub design: Design,
+    /// The criterion it was chosen by.
+    pub criterion: Criterion,
+    /// The other criterion, whose design it is compared with.
+    pub other: Criterion,
+    /// The other criterion's design.
+    pub other_poses: Vec<Pose>,
+    /// Certified predictions of the design, the random design and the other criterion's.
+    pub predicted: [Vec<LegResult>; 3],
+    /// How many configurations were measured already (`--extend`).
+    pub extended: usize,
+    /// Seconds spent choosing the design.
+    pub design_seconds: f64,
+}
+
+/// The command-line name of a criterion.
+pub fn criterion_name(c: Criterion) -> &'static str {
+    match c {
+        Criterion::Certified => "certified",
+        Criterion::DOptimal => "d-optimal",
+    }
+}
+
+/// Designs (see [`design`]) and predicts the certified widths of the design, of a random design of
+/// the same size and of the other criterion's design (see [`predict`]). Extending measured data,
+/// the new readings are simulated at a certified consistent parameter vector of those data (so
+/// that old and new agree); an error if a leg of them has none.
+pub fn plan(
+    robot: &[LegSpec],
+    u: &Uncertainty,
+    workspace: &Workspace,
+    request: &DesignRequest,
+    measured_already: &[Configuration],
+    progress: &(dyn Fn() + Sync),
+) -> Result<Plan, String> {
+    let start = std::time::Instant::now();
+    let d = design(robot, u, workspace, request, measured_already, progress)?;
+    let design_seconds = start.elapsed().as_secs_f64();
+    let truth: Vec<Leg> = if measured_already.is_empty() {
+        nominal_legs(robot)
+    } else {
+        certify_legs(
+            robot,
+            measured_already,
+            u,
+            &CertifyOptions::default(),
+            &|| {},
+        )?
+        .iter()
+        .map(|r| {
+            r.witness.map(|w| Leg::from_params(&w)).ok_or_else(|| {
+                format!(
+                    "--extend: leg {} of the measured data has no certified consistent \
+                         parameter vector ({:?}); certify the data (gough certify) and resolve \
+                         that leg first",
+                    r.leg + 1,
+                    r.status
+                )
+            })
+        })
+        .collect::<Result<_, _>>()?
+    };
+    let other = match request.criterion {
+        Criterion::DOptimal => Criterion::Certified,
+        Criterion::Certified => Criterion::DOptimal,
+    };
+    let other_request = DesignRequest {
+        criterion: other,
+        ..request.clone()
+    };
+    let other_poses = design(
+        robot,
+        u,
+        workspace,
+        &other_request,
+        measured_already,
+        &|| {},
+    )?
+    .poses;
+    let at = |poses: &[Pose]| predict(robot, u, &truth, poses, measured_already, request.seed);
+    let predicted = [at(&d.poses)?, at(&d.random)?, at(&other_poses)?];
+    Ok(Plan {
+        design: d,
+        criterion: request.criterion,
+        other,
+        other_poses,
+        predicted,
+        extended: measured_already.len(),
+        design_seconds,
+    })
+}
+
+/// The certified outer width of each parameter (0 for a leg proved empty).
+pub fn certified_widths(r: &LegResult) -> [f64; 7] {
+    r.outer.map_or([0.0; 7], |o| o.map(|v| v.wid()))
+}
+
+impl Plan {
+    /// The geometric means of the certified widths: design, random, other criterion.
+    pub fn geometric_means(&self) -> [f64; 3] {
+        self.predicted
+            .each_ref()
+            .map(|r| geometric_mean(r.iter().flat_map(certified_widths)))
+    }
+
+    /// The JSON of `gough design --json`: the poses (rows of [`crate::files::POSE_COLUMNS`]),
+    /// per design (`designed`, `random` and the other criterion's name) the certified widths per
+    /// leg and their geometric mean, the first-order widths, and the matching prefix.
+    pub fn json(&self) -> serde_json::Value {
+        let rows = |poses: &[Pose]| -> Vec<[f64; 7]> {
+            poses
+                .iter()
+                .map(|p| {
+                    [
+                        p.p[0],
+                        p.p[1],
+                        p.p[2],
+                        p.axis[0],
+                        p.axis[1],
+                        p.axis[2],
+                        p.angle_deg,
+                    ]
+                })
+                .collect()
+        };
+        let gm = self.geometric_means();
+        let names = ["designed", "random", criterion_name(self.other)];
+        let first_order =
+            |i: usize| -> Vec<[f64; 7]> { self.design.first_order.iter().map(|w| w[i]).collect() };
+        let predicted: serde_json::Map<String, serde_json::Value> = names
+            .iter()
+            .zip(&self.predicted)
+            .zip(gm)
+            .map(|((name, r), g)| {
+                let widths: Vec<[f64; 7]> = r.iter().map(certified_widths).collect();
+                (
+                    name.to_string(),
+                    serde_json::json!({ "widths": widths, "geometric_mean": g }),
+                )
+            })
+            .collect();
+        serde_json::json!({
+            "version": 1,
+            "criterion": criterion_name(self.criterion),
+            "columns": crate::files::POSE_COLUMNS,
+            "param_order": crate::PARAMETER_NAMES,
+            "poses": rows(&self.design.poses),
+            "random_poses": rows(&self.design.random),
+            "other_poses": rows(&self.other_poses),
+            "extended": self.extended,
+            "predicted": predicted,
+            "first_order": {
+                "designed": first_order(0),
+                "random": first_order(1),
+                "every_candidate": first_order(2),
+            },
+            "matching_prefix": self.design.matching_prefix,
+            "design_seconds": self.design_seconds,
+        })
+    }
+}
+
 /// The poses as a poses file (header [`crate::files::POSE_COLUMNS`]), shortest round-trip
 /// decimals.
 pub fn poses_csv(poses: &[Pose]) -> String {

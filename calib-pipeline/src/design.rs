@@ -376,9 +376,21 @@ mod tests {
         // Candidates: three nearly parallel directions and one orthogonal; the second pick must
         // be the orthogonal one (a D-optimal pick would agree here; the LP sees it too).
         let g = planar(&[0.0, 0.01, 0.02, 1.5], 10.0);
-        let picked = greedy_design(std::slice::from_ref(&g), &[], 2, Criterion::Certified, &|| {});
+        let picked = greedy_design(
+            std::slice::from_ref(&g),
+            &[],
+            2,
+            Criterion::Certified,
+            &|| {},
+        );
         assert!(picked.contains(&3), "{picked:?}");
-        let d = greedy_design(std::slice::from_ref(&g), &[], 2, Criterion::DOptimal, &|| {});
+        let d = greedy_design(
+            std::slice::from_ref(&g),
+            &[],
+            2,
+            Criterion::DOptimal,
+            &|| {},
+        );
         assert!(d.contains(&3), "{d:?}");
         // Starting from candidate 3 already measured, the next pick is one of the others.
         let more = greedy_design(&[g], &[3], 1, Criterion::Certified, &|| {});

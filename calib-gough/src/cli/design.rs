@@ -1,7 +1,8 @@
 //! `gough design`.
 
-use calib_gough::certification::{certify_legs, CertifyOptions, LegResult};
-use calib_gough::design::{design, geometric_mean, poses_csv, predict, Design, DesignRequest};
+use calib_gough::design::{
+    certified_widths, criterion_name, geometric_mean, plan, poses_csv, Design, DesignRequest, Plan,
+};
 use calib_gough::files::{
     check_uncertainty, read_measurements, read_robot, read_uncertainty, LegSpec,
 };
@@ -44,6 +45,10 @@ pub struct Args {
     /// those that shrink the certified box of these data most.
     #[arg(long, value_name = "FILE")]
     extend: Option<PathBuf>,
+    /// Also write the design and its predictions as JSON (poses, certified widths per design,
+    /// first-order widths).
+    #[arg(long, value_name = "FILE")]
+    json: Option<PathBuf>,
     /// Where to write the poses (header px,py,pz,ax,ay,az,angle_deg), for
     /// `gough simulate --poses` or the measurement campaign.
     #[arg(long, value_name = "FILE")]
@@ -95,9 +100,13 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         indicatif::ProgressStyle::with_template("choosing poses {bar:30} {pos}/{len} [{elapsed}]")
             .expect("static template"),
     );
-    let d = design(&robot, &u, &workspace, &request, &already, &|| bar.inc(1))?;
+    let plan = plan(&robot, &u, &workspace, &request, &already, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    let design_seconds = start.elapsed().as_secs_f64();
+    let d = &plan.design;
+    if let Some(path) = &a.json {
+        write_atomically(path, &format!("{:#}\n", plan.json()))
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    }
     write_atomically(&a.out, &poses_csv(&d.poses))
         .map_err(|e| format!("{}: cannot write: {e}", a.out.display()))?;
     let what = if already.is_empty() {
@@ -106,78 +115,22 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         format!(" after the {} measured", already.len())
     };
     println!(
-        "designed {} poses{what} from {} candidates ({} criterion) in {design_seconds:.1} s: {}",
+        "designed {} poses{what} from {} candidates ({} criterion) in {:.1} s: {}",
         d.poses.len(),
         a.candidates,
         criterion_name(a.criterion),
+        plan.design_seconds,
         a.out.display()
     );
-    // The truth the new readings are simulated at: the nominal geometry, or, extending data, a
-    // certified consistent parameter vector of those data (so that old and new data agree).
-    let truth = if already.is_empty() {
-        robot.iter().map(|s| s.nominal).collect()
-    } else {
-        let results = certify_legs(&robot, &already, &u, &CertifyOptions::default(), &|| {})?;
-        current_truth(&results)?
-    };
-    let other = if a.criterion == Criterion::DOptimal {
-        Criterion::Certified
-    } else {
-        Criterion::DOptimal
-    };
-    let other_design = design(
-        &robot,
-        &u,
-        &workspace,
-        &DesignRequest {
-            criterion: other,
-            ..request.clone()
-        },
-        &already,
-        &|| {},
-    )?;
-    let predict_at = |poses: &[Pose]| predict(&robot, &u, &truth, poses, &already, a.seed);
-    let rows = [
-        ("designed", predict_at(&d.poses)?),
-        ("random", predict_at(&d.random)?),
-        (criterion_name(other), predict_at(&other_design.poses)?),
-    ];
-    print_predictions(&robot, &rows, &d);
-    print_separation(&robot, &d);
+    print_predictions(&robot, &plan);
+    print_separation(&robot, d);
     println!("total: {:.1} s", start.elapsed().as_secs_f64());
     Ok(0)
 }
 
-fn criterion_name(c: Criterion) -> &'static str {
-    match c {
-        Criterion::Certified => "certified",
-        Criterion::DOptimal => "d-optimal",
-    }
-}
-
-/// Per leg, a certified consistent parameter vector of the data already measured.
-fn current_truth(results: &[LegResult]) -> Result<Vec<Leg>, String> {
-    results
-        .iter()
-        .map(|r| {
-            r.witness.map(|w| Leg::from_params(&w)).ok_or_else(|| {
-                format!(
-                    "--extend: leg {} of the measured data has no certified consistent parameter \
-                     vector ({:?}); certify the data first (gough certify) and resolve that leg",
-                    r.leg + 1,
-                    r.status
-                )
-            })
-        })
-        .collect()
-}
-
-/// The certified outer width of each parameter, 0 where a leg was proved empty.
-fn widths(r: &LegResult) -> [f64; 7] {
-    r.outer.map_or([0.0; 7], |o| o.map(|v| v.wid()))
-}
-
-fn print_predictions(robot: &[LegSpec], rows: &[(&str, Vec<LegResult>); 3], d: &Design) {
+fn print_predictions(robot: &[LegSpec], plan: &Plan) {
+    let d = &plan.design;
+    let names = ["designed", "random", criterion_name(plan.other)];
     println!(
         "\npredicted certified widths (cm): the tight hull of simulated data measured at each \
          design\n(noise within the error bounds), prior = the robot file's box; first-order best \
@@ -185,11 +138,15 @@ fn print_predictions(robot: &[LegSpec], rows: &[(&str, Vec<LegResult>); 3], d: &
     );
     println!(
         "{:<9}{:>9}{:>11}{:>11}{:>11}{:>13}",
-        "", "prior", rows[0].0, rows[1].0, rows[2].0, "first-order"
+        "", "prior", names[0], names[1], names[2], "first-order"
     );
     for (leg, spec) in robot.iter().enumerate() {
         println!("leg {}", leg + 1);
-        let w: Vec<[f64; 7]> = rows.iter().map(|(_, r)| widths(&r[leg])).collect();
+        let w: Vec<[f64; 7]> = plan
+            .predicted
+            .iter()
+            .map(|r| certified_widths(&r[leg]))
+            .collect();
         for (j, name) in PARAMETER_NAMES.iter().enumerate() {
             println!(
                 "  {name:<7}{:>9.4}{:>11.4}{:>11.4}{:>11.4}{:>13.4}",
@@ -201,10 +158,7 @@ fn print_predictions(robot: &[LegSpec], rows: &[(&str, Vec<LegResult>); 3], d: &
             );
         }
     }
-    let gm: Vec<f64> = rows
-        .iter()
-        .map(|(_, r)| geometric_mean(r.iter().flat_map(widths)))
-        .collect();
+    let gm = plan.geometric_means();
     let params = 7 * robot.len();
     println!(
         "\ngeometric mean of the {params} certified widths: designed {:.4} cm, random {:.4} cm \
@@ -212,7 +166,7 @@ fn print_predictions(robot: &[LegSpec], rows: &[(&str, Vec<LegResult>); 3], d: &
         gm[0],
         gm[1],
         gm[1] / gm[0],
-        rows[2].0,
+        names[2],
         gm[2],
         gm[2] / gm[0]
     );
@@ -260,17 +214,21 @@ fn print_separation(robot: &[LegSpec], d: &Design) {
         let lo = cosines.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = cosines.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let [designed, random, best] = d.first_order[leg];
+        let prior = |j: usize| 2.0 * robot[leg].radius[j];
+        let verdict = if best[az] >= 0.99 * prior(az) && best[l] >= 0.99 * prior(l) {
+            "this workspace cannot separate them: with every candidate measured both keep \
+             their prior width"
+                .to_string()
+        } else {
+            format!(
+                "a_z {:.4} (best {:.4}, random {:.4}), l {:.4} (best {:.4}, random {:.4})",
+                designed[az], best[az], random[az], designed[l], best[l], random[l]
+            )
+        };
         println!(
-            "  leg {}: cos in [{lo:.3}, {hi:.3}] (spread {:.1}%); a_z {:.4} (best {:.4}, random \
-             {:.4}), l {:.4} (best {:.4}, random {:.4})",
+            "  leg {}: cos in [{lo:.3}, {hi:.3}] (spread {:.1}%): {verdict}",
             leg + 1,
             100.0 * (hi - lo),
-            designed[az],
-            best[az],
-            random[az],
-            designed[l],
-            best[l],
-            random[l]
         );
     }
 }
