@@ -67,7 +67,18 @@ pub struct Design {
     pub random: Vec<Pose>,
 }
 
-/// The geometry the poses are planned at, and their leg readings' boxes.
+/// The robot `gough design` plans for without a robot file: the built-in hexapod, ± 0.1 cm.
+pub fn builtin_robot() -> Vec<LegSpec> {
+    crate::simulate::builtin_hexapod()
+        .into_iter()
+        .map(|nominal| LegSpec {
+            nominal,
+            radius: [0.1; 7],
+        })
+        .collect()
+}
+
+/// The geometry the poses are planned at.
 fn nominal_legs(robot: &[LegSpec]) -> Vec<Leg> {
     robot.iter().map(|s| s.nominal).collect()
 }
@@ -451,16 +462,6 @@ mod tests {
     use crate::simulate::builtin_hexapod;
     use std::path::Path;
 
-    fn robot() -> Vec<LegSpec> {
-        builtin_hexapod()
-            .into_iter()
-            .map(|nominal| LegSpec {
-                nominal,
-                radius: [0.1; 7],
-            })
-            .collect()
-    }
-
     #[test]
     fn designed_poses_lie_in_the_workspace_and_round_trip_through_the_poses_file() {
         let w = Workspace::SIMULATOR;
@@ -469,7 +470,15 @@ mod tests {
             candidates: 200,
             ..DesignRequest::default()
         };
-        let d = design(&robot(), &Uncertainty::PAPER, &w, &request, &[], &|| {}).unwrap();
+        let d = design(
+            &builtin_robot(),
+            &Uncertainty::PAPER,
+            &w,
+            &request,
+            &[],
+            &|| {},
+        )
+        .unwrap();
         assert_eq!(d.poses.len(), 9);
         let legs = builtin_hexapod();
         assert!(d

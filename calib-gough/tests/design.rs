@@ -16,13 +16,7 @@ use std::path::Path;
 use support::{gough, simulate, tempdir};
 
 fn robot() -> Vec<LegSpec> {
-    builtin_hexapod()
-        .into_iter()
-        .map(|nominal| LegSpec {
-            nominal,
-            radius: [0.1; 7],
-        })
-        .collect()
+    calib_gough::design::builtin_robot()
 }
 
 fn widths(r: &[calib_gough::certification::LegResult]) -> Vec<f64> {

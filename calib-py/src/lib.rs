@@ -1,7 +1,8 @@
 //! The native half of the `certicalib` Python package: thin PyO3 wrappers around
 //! `calib_gough::certification`, `calib_gough::simulate` and `calib_gough::lsq`, and
-//! `calib_arm::certification` and `calib_arm::simulate`, so that Python gets exactly what
-//! `gough certify`, `gough simulate`, `gough lsq`, `arm certify` and `arm simulate` compute.
+//! `calib_gough::design`, `calib_arm::certification` and `calib_arm::simulate`, so that Python gets
+//! exactly what `gough certify`, `gough simulate`, `gough lsq`, `gough design`, `arm certify` and
+//! `arm simulate` compute.
 //! Results cross the boundary as JSON text (the CLI's report schema); the Python side turns them
 //! into objects with numpy arrays. Every data error becomes a `ValueError` naming the file, line and field; the long
 //! work runs with the interpreter detached (other Python threads keep running).
@@ -305,6 +306,61 @@ fn arm_simulate(
     std::fs::read_to_string(out.join("truth.json")).map_err(value_error)
 }
 
+/// Designs the poses to measure, as `gough design` does: writes the poses CSV to `out` and
+/// returns the JSON of `gough design --json`. Without `robot`, the built-in hexapod (± 0.1 cm);
+/// without `uncertainty`, the paper's bounds; without `workspace`, the simulator's.
+#[pyfunction]
+#[pyo3(signature = (out, robot=None, uncertainty=None, workspace=None, configs=21, candidates=2000, criterion="certified".to_string(), seed=1, extend=None))]
+#[allow(clippy::too_many_arguments)]
+fn design(
+    py: Python<'_>,
+    out: PathBuf,
+    robot: Option<PathBuf>,
+    uncertainty: Option<PathBuf>,
+    workspace: Option<PathBuf>,
+    configs: usize,
+    candidates: usize,
+    criterion: String,
+    seed: u64,
+    extend: Option<PathBuf>,
+) -> PyResult<String> {
+    use calib_gough::design::{builtin_robot, plan, poses_csv, DesignRequest};
+    let robot = match robot {
+        Some(p) => read_robot(&p).map_err(value_error)?,
+        None => builtin_robot(),
+    };
+    let u = match uncertainty {
+        Some(p) => {
+            let u = read_uncertainty(&p).map_err(value_error)?;
+            check_uncertainty(&p, &u, false).map_err(value_error)?;
+            u
+        }
+        None => Uncertainty::PAPER,
+    };
+    let workspace = match workspace {
+        Some(p) => calib_gough::workspace::read_workspace(&p).map_err(value_error)?,
+        None => calib_gough::workspace::Workspace::SIMULATOR,
+    };
+    let already = match extend {
+        Some(p) => read_measurements(&p, robot.len()).map_err(value_error)?.configs,
+        None => Vec::new(),
+    };
+    let request = DesignRequest {
+        configs,
+        candidates,
+        criterion: criterion
+            .parse()
+            .map_err(|e| value_error(format!("criterion: {e}")))?,
+        seed,
+    };
+    let plan = py
+        .detach(|| plan(&robot, &u, &workspace, &request, &already, &|| {}))
+        .map_err(value_error)?;
+    calib_pipeline::write_atomically(&out, &poses_csv(&plan.design.poses))
+        .map_err(|e| value_error(format!("{}: cannot write: {e}", out.display())))?;
+    Ok(plan.json().to_string())
+}
+
 /// The parameter names, in order.
 #[pyfunction]
 fn parameter_names() -> Vec<&'static str> {
@@ -325,6 +381,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lsq, m)?)?;
     m.add_function(wrap_pyfunction!(arm_certify_files, m)?)?;
     m.add_function(wrap_pyfunction!(arm_simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(design, m)?)?;
     m.add_function(wrap_pyfunction!(parameter_names, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())

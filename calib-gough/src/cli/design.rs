@@ -1,7 +1,8 @@
 //! `gough design`.
 
 use calib_gough::design::{
-    certified_widths, criterion_name, geometric_mean, plan, poses_csv, Design, DesignRequest, Plan,
+    builtin_robot, certified_widths, criterion_name, geometric_mean, plan, poses_csv, Design,
+    DesignRequest, Plan,
 };
 use calib_gough::files::{
     check_uncertainty, read_measurements, read_robot, read_uncertainty, LegSpec,
@@ -9,7 +10,6 @@ use calib_gough::files::{
 use calib_gough::geometry::{Leg, Pose};
 use calib_gough::measurement::Uncertainty;
 use calib_gough::report::write_atomically;
-use calib_gough::simulate::builtin_hexapod;
 use calib_gough::workspace::{read_workspace, Workspace};
 use calib_gough::PARAMETER_NAMES;
 use calib_pipeline::design::Criterion;
@@ -55,22 +55,11 @@ pub struct Args {
     out: PathBuf,
 }
 
-/// The robot file, or the built-in hexapod with ± 0.1 cm.
-fn robot(a: &Args) -> Result<Vec<LegSpec>, Box<dyn std::error::Error>> {
-    Ok(match &a.robot {
-        Some(p) => read_robot(p)?,
-        None => builtin_hexapod()
-            .into_iter()
-            .map(|nominal| LegSpec {
-                nominal,
-                radius: [0.1; 7],
-            })
-            .collect(),
-    })
-}
-
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
-    let robot = robot(&a)?;
+    let robot = match &a.robot {
+        Some(p) => read_robot(p)?,
+        None => builtin_robot(),
+    };
     let u = match &a.uncertainty {
         Some(p) => {
             let u = read_uncertainty(p)?;

@@ -44,7 +44,8 @@ import numpy as np
 from . import _native
 
 __all__ = ["certify", "simulate", "lsq", "Report", "LegResult", "LeastSquaresFit",
-           "certify_arm", "simulate_arm", "ArmReport", "PARAMETER_NAMES", "__version__"]
+           "certify_arm", "simulate_arm", "ArmReport", "design", "DesignPlan",
+           "PARAMETER_NAMES", "__version__"]
 
 __version__: str = _native.version()
 
@@ -315,6 +316,71 @@ def lsq(robot: PathLike, measurements: PathLike) -> List[LeastSquaresFit]:
     return [LeastSquaresFit(leg=f["leg"], converged=f["converged"],
                             x=np.asarray(f["x"], dtype=np.float64), rms=f["rms"],
                             max_length_error=f["max_length_error"]) for f in fits]
+
+
+class DesignPlan:
+    """The result of :func:`design`: the poses chosen and the certified widths they are predicted
+    to give, next to a random design of the same size and to the other criterion's design.
+    :meth:`to_dict` gives the JSON of ``gough design --json``."""
+
+    def __init__(self, text: str) -> None:
+        self._dict: Dict[str, Any] = json.loads(text)
+        d = self._dict
+        #: The criterion the poses were chosen by (``"certified"`` or ``"d-optimal"``).
+        self.criterion: str = d["criterion"]
+        #: The poses, shape (K, 7): px, py, pz, ax, ay, az, angle_deg (cm, unit axis, degrees).
+        self.poses: np.ndarray = np.asarray(d["poses"], dtype=np.float64).reshape(-1, 7)
+        #: The random design compared with, shape (K, 7).
+        self.random_poses: np.ndarray = np.asarray(d["random_poses"],
+                                                   dtype=np.float64).reshape(-1, 7)
+        #: Per design (``"designed"``, ``"random"`` and the other criterion's name), the
+        #: predicted certified widths in cm, shape (legs, 7).
+        self.widths: Dict[str, np.ndarray] = {
+            name: np.asarray(p["widths"], dtype=np.float64) for name, p in d["predicted"].items()}
+        #: Per design, the geometric mean of its predicted certified widths (cm).
+        self.geometric_mean: Dict[str, float] = {
+            name: p["geometric_mean"] for name, p in d["predicted"].items()}
+        #: First-order widths (cm), shape (legs, 7): ``"designed"``, ``"random"`` and
+        #: ``"every_candidate"`` (no design from these candidates does better).
+        self.first_order: Dict[str, np.ndarray] = {
+            name: np.asarray(w, dtype=np.float64) for name, w in d["first_order"].items()}
+        #: How many greedily chosen poses already match the random design (first order).
+        self.matching_prefix: Optional[int] = d["matching_prefix"]
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The JSON of ``gough design --json`` as a dict."""
+        return json.loads(json.dumps(self._dict))
+
+    def __repr__(self) -> str:
+        gm = self.geometric_mean
+        return (f"DesignPlan({len(self.poses)} poses, {self.criterion}: geometric mean "
+                f"{gm['designed']:.4f} cm vs random {gm['random']:.4f} cm)")
+
+
+def design(out: PathLike, *, robot: Optional[PathLike] = None,
+           uncertainty: Optional[PathLike] = None, workspace: Optional[PathLike] = None,
+           configs: int = 21, candidates: int = 2000, criterion: str = "certified",
+           seed: int = 1, extend: Optional[PathLike] = None) -> DesignPlan:
+    """Choose the poses to measure, as ``gough design`` does, and write them to ``out`` (a CSV
+    with header ``px,py,pz,ax,ay,az,angle_deg``, for :func:`simulate` ``(poses=...)``).
+
+    Without ``robot`` the built-in hexapod (± 0.1 cm), without ``uncertainty`` the paper's error
+    bounds, without ``workspace`` the simulator's workspace. ``criterion``: ``"certified"``
+    (the smallest predicted certified box) or ``"d-optimal"``. ``extend``: a measurements CSV
+    whose configurations are kept; the new poses extend them.
+
+    >>> import tempfile, os
+    >>> plan = design(os.path.join(tempfile.mkdtemp(), "poses.csv"), configs=8, candidates=200)
+    >>> plan.poses.shape
+    (8, 7)
+    >>> plan.geometric_mean["designed"] < plan.geometric_mean["random"]
+    True
+    """
+    def opt(p: Optional[PathLike]) -> Optional[str]:
+        return None if p is None else os.fspath(p)
+    return DesignPlan(_native.design(os.fspath(out), opt(robot), opt(uncertainty), opt(workspace),
+                                     int(configs), int(candidates), str(criterion), int(seed),
+                                     opt(extend)))
 
 
 class ArmReport:
