@@ -48,6 +48,14 @@ pub trait Objective<const N: usize> {
     fn gradient(&self, _x: &[Interval; N]) -> Option<[Interval; N]> {
         None
     }
+
+    /// A local search from the point `x`: a point of the domain and a value `f` is proved to
+    /// reach there (at least), when the objective has a better way to raise the lower bound than
+    /// evaluating at the midpoints of boxes (e.g. an ascent to the domain's boundary). By default
+    /// none.
+    fn improve(&self, _x: &[f64; N]) -> Option<([f64; N], f64)> {
+        None
+    }
 }
 
 /// When to stop [`maximize`].
@@ -163,6 +171,16 @@ pub fn maximize<O: Objective<N>, const N: usize>(
         if !v.is_empty() && v.inf() > out.lower {
             out.lower = v.inf();
             out.argmax = p;
+        }
+        // The local search starts only from points that could still beat the lower bound (it
+        // may be costly; the branch and bound brings better starting points).
+        if v.is_empty() || v.sup().is_nan() || v.sup() > out.lower {
+            if let Some((q, v)) = f.improve(&p) {
+                if v > out.lower {
+                    out.lower = v;
+                    out.argmax = q;
+                }
+            }
         }
     };
     probe(mid(domain), &mut out);

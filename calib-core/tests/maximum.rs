@@ -224,3 +224,28 @@ fn failed_enclosures_never_drop_a_box() {
     let m = maximize(&Fragile, &[Interval::new(0.0, f64::INFINITY)], &tiny);
     assert_eq!((m.lower, m.upper), (f64::NEG_INFINITY, f64::INFINITY));
 }
+
+/// `x (1 - x)` on `[0, 1]` with a local search that walks from any point to `x = 1/2`.
+struct Ascending;
+
+impl Objective<1> for Ascending {
+    fn enclose(&self, x: &[Interval; 1]) -> Interval {
+        x[0] * (Interval::ONE - x[0])
+    }
+
+    fn improve(&self, _x: &[f64; 1]) -> Option<([f64; 1], f64)> {
+        // 1/4 is exact at x = 1/2 in floating point.
+        Some(([0.5], 0.25))
+    }
+}
+
+#[test]
+fn a_local_search_raises_the_lower_bound_and_moves_the_argmax() {
+    let m = maximize(
+        &Ascending,
+        &[Interval::new(0.0, 1.0)],
+        &MaximumSettings::default(),
+    );
+    assert!(m.converged && m.lower == 0.25 && m.argmax == [0.5], "{m:?}");
+    assert!(0.25 <= m.upper && m.upper <= 0.25 * 1.01, "{m:?}");
+}

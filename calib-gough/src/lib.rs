@@ -8,6 +8,7 @@
 // Index loops mirror the paper's notation (legs i, parameters j, configurations k).
 #![allow(clippy::needless_range_loop)]
 
+pub mod accuracy;
 pub mod certificate;
 pub mod certification;
 pub mod design;

@@ -1,0 +1,162 @@
+//! The accuracy certificate (`gough accuracy`): how far the leg lengths a controller commands
+//! can be from those the real robot needs, anywhere in its workspace, for every geometry its
+//! certified box allows.
+//!
+//! The controller loads the nominal values `θ̂` of a robot file; the real robot has some `θ*` in
+//! the file's box (each parameter within its radius). For every pose `X` of the [`Workspace`] the
+//! controller commands `L_i(X; θ̂)` while the real leg needs `L_i(X; θ*)`. The **leg-length
+//! error** `max |L_i(X; θ*) - L_i(X; θ̂)|` over the workspace and the box is bracketed per leg
+//! between an upper bound proved over the whole workspace and a lower bound attained by an
+//! explicit instance `(X, θ*)` — the truth is proved to lie between them.
+//!
+//! Each maximum is a [`calib_core::maximize`] branch and bound over the box of poses `(p, q)`
+//! (`q` the Rodrigues vector, `|q| <= tan(tilt/2)`) with the enclosures of [`enclosure`]: a box
+//! proved to hold no pose of the workspace counts as error 0, a box only partly inside is bounded
+//! whole (the upper bound may then cover a superset at the workspace's boundary, never less than
+//! the workspace).
+mod enclosure;
+mod model;
+
+pub use enclosure::{AccuracyProblem, Instance, PoseBox, PoseVector};
+pub use model::{leg_length_error, leg_reading, LegLengthError, LegReading};
+
+use crate::files::LegSpec;
+use crate::workspace::Workspace;
+use calib_core::{maximize, Interval, MaximumSettings, Objective};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// One leg's length error as a maximisation over the poses.
+struct LegLengthObjective<'a> {
+    problem: &'a AccuracyProblem,
+    leg: usize,
+}
+
+impl Objective<6> for LegLengthObjective<'_> {
+    fn enclose(&self, x: &PoseBox) -> Interval {
+        if !self.problem.may_be_feasible(x) {
+            // No pose of the workspace here: it does not raise the error over the workspace.
+            return Interval::ZERO;
+        }
+        let value = self.problem.leg_bounds(self.leg, x);
+        if value.sup().is_nan() || value.inf().is_nan() {
+            Interval::new(0.0, f64::INFINITY)
+        } else {
+            value
+        }
+    }
+
+    fn improve(&self, x: &PoseVector) -> Option<(PoseVector, f64)> {
+        self.problem
+            .instance(self.leg, x)
+            .map(|i| (i.pose, i.value))
+    }
+}
+
+/// A certified bracket of one error.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bracket {
+    /// Proved over the whole workspace (cm).
+    pub upper: f64,
+    /// Attained by `worst` (0 when no pose of the workspace was found).
+    pub lower: f64,
+    /// The worst instance found: `lower` is its error.
+    pub worst: Option<Instance>,
+    /// Where a larger error could still hide: the pose box that gives `upper`.
+    pub frontier: PoseBox,
+    /// Whether `upper <= (1 + rel_tol) lower` was reached (else the box budget ran out).
+    pub converged: bool,
+    /// Pose boxes examined.
+    pub boxes: usize,
+}
+
+impl Bracket {
+    /// `upper / lower` (`+∞` without a positive lower bound).
+    pub fn ratio(&self) -> f64 {
+        if self.lower > 0.0 {
+            self.upper / self.lower
+        } else {
+            f64::INFINITY
+        }
+    }
+}
+
+/// When to stop the branch and bound of each error.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AccuracySettings {
+    /// Stop at `upper <= (1 + rel_tol) lower` (default 0.04: brackets within 1.05 with margin).
+    pub rel_tol: f64,
+    /// Examine at most this many pose boxes per error (default 30 000).
+    pub max_boxes: usize,
+}
+
+impl Default for AccuracySettings {
+    fn default() -> Self {
+        AccuracySettings {
+            rel_tol: 0.04,
+            max_boxes: 30_000,
+        }
+    }
+}
+
+/// The accuracy of a robot file on a workspace.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Accuracy {
+    /// Per leg, the leg-length error (cm).
+    pub leg_length: Vec<Bracket>,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// Brackets the leg-length error of every leg of `robot` (each parameter in nominal ± radius) on
+/// `workspace` (see the module documentation), the legs in parallel.
+pub fn certify_accuracy(
+    robot: &[LegSpec],
+    workspace: &Workspace,
+    settings: &AccuracySettings,
+) -> Accuracy {
+    let start = Instant::now();
+    let problem = AccuracyProblem::new(robot, workspace);
+    let leg_length = (0..problem.legs())
+        .into_par_iter()
+        .map(|leg| bracket(&problem, leg, settings))
+        .collect();
+    Accuracy {
+        leg_length,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// Brackets the length error of leg `leg` (0-based).
+pub fn bracket(problem: &AccuracyProblem, leg: usize, settings: &AccuracySettings) -> Bracket {
+    let objective = LegLengthObjective { problem, leg };
+    let m = maximize(
+        &objective,
+        &problem.domain(),
+        &MaximumSettings {
+            rel_tol: settings.rel_tol,
+            abs_tol: 0.0,
+            max_boxes: settings.max_boxes,
+        },
+    );
+    let worst = problem.instance(leg, &m.argmax).filter(|i| i.value > 0.0);
+    Bracket {
+        upper: m.upper,
+        lower: worst.as_ref().map_or(0.0, |i| i.value),
+        worst,
+        frontier: m.frontier,
+        converged: m.converged,
+        boxes: m.boxes,
+    }
+}
+
+/// A pose vector as position, unit axis and angle in degrees (axis `z` for no rotation).
+pub fn axis_angle(x: &PoseVector) -> ([f64; 3], [f64; 3], f64) {
+    let q = [x[3], x[4], x[5]];
+    let n = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt();
+    let p = [x[0], x[1], x[2]];
+    if n == 0.0 {
+        return (p, [0.0, 0.0, 1.0], 0.0);
+    }
+    (p, q.map(|v| v / n), 2.0 * n.atan().to_degrees())
+}
