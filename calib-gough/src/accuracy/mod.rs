@@ -160,3 +160,85 @@ pub fn axis_angle(x: &PoseVector) -> ([f64; 3], [f64; 3], f64) {
     }
     (p, q.map(|v| v / n), 2.0 * n.atan().to_degrees())
 }
+
+/// The leg-length brackets of a robot file after calibration and, when given, of the robot
+/// before it (the design nominal with its prior box): what `gough accuracy` reports.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AccuracyReport {
+    /// The workspace.
+    pub workspace: Workspace,
+    /// The calibrated robot's accuracy.
+    pub after: Accuracy,
+    /// The uncalibrated robot's accuracy.
+    pub before: Option<Accuracy>,
+    /// The actuator error half-width, when known: the length a leg reaches then differs from the
+    /// one it needs by at most the leg-length error plus this.
+    pub actuator: Option<f64>,
+}
+
+/// How much calibration improved leg `i`: `before.lower / after.upper`, a proved factor (the
+/// uncalibrated error is at least `before.lower`, the calibrated one at most `after.upper`).
+pub fn improvement(before: &Bracket, after: &Bracket) -> f64 {
+    if after.upper > 0.0 {
+        before.lower / after.upper
+    } else {
+        f64::INFINITY
+    }
+}
+
+fn bracket_json(leg: usize, b: &Bracket) -> serde_json::Value {
+    let worst = b.worst.as_ref().map(|w| {
+        let (p, axis, angle_deg) = axis_angle(&w.pose);
+        serde_json::json!({
+            "pose": { "p": p, "axis": axis, "angle_deg": angle_deg, "rodrigues": &w.pose[3..] },
+            "theta": w.theta.iter().map(|v| v.mid()).collect::<Vec<_>>(),
+            "error": w.value,
+        })
+    });
+    serde_json::json!({
+        "leg": leg + 1,
+        "upper": b.upper,
+        "lower": b.lower,
+        "ratio": b.ratio(),
+        "converged": b.converged,
+        "boxes": b.boxes,
+        "worst": worst,
+    })
+}
+
+fn legs_json(a: &Accuracy) -> Vec<serde_json::Value> {
+    a.leg_length
+        .iter()
+        .enumerate()
+        .map(|(i, b)| bracket_json(i, b))
+        .collect()
+}
+
+impl AccuracyReport {
+    /// The JSON of `gough accuracy --json` (schema version 1; cm and degrees): `workspace`,
+    /// `leg_length` (per leg `upper`, `lower`, `ratio`, `converged`, `boxes` and `worst`: the
+    /// pose as `p`, `axis`, `angle_deg` and `rodrigues`, the true geometry `theta` in the order
+    /// of [`crate::PARAMETER_NAMES`], its `error`), `before` (the same for the uncalibrated robot,
+    /// or null), `improvement` (per leg, the proved factor) and `actuator`.
+    pub fn json(&self) -> serde_json::Value {
+        let w = &self.workspace;
+        serde_json::json!({
+            "version": 1,
+            "workspace": {
+                "x": w.x, "y": w.y, "z": w.z, "tilt_deg": w.tilt_deg, "stroke": w.stroke,
+            },
+            "param_order": crate::PARAMETER_NAMES,
+            "leg_length": legs_json(&self.after),
+            "before": self.before.as_ref().map(|b| serde_json::json!({ "leg_length": legs_json(b) })),
+            "improvement": self.before.as_ref().map(|b| {
+                b.leg_length
+                    .iter()
+                    .zip(&self.after.leg_length)
+                    .map(|(b, a)| improvement(b, a))
+                    .collect::<Vec<_>>()
+            }),
+            "actuator": self.actuator,
+            "seconds": self.after.seconds + self.before.as_ref().map_or(0.0, |b| b.seconds),
+        })
+    }
+}

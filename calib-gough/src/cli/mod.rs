@@ -1,5 +1,6 @@
 //! The `gough` subcommands.
 
+mod accuracy;
 mod certify;
 mod design;
 mod lsq;
@@ -68,6 +69,22 @@ enum Command {
     /// is measured.
     #[command(verbatim_doc_comment)]
     Simulate(simulate::Args),
+    /// How far the leg lengths the controller commands can be from those the real robot needs,
+    /// anywhere in the workspace, for every geometry the (calibrated) robot file's box allows:
+    /// per leg, a bracket [lower, upper] — upper proved over the whole workspace, lower attained
+    /// by an explicit pose and geometry — and, with --before, the improvement calibration
+    /// brought as a proved factor.
+    ///
+    /// Example:
+    ///   gough certify ... --write-calibrated calibrated.toml
+    ///   gough accuracy --robot calibrated.toml --workspace workspace.toml \
+    ///                  --before robot.toml --uncertainty uncertainty.toml --json accuracy.json
+    ///
+    /// The controller uses the robot file's values; the real robot has some geometry in its box
+    /// (value ± radius). The position and orientation errors of the platform are not certified
+    /// yet (see the README).
+    #[command(verbatim_doc_comment)]
+    Accuracy(accuracy::Args),
     /// Choose the configurations to measure: K poses of the workspace that determine every leg
     /// parameter best, with the certified widths they are predicted to give next to a random
     /// design of the same size and the classical D-optimal one.
@@ -112,6 +129,7 @@ pub fn run(cli: Cli) -> Result<i32, Box<dyn std::error::Error>> {
         Command::Lsq(a) => lsq::run(a),
         Command::Simulate(a) => simulate::run(a),
         Command::Design(a) => design::run(a),
+        Command::Accuracy(a) => accuracy::run(a),
         Command::Reproduce(a) => reproduce::run(a),
     }
 }

@@ -1,0 +1,176 @@
+//! `gough accuracy`.
+
+use calib_gough::accuracy::{
+    axis_angle, certify_accuracy, improvement, Accuracy, AccuracyReport, AccuracySettings,
+};
+use calib_gough::files::{read_robot, read_uncertainty};
+use calib_gough::report::write_atomically;
+use calib_gough::workspace::{read_workspace, Workspace};
+use std::path::PathBuf;
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The robot file the controller loads (e.g. from `gough certify --write-calibrated`): its
+    /// values are what the controller uses, its radii the box the real robot lies in.
+    #[arg(long, value_name = "FILE")]
+    robot: PathBuf,
+    /// The poses the robot is used at (workspace.toml: x, y, z = [lo, hi] cm, tilt_deg,
+    /// optional stroke = [lo, hi] cm).
+    #[arg(long, value_name = "FILE")]
+    workspace: PathBuf,
+    /// The robot file before calibration (the design nominal with its prior box): the same
+    /// brackets for it, and the improvement calibration brought as a proved factor.
+    #[arg(long, value_name = "FILE")]
+    before: Option<PathBuf>,
+    /// The measurement error bounds: with them, the leg-length error plus the actuator's
+    /// `len` bounds how far a leg's reached length is from the one it needs.
+    #[arg(long, value_name = "FILE")]
+    uncertainty: Option<PathBuf>,
+    /// Stop each bracket at upper <= (1 + TOL) lower.
+    #[arg(long, value_name = "TOL", default_value_t = 0.04)]
+    tolerance: f64,
+    /// Examine at most this many pose boxes per bracket.
+    #[arg(long, value_name = "N", default_value_t = 300_000)]
+    max_boxes: usize,
+    /// Write the brackets, worst instances and improvement as JSON (schema version 1).
+    #[arg(long, value_name = "FILE")]
+    json: Option<PathBuf>,
+}
+
+pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    let robot = read_robot(&a.robot)?;
+    let workspace = read_workspace(&a.workspace)?;
+    let before = a.before.as_deref().map(read_robot).transpose()?;
+    let actuator = a
+        .uncertainty
+        .as_deref()
+        .map(read_uncertainty)
+        .transpose()?
+        .map(|u| u.len);
+    if !(a.tolerance > 0.0 && a.tolerance.is_finite()) {
+        return Err(format!("--tolerance: expected a number > 0, found {}", a.tolerance).into());
+    }
+    let settings = AccuracySettings {
+        rel_tol: a.tolerance,
+        max_boxes: a.max_boxes,
+    };
+    let bar = indicatif::ProgressBar::new_spinner();
+    bar.set_message("bracketing the leg-length errors");
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    let after = certify_accuracy(&robot, &workspace, &settings);
+    let before = before.map(|b| certify_accuracy(&b, &workspace, &settings));
+    bar.finish_and_clear();
+    let report = AccuracyReport {
+        workspace,
+        after,
+        before,
+        actuator,
+    };
+    print(&report, &a);
+    if let Some(path) = &a.json {
+        write_atomically(path, &format!("{:#}\n", report.json()))
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    }
+    Ok(0)
+}
+
+fn describe(w: &Workspace) -> String {
+    let stroke = w.stroke.map_or(String::new(), |[lo, hi]| {
+        format!(", leg readings in [{lo}, {hi}] cm")
+    });
+    format!(
+        "x in [{}, {}], y in [{}, {}], z in [{}, {}] cm, rotation up to {}°{stroke}",
+        w.x[0], w.x[1], w.y[0], w.y[1], w.z[0], w.z[1], w.tilt_deg
+    )
+}
+
+fn print(r: &AccuracyReport, a: &Args) {
+    println!(
+        "leg-length error of {} over the workspace of {}\n({}):\nthe length the controller \
+         commands minus the length the real leg needs, for every geometry in the robot file's \
+         box, proved between lower and upper (cm)\n",
+        a.robot.display(),
+        a.workspace.display(),
+        describe(&r.workspace)
+    );
+    let mut header = format!("{:<5}{:>10}{:>10}{:>8}", "leg", "lower", "upper", "ratio");
+    if r.before.is_some() {
+        header += &format!("{:>16}{:>14}", "before (upper)", "improvement");
+    }
+    println!("{header}");
+    for (i, b) in r.after.leg_length.iter().enumerate() {
+        let mut row = format!(
+            "{:<5}{:>10.5}{:>10.5}{:>8.3}",
+            i + 1,
+            b.lower,
+            b.upper,
+            b.ratio()
+        );
+        if let Some(before) = &r.before {
+            let p = &before.leg_length[i];
+            row += &format!("{:>16.5}{:>13.1}×", p.upper, improvement(p, b));
+        }
+        if !b.converged {
+            row += "  (budget spent; the bracket holds)";
+        }
+        println!("{row}");
+    }
+    if let Some(len) = r.actuator {
+        let worst = r
+            .after
+            .leg_length
+            .iter()
+            .fold(0.0f64, |m, b| m.max(b.upper));
+        println!(
+            "\nwith the actuators' error (± {len} cm), a leg's reached length is within {:.5} cm \
+             of the length it needs",
+            worst + len
+        );
+    }
+    print_worst(&r.after);
+    if let Some(before) = &r.before {
+        let factor = before
+            .leg_length
+            .iter()
+            .zip(&r.after.leg_length)
+            .map(|(b, a)| improvement(b, a))
+            .fold(f64::INFINITY, f64::min);
+        println!(
+            "\ncalibration reduced every leg's worst length error at least {factor:.1}-fold \
+             (proved: before's lower bound over after's upper bound)"
+        );
+    }
+    let seconds = r.after.seconds + r.before.as_ref().map_or(0.0, |b| b.seconds);
+    println!(
+        "\nthe upper bounds hold over the whole workspace (boxes at its boundary are bounded \
+              whole, a superset); total {seconds:.1} s"
+    );
+}
+
+fn print_worst(a: &Accuracy) {
+    let Some((i, b)) = a
+        .leg_length
+        .iter()
+        .enumerate()
+        .max_by(|x, y| x.1.lower.total_cmp(&y.1.lower))
+    else {
+        return;
+    };
+    let Some(w) = &b.worst else {
+        return;
+    };
+    let (p, axis, angle) = axis_angle(&w.pose);
+    println!(
+        "\nworst: leg {} is {:.5} cm off at p = ({:.3}, {:.3}, {:.3}) cm rotated {:.3}° about \
+         ({:.3}, {:.3}, {:.3}), with its true geometry at a corner of its box",
+        i + 1,
+        w.value,
+        p[0],
+        p[1],
+        p[2],
+        angle,
+        axis[0],
+        axis[1],
+        axis[2]
+    );
+}
