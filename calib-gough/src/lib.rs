@@ -9,6 +9,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod accuracy;
+pub mod calibrated;
 pub mod certificate;
 pub mod certification;
 pub mod design;

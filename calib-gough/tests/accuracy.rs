@@ -57,10 +57,7 @@ fn upper_bounds_hold_at_random_poses_and_geometries_and_instances_recheck() {
     for case in 0..4 {
         let robot = random_robot(&mut rng);
         let workspace = random_workspace(&mut rng);
-        let settings = AccuracySettings {
-            rel_tol: 0.04,
-            max_boxes: 100_000,
-        };
+        let settings = AccuracySettings::default();
         let a = certify_accuracy(&robot, &workspace, &settings);
         let nominal: Vec<Leg> = robot.iter().map(|s| s.nominal).collect();
         for (i, (spec, b)) in robot.iter().zip(&a.leg_length).enumerate() {

@@ -535,3 +535,127 @@ fn simulate_measures_at_given_poses() {
     assert!(err.contains("poses.csv, line 3, field `ax,ay,az`"), "{err}");
     assert!(!fresh.exists());
 }
+
+#[test]
+fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
+    let dir = tempdir("calibrated");
+    simulate(&dir, 3, &[]);
+    let cal = dir.join("calibrated.toml");
+    let ws = dir.join("workspace.toml");
+    std::fs::write(&ws, include_str!("data/workspace.toml")).unwrap();
+    let html = dir.join("certificate.html");
+    let out = certify(
+        &dir,
+        &[
+            "--write-calibrated",
+            cal.to_str().unwrap(),
+            "--workspace",
+            ws.to_str().unwrap(),
+            "--report",
+            html.to_str().unwrap(),
+        ],
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        stdout.contains("leg-length error") && stdout.contains("improvement"),
+        "{stdout}"
+    );
+    assert!(std::fs::read_to_string(&html)
+        .unwrap()
+        .contains("Accuracy over the workspace"));
+    // The calibrated file's boxes contain the certified outer boxes.
+    let legs = calib_gough::files::read_robot(&cal).unwrap();
+    let rep = report(&dir);
+    for (spec, leg) in legs.iter().zip(rep["legs"].as_array().unwrap()) {
+        let p = spec.nominal.params();
+        for j in 0..7 {
+            let b = &leg["outer"][j];
+            let (lo, hi) = (b[0].as_f64().unwrap(), b[1].as_f64().unwrap());
+            assert!(
+                p[j] - spec.radius[j] <= lo && hi <= p[j] + spec.radius[j],
+                "{j}"
+            );
+        }
+    }
+    // The accuracy command on the calibrated file, with JSON.
+    let json = dir.join("accuracy.json");
+    let f = |n: &str| dir.join(n).to_str().unwrap().to_string();
+    let o = gough(&[
+        "accuracy",
+        "--robot",
+        cal.to_str().unwrap(),
+        "--workspace",
+        ws.to_str().unwrap(),
+        "--before",
+        &f("robot.toml"),
+        "--uncertainty",
+        &f("uncertainty.toml"),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    for leg in j["leg_length"].as_array().unwrap() {
+        let (lo, up) = (
+            leg["lower"].as_f64().unwrap(),
+            leg["upper"].as_f64().unwrap(),
+        );
+        assert!(0.0 < lo && lo <= up && up <= 1.05 * lo, "{leg}");
+        assert_eq!(leg["worst"]["theta"].as_array().unwrap().len(), 7);
+    }
+    assert_eq!(j["before"]["leg_length"].as_array().unwrap().len(), 6);
+    assert!(j["improvement"][0].as_f64().unwrap() > 1.0);
+}
+
+#[test]
+fn accuracy_rejects_bad_workspace_files_and_writes_nothing() {
+    let dir = tempdir("accuracy-bad");
+    simulate(&dir, 4, &[]);
+    let ws = dir.join("workspace.toml");
+    std::fs::write(
+        &ws,
+        "x = [-5, 5]\ny = [-5, 5]\nz = [65, 55]\ntilt_deg = 15\n",
+    )
+    .unwrap();
+    let json = dir.join("accuracy.json");
+    let o = gough(&[
+        "accuracy",
+        "--robot",
+        dir.join("robot.toml").to_str().unwrap(),
+        "--workspace",
+        ws.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("workspace.toml, line 3, field `z`"),
+        "{stderr}"
+    );
+    assert!(!json.exists());
+    // certify --workspace reads it before any work: same error, no report.
+    let out = certify(&dir, &["--workspace", ws.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("field `z`"));
+    assert!(!dir.join("report.json").exists());
+}
+
+#[test]
+fn write_calibrated_refuses_an_inconsistent_leg() {
+    let dir = tempdir("calibrated-empty");
+    simulate(&dir, 5, &["--outlier", "4:2:0.3"]);
+    let cal = dir.join("calibrated.toml");
+    let out = certify(&dir, &["--write-calibrated", cal.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("leg 2 was proved inconsistent"), "{stderr}");
+    assert!(!cal.exists());
+}

@@ -211,11 +211,12 @@ impl AccuracyProblem {
 
     /// An enclosure of `f_i(X) = max_{θ* ∈ Θ_i} |ΔL_i(X, θ*)|` over the poses of `x`.
     ///
-    /// Where every `∂ΔL_i/∂θ_j` keeps its sign over the box (and all of `Θ_i`), `ΔL_i` is
-    /// monotone in each parameter, so its largest and smallest values over `Θ_i` are at two
-    /// vertices `θ↑`, `θ↓` of the decimal box and `f_i = max(ΔL_i(X, θ↑), -ΔL_i(X, θ↓))` — each
-    /// enclosed over a box `θ` only as wide as rounding (from the inward vertex to the outward
-    /// enclosure's end), without the overestimation of the whole `Θ_i`. Elsewhere: `|leg_error|`.
+    /// Where `∂ΔL_i/∂θ_j` keeps its sign over the box (and all of `Θ_i`), `ΔL_i` is monotone in
+    /// `θ_j`, so its largest and smallest values over `Θ_i` have `θ_j` at an end. With `θ↑`
+    /// (`θ↓`) those ends — as boxes only as wide as rounding, from the inward vertex to the
+    /// outward enclosure's end — and the whole range of the other parameters,
+    /// `f_i ∈ [max(ΔL_i(X, θ↑), -ΔL_i(X, θ↓))]`, each enclosed by its mean-value form: without
+    /// the overestimation of an interval over every parameter.
     pub fn leg_bounds(&self, i: usize, x: &PoseBox) -> Interval {
         let leg = &self.legs[i];
         let m: [Interval; 13] = core::array::from_fn(|k| {
@@ -226,15 +227,14 @@ impl AccuracyProblem {
             }
         });
         let e = LegLengthError.evaluate_interval(&leg.theta, &m);
-        let monotone = e.dx.iter().all(|g| g.inf() > 0.0 || g.sup() < 0.0);
-        if !monotone {
-            let l = self.leg_error(i, x);
-            let mig = if l.contains(0.0) { 0.0 } else { l.mig() };
-            return Interval::new(mig, l.mag());
-        }
         let end = |up: bool| -> [Interval; 7] {
             core::array::from_fn(|j| {
-                let rising = (e.dx[j].inf() > 0.0) == up;
+                let g = e.dx[j];
+                if !(g.inf() > 0.0 || g.sup() < 0.0) {
+                    // The sign is not known on this box: the whole range of the parameter.
+                    return leg.theta[j];
+                }
+                let rising = (g.inf() > 0.0) == up;
                 let outer = Interval::point(if rising {
                     leg.theta[j].sup()
                 } else {

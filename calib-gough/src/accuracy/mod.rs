@@ -86,7 +86,7 @@ impl Bracket {
 pub struct AccuracySettings {
     /// Stop at `upper <= (1 + rel_tol) lower` (default 0.04: brackets within 1.05 with margin).
     pub rel_tol: f64,
-    /// Examine at most this many pose boxes per error (default 30 000).
+    /// Examine at most this many pose boxes per error (default 300 000).
     pub max_boxes: usize,
 }
 
@@ -94,7 +94,7 @@ impl Default for AccuracySettings {
     fn default() -> Self {
         AccuracySettings {
             rel_tol: 0.04,
-            max_boxes: 30_000,
+            max_boxes: 300_000,
         }
     }
 }
@@ -240,5 +240,82 @@ impl AccuracyReport {
             "actuator": self.actuator,
             "seconds": self.after.seconds + self.before.as_ref().map_or(0.0, |b| b.seconds),
         })
+    }
+}
+
+impl AccuracyReport {
+    /// The certificate's section: the brackets per leg (with the uncalibrated robot's and the
+    /// proved improvement when known) and the worst instance, in words.
+    pub fn section(&self) -> calib_pipeline::html::Section {
+        let w = &self.workspace;
+        let mut header: Vec<String> = ["leg", "lower (cm)", "upper (cm)", "upper/lower"]
+            .map(String::from)
+            .to_vec();
+        if self.before.is_some() {
+            header.extend(["before: upper (cm)", "improvement (proved)"].map(String::from));
+        }
+        let rows = self
+            .after
+            .leg_length
+            .iter()
+            .enumerate()
+            .map(|(i, b)| {
+                let mut row = vec![
+                    (i + 1).to_string(),
+                    format!("{:.5}", b.lower),
+                    format!("{:.5}", b.upper),
+                    format!("{:.3}", b.ratio()),
+                ];
+                if let Some(before) = &self.before {
+                    let p = &before.leg_length[i];
+                    row.push(format!("{:.5}", p.upper));
+                    row.push(format!("{:.1}×", improvement(p, b)));
+                }
+                row
+            })
+            .collect();
+        let mut paragraphs = vec![format!(
+            "Over the workspace (platform centre x in [{}, {}], y in [{}, {}], z in [{}, {}] cm, \
+             rotation up to {}° about any axis{}), for every geometry in the calibrated boxes, \
+             the length the controller commands (from the calibrated values) differs from the \
+             length the real leg needs by at most the upper bound — proved over the whole \
+             workspace — and by at least the lower bound, attained at an explicit pose and \
+             geometry.",
+            w.x[0],
+            w.x[1],
+            w.y[0],
+            w.y[1],
+            w.z[0],
+            w.z[1],
+            w.tilt_deg,
+            w.stroke.map_or(String::new(), |[lo, hi]| format!(
+                ", leg readings in [{lo}, {hi}] cm"
+            ))
+        )];
+        if let Some(len) = self.actuator {
+            let worst = self
+                .after
+                .leg_length
+                .iter()
+                .fold(0.0f64, |m, b| m.max(b.upper));
+            paragraphs.push(format!(
+                "With the actuators' error (± {len} cm), a leg's reached length is within \
+                 {:.5} cm of the length it needs.",
+                worst + len
+            ));
+        }
+        paragraphs.push(
+            "The platform's position and orientation errors are not certified by this version."
+                .to_string(),
+        );
+        calib_pipeline::html::Section {
+            heading: "Accuracy over the workspace".to_string(),
+            paragraphs,
+            tables: vec![(
+                "Leg-length error per leg: the truth lies between lower and upper.".to_string(),
+                calib_pipeline::html::Table { header, rows },
+            )],
+            figures: Vec::new(),
+        }
     }
 }

@@ -30,7 +30,7 @@ pub struct Args {
     #[arg(long, value_name = "TOL", default_value_t = 0.04)]
     tolerance: f64,
     /// Examine at most this many pose boxes per bracket.
-    #[arg(long, value_name = "N", default_value_t = 300_000)]
+    #[arg(long, value_name = "N", default_value_t = AccuracySettings::default().max_boxes)]
     max_boxes: usize,
     /// Write the brackets, worst instances and improvement as JSON (schema version 1).
     #[arg(long, value_name = "FILE")]
@@ -66,7 +66,11 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         before,
         actuator,
     };
-    print(&report, &a);
+    print_report(
+        &report,
+        &a.robot.display().to_string(),
+        &a.workspace.display().to_string(),
+    );
     if let Some(path) = &a.json {
         write_atomically(path, &format!("{:#}\n", report.json()))
             .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
@@ -84,13 +88,14 @@ fn describe(w: &Workspace) -> String {
     )
 }
 
-fn print(r: &AccuracyReport, a: &Args) {
+/// Prints the brackets, the worst instance and the improvement.
+pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
     println!(
         "leg-length error of {} over the workspace of {}\n({}):\nthe length the controller \
          commands minus the length the real leg needs, for every geometry in the robot file's \
          box, proved between lower and upper (cm)\n",
-        a.robot.display(),
-        a.workspace.display(),
+        robot,
+        workspace,
         describe(&r.workspace)
     );
     let mut header = format!("{:<5}{:>10}{:>10}{:>8}", "leg", "lower", "upper", "ratio");

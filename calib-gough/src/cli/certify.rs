@@ -2,6 +2,8 @@
 
 use super::DataFiles;
 use calib_core::Status;
+use calib_gough::accuracy::{certify_accuracy, AccuracyReport, AccuracySettings};
+use calib_gough::calibrated::{calibrated_robot, robot_toml};
 use calib_gough::certificate::{self, Certificate, Input, LegEntry};
 use calib_gough::certification::{
     certify_legs, identifiability, report, CertifyOptions, LegResult,
@@ -13,6 +15,7 @@ use calib_gough::lsq::fit_legs;
 use calib_gough::plot;
 use calib_gough::report::{ratios, table, write_atomically};
 use calib_gough::verdict::{self, ConfigurationNames};
+use calib_gough::workspace::read_workspace;
 use calib_gough::PARAMETER_NAMES;
 use calib_pipeline::OutlierBudget;
 use std::path::{Path, PathBuf};
@@ -64,6 +67,16 @@ pub struct Args {
     /// leg, and each leg's least-squares solution against its certified box.
     #[arg(long, value_name = "FILE")]
     report: Option<PathBuf>,
+    /// Write the calibrated robot file a controller loads: each parameter at the midpoint of its
+    /// certified outer box, radius = the outer half-width (rounded up), so its boxes contain the
+    /// certified ones. Refused (nothing written) when a leg is proved inconsistent.
+    #[arg(long, value_name = "FILE")]
+    write_calibrated: Option<PathBuf>,
+    /// Also certify the accuracy over this workspace (workspace.toml): per leg, how far the
+    /// commanded leg length can be from the needed one, calibrated (the outer boxes) and
+    /// uncalibrated (robot.toml), as in `gough accuracy`; printed and on the certificate.
+    #[arg(long, value_name = "FILE")]
+    workspace: Option<PathBuf>,
     /// Write one SVG per leg into this folder: x0, x1, x2, the outer and the inner box in the
     /// projections (ax, ay), (bx, by) and (az, l).
     #[arg(long, value_name = "DIR")]
@@ -79,6 +92,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let data = parse_measurements(&a.files.measurements, &data_text, robot.len())?;
     let u = parse_uncertainty(&a.uncertainty, &u_text)?;
     check_uncertainty(&a.uncertainty, &u, data.rodrigues)?;
+    let workspace = a.workspace.as_deref().map(read_workspace).transpose()?;
     let options = CertifyOptions {
         legs: a.legs.clone(),
         fast: a.fast,
@@ -148,6 +162,38 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         }
         println!("plots written to {}", dir.display());
     }
+    let calibrated = if a.write_calibrated.is_some() || workspace.is_some() {
+        Some(calibrated_robot(&robot, &results)?)
+    } else {
+        None
+    };
+    if let (Some(path), Some(legs)) = (&a.write_calibrated, &calibrated) {
+        let comment = format!(
+            "calibrated by certicalib {} from {} and {}: each parameter at the midpoint of its\n\
+             certified outer box, radius = its outer half-width",
+            calib_pipeline::html::VERSION,
+            a.files.robot.display(),
+            a.files.measurements.display()
+        );
+        write_atomically(path, &robot_toml(legs, &comment))
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        println!("calibrated robot written to {}", path.display());
+    }
+    let accuracy = match (&workspace, &calibrated) {
+        (Some(w), Some(legs)) => {
+            let settings = AccuracySettings::default();
+            let report = AccuracyReport {
+                workspace: *w,
+                after: certify_accuracy(legs, w, &settings),
+                before: Some(certify_accuracy(&robot, w, &settings)),
+                actuator: Some(u.len),
+            };
+            println!();
+            super::accuracy::print_report(&report, "the calibrated robot", &a.workspace_name());
+            Some(report)
+        }
+        _ => None,
+    };
     if let Some(path) = &a.report {
         let fits: Vec<[f64; 7]> = fit_legs(&robot, &data.configs)
             .iter()
@@ -194,7 +240,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                 })
                 .collect(),
             names,
-            sections: Vec::new(),
+            sections: accuracy.iter().map(AccuracyReport::section).collect(),
         }
         .to_html()?;
         write_atomically(path, &page)
@@ -208,6 +254,14 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("report written to {}", path.display());
     }
     Ok(if any_empty { 2 } else { 0 })
+}
+
+impl Args {
+    fn workspace_name(&self) -> String {
+        self.workspace
+            .as_ref()
+            .map_or_else(String::new, |p| p.display().to_string())
+    }
 }
 
 fn print_leg(r: &LegResult, names: &ConfigurationNames<'_>, budget: OutlierBudget) {
