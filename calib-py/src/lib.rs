@@ -1,7 +1,8 @@
 //! The native half of the `certicalib` Python package: thin PyO3 wrappers around
 //! `calib_gough::certification`, `calib_gough::simulate` and `calib_gough::lsq`, and
-//! `calib_gough::design`, `calib_arm::certification` and `calib_arm::simulate`, so that Python gets
-//! exactly what `gough certify`, `gough simulate`, `gough lsq`, `gough design`, `arm certify` and
+//! `calib_gough::design`, `calib_gough::accuracy`, `calib_arm::certification` and `calib_arm::simulate`, so that Python gets
+//! exactly what `gough certify`, `gough simulate`, `gough lsq`, `gough design`, `gough accuracy`,
+//! `arm certify` and
 //! `arm simulate` compute.
 //! Results cross the boundary as JSON text (the CLI's report schema); the Python side turns them
 //! into objects with numpy arrays. Every data error becomes a `ValueError` naming the file, line and field; the long
@@ -361,6 +362,49 @@ fn design(
     Ok(plan.json().to_string())
 }
 
+/// Brackets the leg-length errors of a robot file over a workspace, as `gough accuracy` does;
+/// returns the JSON of `gough accuracy --json`.
+#[pyfunction]
+#[pyo3(signature = (robot, workspace, before=None, uncertainty=None, tolerance=0.04, max_boxes=300_000))]
+fn accuracy(
+    py: Python<'_>,
+    robot: PathBuf,
+    workspace: PathBuf,
+    before: Option<PathBuf>,
+    uncertainty: Option<PathBuf>,
+    tolerance: f64,
+    max_boxes: usize,
+) -> PyResult<String> {
+    use calib_gough::accuracy::{certify_accuracy, AccuracyReport, AccuracySettings};
+    let robot = read_robot(&robot).map_err(value_error)?;
+    let workspace = calib_gough::workspace::read_workspace(&workspace).map_err(value_error)?;
+    let before = before
+        .map(|p| read_robot(&p))
+        .transpose()
+        .map_err(value_error)?;
+    let actuator = uncertainty
+        .map(|p| read_uncertainty(&p))
+        .transpose()
+        .map_err(value_error)?
+        .map(|u| u.len);
+    if !(tolerance > 0.0 && tolerance.is_finite()) {
+        return Err(value_error(format!(
+            "tolerance: expected a number > 0, found {tolerance}"
+        )));
+    }
+    let settings = AccuracySettings {
+        rel_tol: tolerance,
+        max_boxes,
+    };
+    let report = py.detach(|| AccuracyReport {
+        workspace,
+        after: certify_accuracy(&robot, &workspace, &settings),
+        before: before.map(|b| certify_accuracy(&b, &workspace, &settings)),
+        actuator,
+    });
+    Ok(report.json().to_string())
+}
+
 /// The parameter names, in order.
 #[pyfunction]
 fn parameter_names() -> Vec<&'static str> {
@@ -382,6 +426,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(arm_certify_files, m)?)?;
     m.add_function(wrap_pyfunction!(arm_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(design, m)?)?;
+    m.add_function(wrap_pyfunction!(accuracy, m)?)?;
     m.add_function(wrap_pyfunction!(parameter_names, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())

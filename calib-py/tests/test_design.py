@@ -58,3 +58,24 @@ def test_bad_inputs_are_value_errors_naming_the_file(tmp_path):
     with pytest.raises(ValueError, match="criterion"):
         certicalib.design(out, criterion="a-optimal")
     assert not os.path.exists(out)
+
+
+def test_accuracy_matches_the_command_line(tmp_path):
+    certicalib.simulate(tmp_path, seed=5)
+    ws = tmp_path / "workspace.toml"
+    ws.write_text(WORKSPACE)
+    robot = tmp_path / "robot.toml"
+    mine = certicalib.accuracy(robot, ws, uncertainty=tmp_path / "uncertainty.toml")
+    out = tmp_path / "accuracy.json"
+    subprocess.run([repo_binary("gough"), "accuracy", "--robot", str(robot), "--workspace",
+                    str(ws), "--uncertainty", str(tmp_path / "uncertainty.toml"),
+                    "--json", str(out)], check=True, capture_output=True)
+    cli = json.loads(out.read_text())
+    assert mine["leg_length"] == cli["leg_length"]
+    assert mine["actuator"] == cli["actuator"] == 0.0005
+    for leg in mine["leg_length"]:
+        assert 0 < leg["lower"] <= leg["upper"] <= 1.05 * leg["lower"]
+    bad = tmp_path / "bad.toml"
+    bad.write_text("x = [-4, 4]\ny = [-3, 5]\nz = [56, 63]\ntilt_deg = 190\n")
+    with pytest.raises(ValueError, match=r"bad.toml, line 4, field `tilt_deg`"):
+        certicalib.accuracy(robot, bad)

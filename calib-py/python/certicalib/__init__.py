@@ -44,7 +44,7 @@ import numpy as np
 from . import _native
 
 __all__ = ["certify", "simulate", "lsq", "Report", "LegResult", "LeastSquaresFit",
-           "certify_arm", "simulate_arm", "ArmReport", "design", "DesignPlan",
+           "certify_arm", "simulate_arm", "ArmReport", "design", "DesignPlan", "accuracy",
            "PARAMETER_NAMES", "__version__"]
 
 __version__: str = _native.version()
@@ -381,6 +381,32 @@ def design(out: PathLike, *, robot: Optional[PathLike] = None,
     return DesignPlan(_native.design(os.fspath(out), opt(robot), opt(uncertainty), opt(workspace),
                                      int(configs), int(candidates), str(criterion), int(seed),
                                      opt(extend)))
+
+
+def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike] = None,
+             uncertainty: Optional[PathLike] = None, tolerance: float = 0.04,
+             max_boxes: int = 300_000) -> Dict[str, Any]:
+    r"""Bracket, per leg, how far the leg length the controller commands (from ``robot``'s values)
+    can be from the length the real leg needs, over every pose of ``workspace`` (a
+    ``workspace.toml``) and every geometry in ``robot``'s boxes — as ``gough accuracy`` does.
+    ``before``: the uncalibrated robot file (the improvement is then a proved factor);
+    ``uncertainty``: adds the actuators' error. Returns the JSON of ``gough accuracy --json`` as a
+    dict: ``leg_length`` (per leg ``upper``, ``lower``, ``ratio``, ``worst``), ``before``,
+    ``improvement``.
+
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp()
+    >>> _ = simulate(d, seed=2)
+    >>> ws = os.path.join(d, "workspace.toml")
+    >>> _ = open(ws, "w").write("x = [-2, 2]\ny = [-2, 2]\nz = [58, 62]\ntilt_deg = 5\n")
+    >>> result = accuracy(os.path.join(d, "robot.toml"), ws)
+    >>> all(0 < leg["lower"] <= leg["upper"] <= 1.05 * leg["lower"] for leg in result["leg_length"])
+    True
+    """
+    def opt(p: Optional[PathLike]) -> Optional[str]:
+        return None if p is None else os.fspath(p)
+    return json.loads(_native.accuracy(os.fspath(robot), os.fspath(workspace), opt(before),
+                                       opt(uncertainty), float(tolerance), int(max_boxes)))
 
 
 class ArmReport:

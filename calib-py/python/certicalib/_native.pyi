@@ -27,6 +27,10 @@ def simulate(
     poses: Optional[_Path] = ...,
 ) -> str: ...
 def lsq(robot: _Path, measurements: _Path) -> str: ...
+def accuracy(
+    robot: _Path, workspace: _Path, before: Optional[_Path] = ..., uncertainty: Optional[_Path] = ...,
+    tolerance: float = ..., max_boxes: int = ...,
+) -> str: ...
 def design(
     out: _Path, robot: Optional[_Path] = ..., uncertainty: Optional[_Path] = ...,
     workspace: Optional[_Path] = ..., configs: int = ..., candidates: int = ...,
