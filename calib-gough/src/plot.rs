@@ -644,6 +644,80 @@ pub fn log_series(
     Ok(buf)
 }
 
+/// A heat map per slab (side by side): each cell coloured by its value on one scale from pale
+/// (the smallest value of all cells) to dark red (the largest), the scale's ends in the legend;
+/// cells without a value (0: no pose of the workspace) white.
+pub fn heat_maps(
+    slabs: &[crate::accuracy::MapSlab],
+    title: &str,
+    unit: &str,
+) -> Result<String, PlotError> {
+    let values: Vec<f64> = slabs
+        .iter()
+        .flat_map(|s| s.upper.iter().flatten())
+        .copied()
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .collect();
+    let max = values.iter().copied().fold(0.0, f64::max);
+    let min = values.iter().copied().fold(max, f64::min);
+    const LOW: Colour = (0xfd, 0xe0, 0xc0);
+    const HIGH: Colour = (0x99, 0x11, 0x11);
+    let colour = |v: f64| -> RGBColor {
+        if v.is_nan() || v <= 0.0 {
+            return WHITE;
+        }
+        let t = if max > min {
+            ((v - min) / (max - min)).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        let mix = |a: u8, b: u8| (a as f64 + (b as f64 - a as f64) * t).round() as u8;
+        RGBColor(mix(LOW.0, HIGH.0), mix(LOW.1, HIGH.1), mix(LOW.2, HIGH.2))
+    };
+    let entries = [
+        Entry {
+            label: format!("{min:.4} {unit}"),
+            colour: LOW,
+            kind: Swatch::Shaded,
+        },
+        Entry {
+            label: format!("{max:.4} {unit} (largest bound)"),
+            colour: HIGH,
+            kind: Swatch::Shaded,
+        },
+    ];
+    let panels = slabs.len().max(1) as u32;
+    let mut buf = String::new();
+    {
+        let plots = frame(&mut buf, PANEL.0 * panels.min(3), PANEL.1, title, &entries)?;
+        let areas = plots.split_evenly((1, slabs.len().max(1)));
+        for (slab, area) in slabs.iter().zip(&areas) {
+            let x = (slab.x_edges[0], *slab.x_edges.last().unwrap_or(&1.0));
+            let y = (slab.y_edges[0], *slab.y_edges.last().unwrap_or(&1.0));
+            let mut c = chart(area, x, y)?;
+            axes(
+                &mut c,
+                x,
+                y,
+                &format!("x (cm), z in [{:.1}, {:.1}]", slab.z[0], slab.z[1]),
+                "y (cm)",
+            )?;
+            for (ix, column) in slab.upper.iter().enumerate() {
+                for (iy, &v) in column.iter().enumerate() {
+                    let r = [
+                        (slab.x_edges[ix], slab.y_edges[iy]),
+                        (slab.x_edges[ix + 1], slab.y_edges[iy + 1]),
+                    ];
+                    c.draw_series(std::iter::once(Rectangle::new(r, colour(v).filled())))
+                        .map_err(failed)?;
+                }
+            }
+        }
+        plots.present().map_err(failed)?;
+    }
+    Ok(buf)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -598,8 +598,14 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
         &f("uncertainty.toml"),
         "--json",
         json.to_str().unwrap(),
+        "--report",
+        dir.join("accuracy.html").to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let page = std::fs::read_to_string(dir.join("accuracy.html")).unwrap();
+    let svg = &page[page.find("<svg").unwrap()..page.find("</svg>").unwrap() + 6];
+    roxmltree::Document::parse(svg).expect("a well-formed map");
+    assert!(page.contains("SHA-256") && page.contains("improvement"));
     let j: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     for leg in j["leg_length"].as_array().unwrap() {

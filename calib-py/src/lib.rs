@@ -343,7 +343,11 @@ fn design(
         None => calib_gough::workspace::Workspace::SIMULATOR,
     };
     let already = match extend {
-        Some(p) => read_measurements(&p, robot.len()).map_err(value_error)?.configs,
+        Some(p) => {
+            read_measurements(&p, robot.len())
+                .map_err(value_error)?
+                .configs
+        }
         None => Vec::new(),
     };
     let request = DesignRequest {
@@ -401,6 +405,7 @@ fn accuracy(
         after: certify_accuracy(&robot, &workspace, &settings),
         before: before.map(|b| certify_accuracy(&b, &workspace, &settings)),
         actuator,
+        map: None,
     });
     Ok(report.json().to_string())
 }

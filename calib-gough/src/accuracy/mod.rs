@@ -30,6 +30,8 @@ use std::time::Instant;
 struct LegLengthObjective<'a> {
     problem: &'a AccuracyProblem,
     leg: usize,
+    /// Whether to raise the lower bound by the local search (it may leave a sub-domain).
+    search: bool,
 }
 
 impl Objective<6> for LegLengthObjective<'_> {
@@ -47,6 +49,9 @@ impl Objective<6> for LegLengthObjective<'_> {
     }
 
     fn improve(&self, x: &PoseVector) -> Option<(PoseVector, f64)> {
+        if !self.search {
+            return None;
+        }
         self.problem
             .instance(self.leg, x)
             .map(|i| (i.pose, i.value))
@@ -129,7 +134,11 @@ pub fn certify_accuracy(
 
 /// Brackets the length error of leg `leg` (0-based).
 pub fn bracket(problem: &AccuracyProblem, leg: usize, settings: &AccuracySettings) -> Bracket {
-    let objective = LegLengthObjective { problem, leg };
+    let objective = LegLengthObjective {
+        problem,
+        leg,
+        search: true,
+    };
     let m = maximize(
         &objective,
         &problem.domain(),
@@ -174,6 +183,8 @@ pub struct AccuracyReport {
     /// The actuator error half-width, when known: the length a leg reaches then differs from the
     /// one it needs by at most the leg-length error plus this.
     pub actuator: Option<f64>,
+    /// Where in the workspace the error is large (see [`error_map`]), when computed.
+    pub map: Option<Vec<MapSlab>>,
 }
 
 /// How much calibration improved leg `i`: `before.lower / after.upper`, a proved factor (the
@@ -315,7 +326,104 @@ impl AccuracyReport {
                 "Leg-length error per leg: the truth lies between lower and upper.".to_string(),
                 calib_pipeline::html::Table { header, rows },
             )],
-            figures: Vec::new(),
+            figures: self
+                .map
+                .as_ref()
+                .and_then(|m| {
+                    crate::plot::heat_maps(
+                        m,
+                        "Certified upper bound of the worst leg's error",
+                        "cm",
+                    )
+                    .ok()
+                })
+                .map(|svg| calib_pipeline::html::Figure {
+                    caption: "Where the leg-length error can be large: per cell of x–y and slab \
+                              of heights, the proved upper bound of the worst leg's error over \
+                              every rotation of the workspace (a coarse branch and bound per \
+                              cell; white: no pose of the workspace)."
+                        .to_string(),
+                    svg,
+                })
+                .into_iter()
+                .collect(),
         }
     }
+}
+
+/// The error map of the certificates: cells per side of the `x`–`y` grid.
+pub const MAP_CELLS: usize = 6;
+/// The error map of the certificates: slabs of heights.
+pub const MAP_SLABS: usize = 3;
+
+/// One panel of the error map: a slab of heights, cut into cells over `x`–`y`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MapSlab {
+    /// The slab's heights (cm).
+    pub z: [f64; 2],
+    /// The cells' edges along `x` and `y` (cm).
+    pub x_edges: Vec<f64>,
+    /// See `x_edges`.
+    pub y_edges: Vec<f64>,
+    /// Per cell (`[ix][iy]`), the proved upper bound of the largest leg-length error over the
+    /// cell, the slab and every rotation of the workspace, any leg (cm; 0 where no pose of the
+    /// workspace lies).
+    pub upper: Vec<Vec<f64>>,
+}
+
+/// The certified upper bound of the worst leg's error per cell of an `n × n` grid over `x`–`y`,
+/// in `slabs` slabs of heights: where in the workspace the error is large. Each cell's bound is a
+/// short branch and bound of its own (`rel_tol` 0.2, 400 boxes per leg): proved, if coarser than
+/// the brackets.
+pub fn error_map(robot: &[LegSpec], workspace: &Workspace, n: usize, slabs: usize) -> Vec<MapSlab> {
+    let problem = AccuracyProblem::new(robot, workspace);
+    let domain = problem.domain();
+    let edges = |v: Interval, k: usize| -> Vec<f64> {
+        (0..=k)
+            .map(|i| v.inf() + (v.sup() - v.inf()) * i as f64 / k as f64)
+            .collect()
+    };
+    let (xe, ye, ze) = (
+        edges(domain[0], n),
+        edges(domain[1], n),
+        edges(domain[2], slabs),
+    );
+    let settings = MaximumSettings {
+        rel_tol: 0.2,
+        abs_tol: 0.0,
+        max_boxes: 400,
+    };
+    (0..slabs)
+        .map(|s| {
+            let upper = (0..n)
+                .into_par_iter()
+                .map(|ix| {
+                    (0..n)
+                        .map(|iy| {
+                            let mut cell = domain;
+                            cell[0] = Interval::new(xe[ix], xe[ix + 1]);
+                            cell[1] = Interval::new(ye[iy], ye[iy + 1]);
+                            cell[2] = Interval::new(ze[s], ze[s + 1]);
+                            (0..problem.legs())
+                                .map(|leg| {
+                                    let objective = LegLengthObjective {
+                                        problem: &problem,
+                                        leg,
+                                        search: false,
+                                    };
+                                    maximize(&objective, &cell, &settings).upper
+                                })
+                                .fold(0.0, f64::max)
+                        })
+                        .collect()
+                })
+                .collect();
+            MapSlab {
+                z: [ze[s], ze[s + 1]],
+                x_edges: xe.clone(),
+                y_edges: ye.clone(),
+                upper,
+            }
+        })
+        .collect()
 }

@@ -1,11 +1,13 @@
 //! `gough accuracy`.
 
 use calib_gough::accuracy::{
-    axis_angle, certify_accuracy, improvement, Accuracy, AccuracyReport, AccuracySettings,
+    axis_angle, certify_accuracy, error_map, improvement, Accuracy, AccuracyReport,
+    AccuracySettings, MAP_CELLS, MAP_SLABS,
 };
 use calib_gough::files::{read_robot, read_uncertainty};
 use calib_gough::report::write_atomically;
 use calib_gough::workspace::{read_workspace, Workspace};
+use calib_pipeline::html;
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -35,6 +37,10 @@ pub struct Args {
     /// Write the brackets, worst instances and improvement as JSON (schema version 1).
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
+    /// Write the accuracy certificate: one self-contained HTML page with the brackets, the
+    /// improvement, a map of where in the workspace the error is large, and the inputs' SHA-256.
+    #[arg(long, value_name = "FILE")]
+    report: Option<PathBuf>,
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
@@ -60,11 +66,16 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let after = certify_accuracy(&robot, &workspace, &settings);
     let before = before.map(|b| certify_accuracy(&b, &workspace, &settings));
     bar.finish_and_clear();
+    let map = a
+        .report
+        .is_some()
+        .then(|| error_map(&robot, &workspace, MAP_CELLS, MAP_SLABS));
     let report = AccuracyReport {
         workspace,
         after,
         before,
         actuator,
+        map,
     };
     print_report(
         &report,
@@ -75,7 +86,42 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         write_atomically(path, &format!("{:#}\n", report.json()))
             .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
     }
+    if let Some(path) = &a.report {
+        write_atomically(path, &page(&report, &a)?)
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        println!("accuracy certificate written to {}", path.display());
+    }
     Ok(0)
+}
+
+/// The accuracy certificate page: the section, then the inputs with their SHA-256.
+fn page(report: &AccuracyReport, a: &Args) -> Result<String, Box<dyn std::error::Error>> {
+    let date = html::now();
+    let mut h = html::page_start("accuracy of a calibrated 6-leg parallel robot", &date);
+    html::section(&mut h, &report.section());
+    let mut rows = Vec::new();
+    for (role, path) in [
+        ("robot file", Some(&a.robot)),
+        ("workspace", Some(&a.workspace)),
+        ("robot before calibration", a.before.as_ref()),
+        ("error bounds", a.uncertainty.as_ref()),
+    ] {
+        if let Some(path) = path {
+            let bytes =
+                std::fs::read(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+            rows.push((
+                format!("{role}: {}", path.display()),
+                format!("SHA-256 {}", html::sha256_hex(&bytes)),
+            ));
+        }
+    }
+    rows.push(("software".into(), format!("certicalib {}", html::VERSION)));
+    rows.push(("command".into(), html::command_line()));
+    h.push_str("<section id=\"inputs\">\n<h2>Inputs</h2>\n");
+    html::pairs(&mut h, &["input", "identity"], &rows);
+    h.push_str("</section>\n");
+    h.push_str(html::PAGE_END);
+    Ok(h)
 }
 
 fn describe(w: &Workspace) -> String {

@@ -2,7 +2,9 @@
 
 use super::DataFiles;
 use calib_core::Status;
-use calib_gough::accuracy::{certify_accuracy, AccuracyReport, AccuracySettings};
+use calib_gough::accuracy::{
+    certify_accuracy, error_map, AccuracyReport, AccuracySettings, MAP_CELLS, MAP_SLABS,
+};
 use calib_gough::calibrated::{calibrated_robot, robot_toml};
 use calib_gough::certificate::{self, Certificate, Input, LegEntry};
 use calib_gough::certification::{
@@ -187,6 +189,10 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                 after: certify_accuracy(legs, w, &settings),
                 before: Some(certify_accuracy(&robot, w, &settings)),
                 actuator: Some(u.len),
+                map: a
+                    .report
+                    .is_some()
+                    .then(|| error_map(legs, w, MAP_CELLS, MAP_SLABS)),
             };
             println!();
             super::accuracy::print_report(&report, "the calibrated robot", &a.workspace_name());
