@@ -5,7 +5,7 @@
 //! somewhere in the box `Θ_i` of the robot file. At a pose `X = (p, q)` (`q` the Rodrigues vector)
 //! the controller commands `L_i(X; θ̂_i)`; the real leg would need `L_i(X; θ*_i)`. The leg-length
 //! error `ΔL_i(X, θ*) = L_i(X; θ*) - L_i(X; θ̂)` is enclosed over a box of poses and all of `Θ_i` by
-//! the natural enclosure of [`super::model::leg_length_error`] (written without cancellation)
+//! the natural enclosure of [`super::leg_length_error`] (written without cancellation)
 //! intersected with its mean-value form about the box's centre. Since `L_i` is convex in `(a, b)`
 //! and affine in `l`, its largest value over `Θ_i` is at a vertex: instances take the vertex the
 //! gradient's signs point to.

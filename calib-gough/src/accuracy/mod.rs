@@ -10,7 +10,7 @@
 //! explicit instance `(X, θ*)` — the truth is proved to lie between them.
 //!
 //! Each maximum is a [`calib_core::maximize`] branch and bound over the box of poses `(p, q)`
-//! (`q` the Rodrigues vector, `|q| <= tan(tilt/2)`) with the enclosures of [`enclosure`]: a box
+//! (`q` the Rodrigues vector, `|q| <= tan(tilt/2)`) with the enclosures of [`AccuracyProblem`]: a box
 //! proved to hold no pose of the workspace counts as error 0, a box only partly inside is bounded
 //! whole (the upper bound may then cover a superset at the workspace's boundary, never less than
 //! the workspace).

@@ -1,0 +1,55 @@
+//! The planning and acceptance work around a calibration, on the default hexapod (the built-in
+//! geometry, the paper's error bounds, the simulator's workspace): `gough design` (21 poses from
+//! 2,000 candidates, certified criterion; issue target ≤ 60 s on 2 cores) and the accuracy
+//! certificate's leg-length brackets (all six legs to 1.04, ± 0.01 cm and ± 0.1 cm boxes; issue
+//! target ≤ 30 s on 2 cores).
+//!
+//! `cargo bench --bench planning`. One iteration is one whole design or one whole certificate.
+
+use calib_gough::accuracy::{certify_accuracy, AccuracySettings};
+use calib_gough::design::{builtin_robot, design, DesignRequest};
+use calib_gough::files::LegSpec;
+use calib_gough::measurement::Uncertainty;
+use calib_gough::workspace::Workspace;
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
+
+fn bench(c: &mut Criterion) {
+    let mut g = c.benchmark_group("planning");
+    g.sample_size(10);
+    let robot = builtin_robot();
+    g.bench_function("design/21 of 2000 candidates, certified", |b| {
+        b.iter(|| {
+            black_box(design(
+                &robot,
+                &Uncertainty::PAPER,
+                &Workspace::SIMULATOR,
+                &DesignRequest::default(),
+                &[],
+                &|| {},
+            ))
+        })
+    });
+    for radius in [0.01, 0.1] {
+        let boxes: Vec<LegSpec> = robot
+            .iter()
+            .map(|s| LegSpec {
+                nominal: s.nominal,
+                radius: [radius; 7],
+            })
+            .collect();
+        g.bench_function(format!("accuracy/leg lengths, ±{radius} cm"), |b| {
+            b.iter(|| {
+                black_box(certify_accuracy(
+                    &boxes,
+                    &Workspace::SIMULATOR,
+                    &AccuracySettings::default(),
+                ))
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
