@@ -144,6 +144,13 @@ pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
         workspace,
         describe(&r.workspace)
     );
+    if r.after.leg_length.iter().all(|b| b.worst.is_none()) {
+        println!(
+            "no pose of the workspace was found (proved inside it): the stroke may exclude \
+             every pose at the nominal geometry — check `stroke` in {workspace}; the upper \
+             bounds below still hold over whatever the workspace contains\n"
+        );
+    }
     let mut header = format!("{:<5}{:>10}{:>10}{:>8}", "leg", "lower", "upper", "ratio");
     if r.before.is_some() {
         header += &format!("{:>16}{:>14}", "before (upper)", "improvement");
