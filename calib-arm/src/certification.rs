@@ -16,6 +16,7 @@ use crate::simulate::{measurement_box, Reading, Uncertainty};
 use crate::units::{rad_to_deg, to_deg, to_rad};
 use crate::Arm7Point;
 use calib_core::{Interval, Settings};
+use calib_pipeline::design::CandidateRows;
 use calib_pipeline::identify::{analyse, identification_jacobian, Identifiability};
 use calib_pipeline::lsq::{least_squares, Fit};
 use calib_pipeline::report::OutcomeReport;
@@ -252,12 +253,20 @@ fn padded_index(joints: usize) -> Vec<usize> {
         .collect()
 }
 
-fn run(arm: &Arm, readings: &[Reading], u: &Uncertainty, job: Job, settings: &Settings) -> ArmRun {
-    let model = &Arm7Point;
+/// The padded model's problem: the prior box, the nominal (model units), one measurement box per
+/// reading, and the padded index and unit of each of the arm's parameters.
+struct Padded {
+    x0: [Interval; NX],
+    nominal: [f64; NX],
+    boxes: Vec<[Interval; NM]>,
+    index: Vec<usize>,
+    units: Vec<Unit>,
+}
+
+fn padded(arm: &Arm, readings: &[Reading], u: &Uncertainty) -> Padded {
     let joints = arm.joints.len();
     let index = padded_index(joints);
     let units: Vec<Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
-    let names = names(joints);
     let prior = arm.initial_box();
     let nominal_files = arm.nominal();
     // Padded parameters are points at 0 (an identity joint).
@@ -275,6 +284,50 @@ fn run(arm: &Arm, readings: &[Reading], u: &Uncertainty, job: Job, settings: &Se
         .iter()
         .filter_map(|r| measurement_box(r, u))
         .collect();
+    Padded {
+        x0,
+        nominal,
+        boxes,
+        index,
+        units,
+    }
+}
+
+/// The scaled identification Jacobian of `arm` on the configurations of `readings` at the
+/// nominal geometry (see [`calib_pipeline::identify::identification_jacobian`]), per
+/// configuration its three rows (one column per free parameter), for experiment design
+/// ([`calib_pipeline::design`]); and each column's parameter (arm order).
+pub fn identification_rows(
+    arm: &Arm,
+    readings: &[Reading],
+    u: &Uncertainty,
+) -> Result<(Vec<usize>, Vec<CandidateRows>), String> {
+    dispatch(arm, readings, u, Job::Identify, &Settings::default())?;
+    let p = padded(arm, readings, u);
+    let (free, j) = identification_jacobian(&Arm7Point, &p.nominal, &p.x0, &p.boxes);
+    let to_arm = |q: usize| p.index.iter().position(|&r| r == q).unwrap_or(q);
+    let rows = (0..readings.len())
+        .map(|k| {
+            (0..3)
+                .map(|r| j.row(3 * k + r).iter().copied().collect())
+                .collect()
+        })
+        .collect();
+    Ok((free.into_iter().map(to_arm).collect(), rows))
+}
+
+fn run(arm: &Arm, readings: &[Reading], u: &Uncertainty, job: Job, settings: &Settings) -> ArmRun {
+    let model = &Arm7Point;
+    let joints = arm.joints.len();
+    let names = names(joints);
+    let prior = arm.initial_box();
+    let Padded {
+        x0,
+        nominal,
+        boxes,
+        index,
+        units,
+    } = padded(arm, readings, u);
     let (free, jacobian) = identification_jacobian(model, &nominal, &x0, &boxes);
     let to_arm = |p: usize| index.iter().position(|&q| q == p).unwrap_or(p);
     let mut identifiability = analyse(&free, jacobian);

@@ -13,6 +13,7 @@
 
 pub mod certificate;
 pub mod certification;
+pub mod design;
 pub mod files;
 pub mod model;
 pub mod params;

@@ -18,7 +18,7 @@ use crate::workspace::Workspace;
 use crate::GoughLeg;
 use calib_core::Interval;
 use calib_pipeline::design::{
-    exchange, greedy_design, linearized_geometric_mean, linearized_widths, Criterion, Group,
+    certified_design, greedy_design, linearized_widths, Criterion, Group,
 };
 use calib_pipeline::identify::identification_jacobian;
 use rand::rngs::StdRng;
@@ -203,31 +203,25 @@ pub fn design(
     for g in &mut candidate_groups {
         g.rows.truncate(first_random);
     }
-    let greedy = |criterion, progress: &(dyn Fn() + Sync)| {
-        greedy_design(
+    // The greedy order: every prefix is a greedy design of its own (for `matching_prefix`).
+    let (picked, sequence) = match request.criterion {
+        Criterion::DOptimal => {
+            let p = greedy_design(
+                &candidate_groups,
+                &start,
+                request.configs,
+                Criterion::DOptimal,
+                progress,
+            );
+            (p.clone(), p)
+        }
+        Criterion::Certified => certified_design(
             &candidate_groups,
             &start,
             request.configs,
-            criterion,
+            EXCHANGE_PASSES,
             progress,
-        )
-    };
-    // Greedy order: every prefix is a greedy design of its own (for `matching_prefix`).
-    let sequence = greedy(request.criterion, progress);
-    let picked = match request.criterion {
-        Criterion::DOptimal => sequence.clone(),
-        // The greedy certified design and the D-optimal one, each improved by exchanges: the
-        // better of the two (greedy steps alone stop short of the D-optimal design's widths).
-        Criterion::Certified => [sequence.clone(), greedy(Criterion::DOptimal, &|| {})]
-            .map(|p| exchange(&candidate_groups, &start, &p, EXCHANGE_PASSES))
-            .into_iter()
-            .map(|p| {
-                let all: Vec<usize> = start.iter().chain(&p).copied().collect();
-                (linearized_geometric_mean(&candidate_groups, &all), p)
-            })
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .map(|(_, p)| p)
-            .unwrap_or_default(),
+        ),
     };
     let with = |extra: &[usize]| -> Vec<usize> { start.iter().chain(extra).copied().collect() };
     let random_rows: Vec<usize> = (first_random..configs.len()).collect();

@@ -326,6 +326,32 @@ pub fn exchange(groups: &[Group], start: &[usize], picked: &[usize], passes: usi
     picked
 }
 
+/// The design of the `certified` criterion: the greedy certified design and the greedy D-optimal
+/// one, each improved by [`exchange`] (`passes` sweeps), whichever has the smaller geometric mean
+/// of the first-order widths (greedy steps alone can stop short of the D-optimal design). Also
+/// returns the greedy certified order (every prefix a greedy design), for prefix questions.
+pub fn certified_design(
+    groups: &[Group],
+    start: &[usize],
+    count: usize,
+    passes: usize,
+    progress: &(dyn Fn() + Sync),
+) -> (Vec<usize>, Vec<usize>) {
+    let sequence = greedy_design(groups, start, count, Criterion::Certified, progress);
+    let d_optimal = greedy_design(groups, start, count, Criterion::DOptimal, &|| {});
+    let best = [sequence.clone(), d_optimal]
+        .map(|p| exchange(groups, start, &p, passes))
+        .into_iter()
+        .map(|p| {
+            let all: Vec<usize> = start.iter().chain(&p).copied().collect();
+            (linearized_geometric_mean(groups, &all), p)
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, p)| p)
+        .unwrap_or_default();
+    (best, sequence)
+}
+
 /// The larger gain; ties go to the lower candidate index (deterministic whatever the threads).
 fn better(a: (f64, usize), b: (f64, usize)) -> (f64, usize) {
     match a.0.total_cmp(&b.0) {
