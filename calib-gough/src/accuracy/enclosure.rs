@@ -150,25 +150,27 @@ impl AccuracyProblem {
         }
     }
 
-    /// An enclosure of leg `i`'s length error `ΔL_i(X, θ*)` over the poses of `x` and every
-    /// `θ*` in its box (see the module documentation).
-    pub fn leg_error(&self, i: usize, x: &PoseBox) -> Interval {
-        let leg = &self.legs[i];
-        let m = |x: &PoseBox| -> [Interval; 13] {
-            core::array::from_fn(|k| {
-                if k < 6 {
-                    x[k]
-                } else {
-                    Interval::point(leg.nominal[k - 6])
-                }
-            })
-        };
-        let e = LegLengthError.evaluate_interval(&leg.theta, &m(x));
+    /// The pose-and-nominal inputs `m = (X, θ̂_i)` of [`LegLengthError`] over the box `x`.
+    fn inputs(&self, i: usize, x: &PoseBox) -> [Interval; 13] {
+        let nominal = &self.legs[i].nominal;
+        core::array::from_fn(|k| {
+            if k < 6 {
+                x[k]
+            } else {
+                Interval::point(nominal[k - 6])
+            }
+        })
+    }
+
+    /// An enclosure of `ΔL_i(X, θ)` over the poses of `x` and the geometries `theta`: the
+    /// natural enclosure intersected with the mean-value form about the centre of both.
+    fn mean_value(&self, i: usize, x: &PoseBox, theta: &[Interval; 7]) -> Interval {
+        let e = LegLengthError.evaluate_interval(theta, &self.inputs(i, x));
         let xc = x.map(|v| v.mid());
-        let tc = leg.theta.map(|v| v.mid());
-        let mut mv = LegLengthError.residual_interval(&thin(&tc), &m(&thin(&xc)));
+        let tc = theta.map(|v| v.mid());
+        let mut mv = LegLengthError.residual_interval(&thin(&tc), &self.inputs(i, &thin(&xc)));
         for j in 0..7 {
-            mv += e.dx[j] * (leg.theta[j] - Interval::point(tc[j]));
+            mv += e.dx[j] * (theta[j] - Interval::point(tc[j]));
         }
         for k in 0..6 {
             mv += e.dm[k] * (x[k] - Interval::point(xc[k]));
@@ -181,32 +183,10 @@ impl AccuracyProblem {
         }
     }
 
-    /// The mean-value enclosure of `ΔL_i(X, θ)` over the poses of `x` and the (narrow) box of
-    /// geometries `theta`.
-    fn at_geometry(&self, i: usize, x: &PoseBox, theta: &[Interval; 7]) -> Interval {
-        let leg = &self.legs[i];
-        let m = |x: &PoseBox| -> [Interval; 13] {
-            core::array::from_fn(|k| {
-                if k < 6 {
-                    x[k]
-                } else {
-                    Interval::point(leg.nominal[k - 6])
-                }
-            })
-        };
-        let t = *theta;
-        let e = LegLengthError.evaluate_interval(&t, &m(x));
-        let xc = x.map(|v| v.mid());
-        let mut mv = LegLengthError.residual_interval(&t, &m(&thin(&xc)));
-        for k in 0..6 {
-            mv += e.dm[k] * (x[k] - Interval::point(xc[k]));
-        }
-        let both = e.value.intersection(mv);
-        if both.is_empty() || both.inf().is_nan() || both.sup().is_nan() {
-            e.value
-        } else {
-            both
-        }
+    /// An enclosure of leg `i`'s length error `ΔL_i(X, θ*)` over the poses of `x` and every
+    /// `θ*` in its box (see the module documentation).
+    pub fn leg_error(&self, i: usize, x: &PoseBox) -> Interval {
+        self.mean_value(i, x, &self.legs[i].theta)
     }
 
     /// An enclosure of `f_i(X) = max_{θ* ∈ Θ_i} |ΔL_i(X, θ*)|` over the poses of `x`.
@@ -219,14 +199,7 @@ impl AccuracyProblem {
     /// the overestimation of an interval over every parameter.
     pub fn leg_bounds(&self, i: usize, x: &PoseBox) -> Interval {
         let leg = &self.legs[i];
-        let m: [Interval; 13] = core::array::from_fn(|k| {
-            if k < 6 {
-                x[k]
-            } else {
-                Interval::point(leg.nominal[k - 6])
-            }
-        });
-        let e = LegLengthError.evaluate_interval(&leg.theta, &m);
+        let e = LegLengthError.evaluate_interval(&leg.theta, &self.inputs(i, x));
         let end = |up: bool| -> [Interval; 7] {
             core::array::from_fn(|j| {
                 let g = e.dx[j];
@@ -243,8 +216,8 @@ impl AccuracyProblem {
                 outer.hull(leg.vertex[usize::from(rising)][j])
             })
         };
-        let u = self.at_geometry(i, x, &end(true));
-        let d = -self.at_geometry(i, x, &end(false));
+        let u = self.mean_value(i, x, &end(true));
+        let d = -self.mean_value(i, x, &end(false));
         Interval::new(u.inf().max(d.inf()).max(0.0), u.sup().max(d.sup()).max(0.0))
     }
 
@@ -259,11 +232,9 @@ impl AccuracyProblem {
 
     /// `|ΔL_i|` at the pose `x` with the geometry `theta`, rounded down.
     fn error_at(&self, i: usize, x: &PoseVector, theta: &[Interval; 7]) -> f64 {
-        let leg = &self.legs[i];
-        let m: [Interval; 13] = core::array::from_fn(|k| {
-            Interval::point(if k < 6 { x[k] } else { leg.nominal[k - 6] })
-        });
-        LegLengthError.residual_interval(theta, &m).mig()
+        LegLengthError
+            .residual_interval(theta, &self.inputs(i, &thin(x)))
+            .mig()
     }
 
     /// The largest `|ΔL_i|` of the two extreme vertices at `x` (a floating-point estimate, for

@@ -226,6 +226,18 @@ fn legs_json(a: &Accuracy) -> Vec<serde_json::Value> {
 }
 
 impl AccuracyReport {
+    /// With the actuator error known: how far a leg's reached length can be from the length it
+    /// needs, anywhere in the workspace (the largest upper bound plus the actuator error).
+    pub fn reach(&self) -> Option<f64> {
+        let worst = self
+            .after
+            .leg_length
+            .iter()
+            .fold(0.0f64, |m, b| m.max(b.upper));
+        self.actuator
+            .map(|len| (Interval::point(worst) + Interval::point(len)).sup())
+    }
+
     /// The JSON of `gough accuracy --json` (schema version 1; cm and degrees): `workspace`,
     /// `leg_length` (per leg `upper`, `lower`, `ratio`, `converged`, `boxes` and `worst`: the
     /// pose as `p`, `axis`, `angle_deg` and `rodrigues`, the true geometry `theta` in the order
@@ -303,16 +315,10 @@ impl AccuracyReport {
                 ", leg readings in [{lo}, {hi}] cm"
             ))
         )];
-        if let Some(len) = self.actuator {
-            let worst = self
-                .after
-                .leg_length
-                .iter()
-                .fold(0.0f64, |m, b| m.max(b.upper));
+        if let (Some(len), Some(reach)) = (self.actuator, self.reach()) {
             paragraphs.push(format!(
                 "With the actuators' error (± {len} cm), a leg's reached length is within \
-                 {:.5} cm of the length it needs.",
-                worst + len
+                 {reach:.5} cm of the length it needs."
             ));
         }
         paragraphs.push(

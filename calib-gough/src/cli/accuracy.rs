@@ -173,16 +173,10 @@ pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
         }
         println!("{row}");
     }
-    if let Some(len) = r.actuator {
-        let worst = r
-            .after
-            .leg_length
-            .iter()
-            .fold(0.0f64, |m, b| m.max(b.upper));
+    if let (Some(len), Some(reach)) = (r.actuator, r.reach()) {
         println!(
-            "\nwith the actuators' error (± {len} cm), a leg's reached length is within {:.5} cm \
-             of the length it needs",
-            worst + len
+            "\nwith the actuators' error (± {len} cm), a leg's reached length is within \
+             {reach:.5} cm of the length it needs"
         );
     }
     print_worst(&r.after);
