@@ -78,6 +78,28 @@ pub fn builtin_robot() -> Vec<LegSpec> {
         .collect()
 }
 
+/// The configurations of a measurements file to extend (`--extend`), checked against the error
+/// bounds they need: Rodrigues data need `q` from an uncertainty file (`uncertainty_file`; the
+/// built-in bounds have none).
+pub fn extension(
+    data: crate::files::Measurements,
+    u: &Uncertainty,
+    uncertainty_file: Option<&std::path::Path>,
+) -> Result<Vec<Configuration>, String> {
+    match (data.rodrigues, uncertainty_file) {
+        (false, _) => Ok(data.configs),
+        (true, Some(file)) => {
+            crate::files::check_uncertainty(file, u, true).map_err(|e| e.to_string())?;
+            Ok(data.configs)
+        }
+        (true, None) => Err(
+            "--extend: the measurements give Rodrigues vectors (q1,q2,q3); give \
+                            --uncertainty with their half-width q"
+                .into(),
+        ),
+    }
+}
+
 /// The geometry the poses are planned at.
 fn nominal_legs(robot: &[LegSpec]) -> Vec<Leg> {
     robot.iter().map(|s| s.nominal).collect()

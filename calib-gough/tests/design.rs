@@ -131,6 +131,44 @@ fn the_command_writes_poses_in_the_workspace_and_extends_measured_data() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(stdout.contains("after the 21 measured"), "{stdout}");
     assert_eq!(read_poses(&next).unwrap().len(), 7);
+    // Rodrigues data need their q half-width: without --uncertainty, a clear error, no output.
+    let text = std::fs::read_to_string(data.join("measurements.csv")).unwrap();
+    let mut rodrigues = String::from("px,py,pz,q1,q2,q3,L1,L2,L3,L4,L5,L6\n");
+    for line in text.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|c| c.parse().unwrap()).collect();
+        let t = (v[6].to_radians() / 2.0).tan();
+        let row: Vec<String> = v[..3]
+            .iter()
+            .copied()
+            .chain(v[3..6].iter().map(|a| a * t))
+            .chain(v[7..].iter().copied())
+            .map(|x| format!("{x:?}"))
+            .collect();
+        rodrigues += &(row.join(",") + "\n");
+    }
+    let q_file = dir.join("rodrigues.csv");
+    std::fs::write(&q_file, rodrigues).unwrap();
+    let none = dir.join("none.csv");
+    let o = gough(&[
+        "design",
+        "--robot",
+        &f("robot.toml"),
+        "--extend",
+        q_file.to_str().unwrap(),
+        "--configs",
+        "3",
+        "--candidates",
+        "50",
+        "--out",
+        none.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("Rodrigues") && stderr.contains("--uncertainty"),
+        "{stderr}"
+    );
+    assert!(!none.exists());
 }
 
 #[test]

@@ -330,10 +330,10 @@ fn design(
         Some(p) => read_robot(&p).map_err(value_error)?,
         None => builtin_robot(),
     };
-    let u = match uncertainty {
+    let u = match &uncertainty {
         Some(p) => {
-            let u = read_uncertainty(&p).map_err(value_error)?;
-            check_uncertainty(&p, &u, false).map_err(value_error)?;
+            let u = read_uncertainty(p).map_err(value_error)?;
+            check_uncertainty(p, &u, false).map_err(value_error)?;
             u
         }
         None => Uncertainty::PAPER,
@@ -344,9 +344,8 @@ fn design(
     };
     let already = match extend {
         Some(p) => {
-            read_measurements(&p, robot.len())
-                .map_err(value_error)?
-                .configs
+            let data = read_measurements(&p, robot.len()).map_err(value_error)?;
+            calib_gough::design::extension(data, &u, uncertainty.as_deref()).map_err(value_error)?
         }
         None => Vec::new(),
     };

@@ -384,9 +384,16 @@ pub struct MapSlab {
 pub fn error_map(robot: &[LegSpec], workspace: &Workspace, n: usize, slabs: usize) -> Vec<MapSlab> {
     let problem = AccuracyProblem::new(robot, workspace);
     let domain = problem.domain();
+    // The last edge is the domain's end exactly: the cells cover the domain.
     let edges = |v: Interval, k: usize| -> Vec<f64> {
         (0..=k)
-            .map(|i| v.inf() + (v.sup() - v.inf()) * i as f64 / k as f64)
+            .map(|i| {
+                if i == k {
+                    v.sup()
+                } else {
+                    v.inf() + (v.sup() - v.inf()) * i as f64 / k as f64
+                }
+            })
             .collect()
     };
     let (xe, ye, ze) = (

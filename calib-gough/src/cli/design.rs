@@ -1,8 +1,8 @@
 //! `gough design`.
 
 use calib_gough::design::{
-    builtin_robot, certified_widths, criterion_name, geometric_mean, plan, poses_csv, Design,
-    DesignRequest, Plan,
+    builtin_robot, certified_widths, criterion_name, extension, geometric_mean, plan, poses_csv,
+    Design, DesignRequest, Plan,
 };
 use calib_gough::files::{
     check_uncertainty, read_measurements, read_robot, read_uncertainty, LegSpec,
@@ -74,7 +74,11 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         None => Workspace::SIMULATOR,
     };
     let already = match &a.extend {
-        Some(p) => read_measurements(p, robot.len())?.configs,
+        Some(p) => extension(
+            read_measurements(p, robot.len())?,
+            &u,
+            a.uncertainty.as_deref(),
+        )?,
         None => Vec::new(),
     };
     let request = DesignRequest {
