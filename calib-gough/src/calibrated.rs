@@ -5,7 +5,7 @@
 use crate::certification::LegResult;
 use crate::files::LegSpec;
 use crate::geometry::Leg;
-use calib_core::Interval;
+use calib_pipeline::calibrated::midpoint_and_radius;
 use std::fmt::Write as _;
 
 /// The calibrated legs: per leg, the outer box's midpoint and a radius (rounded up, plus a
@@ -31,17 +31,7 @@ pub fn calibrated_robot(robot: &[LegSpec], results: &[LegResult]) -> Result<Vec<
                 value[j] = nominal[j];
                 continue;
             }
-            let v = outer[j].mid();
-            let (lo, hi) = (
-                Interval::point(outer[j].inf()),
-                Interval::point(outer[j].sup()),
-            );
-            let reach = (Interval::point(v) - lo)
-                .sup()
-                .max((hi - Interval::point(v)).sup());
-            // Shortest round-trip decimals are within half an ulp of the doubles written.
-            value[j] = v;
-            radius[j] = (reach + 4.0 * f64::EPSILON * v.abs().max(reach)).next_up();
+            (value[j], radius[j]) = midpoint_and_radius(outer[j]);
         }
         out[r.leg] = LegSpec {
             nominal: Leg::from_params(&value),

@@ -8,6 +8,7 @@
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod calibrated;
 pub mod design;
 mod error;
 pub mod html;
