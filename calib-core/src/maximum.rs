@@ -56,6 +56,14 @@ pub trait Objective<const N: usize> {
     fn improve(&self, _x: &[f64; N]) -> Option<([f64; N], f64)> {
         None
     }
+
+    /// The widths boxes are split against: each step halves the side widest relative to these.
+    /// By default the domain's own (every coordinate refined in proportion to its range); an
+    /// objective whose coordinates share a unit (angles, say) may return equal widths so that
+    /// they are refined to the same absolute size.
+    fn split_reference(&self, domain: &[Interval; N]) -> [Interval; N] {
+        *domain
+    }
 }
 
 /// When to stop [`maximize`].
@@ -192,6 +200,7 @@ pub fn maximize<O: Objective<N>, const N: usize>(
     out.boxes = 1;
     // Boxes too small to split keep their bound for good: the largest such bound, and its box.
     let mut settled: Option<Queued<N>> = None;
+    let reference = f.split_reference(domain);
     loop {
         let top = match (queue.peek(), &settled) {
             (Some(q), Some(s)) if s.sup > q.sup => s,
@@ -218,7 +227,7 @@ pub fn maximize<O: Objective<N>, const N: usize>(
             // Only settled boxes are left and the gap is still open: nothing more to do.
             return out;
         };
-        let Some((l, r)) = split_widest(&b, domain) else {
+        let Some((l, r)) = split_widest(&b, &reference) else {
             if settled.as_ref().is_none_or(|s| sup > s.sup) {
                 settled = Some(Queued { sup, b });
             }
