@@ -239,14 +239,14 @@ fn dispatch(
 }
 
 /// The most joints an arm may have (the model every arm is padded to).
-const MAX_JOINTS: usize = 7;
+pub(crate) const MAX_JOINTS: usize = 7;
 /// Parameters of the padded model.
-const NX: usize = 5 * MAX_JOINTS + 9;
+pub(crate) const NX: usize = 5 * MAX_JOINTS + 9;
 /// Measured quantities of the padded model.
-const NM: usize = MAX_JOINTS + 3;
+pub(crate) const NM: usize = MAX_JOINTS + 3;
 
 /// The padded model's index of each of the arm's parameters (model order).
-fn padded_index(joints: usize) -> Vec<usize> {
+pub(crate) fn padded_index(joints: usize) -> Vec<usize> {
     let shift = 5 * (MAX_JOINTS - joints);
     (0..params::count(joints))
         .map(|j| if j < 5 * joints { j } else { j + shift })

@@ -6,15 +6,20 @@
 //! and units ([`params`]), and the conversions between the files' degrees and the model's radians
 //! ([`units`]); the files read ([`files`]) and written ([`mod@write`]), simulated data ([`mod@simulate`]),
 //! and the arm's use of the robot-agnostic pipeline ([`certification`]: identifiability,
-//! certification, least squares, in the files' units). The `arm` binary is the command line.
+//! certification, least squares, in the files' units); the calibrated robot file
+//! ([`calibrated`]) and the accuracy certificate over a joint box ([`accuracy`], [`joint_space`]).
+//! The `arm` binary is the command line.
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 #![allow(clippy::needless_range_loop)]
 
+pub mod accuracy;
+pub mod calibrated;
 pub mod certificate;
 pub mod certification;
 pub mod design;
 pub mod files;
+pub mod joint_space;
 pub mod model;
 pub mod params;
 pub mod robot;

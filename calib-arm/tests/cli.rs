@@ -315,3 +315,103 @@ fn bad_files_name_file_line_and_field_and_write_nothing() {
     );
     assert!(!json.exists());
 }
+
+#[test]
+fn the_calibrated_arm_contains_the_certified_box_and_its_accuracy_is_bracketed() {
+    let dir = tempdir("accuracy");
+    simulated(&dir, 12, &[]);
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let o = certify(
+        &dir,
+        &[
+            "--json",
+            &p("report.json"),
+            "--write-calibrated",
+            &p("cal.toml"),
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(p("report.json")).expect("report"))
+            .expect("json");
+    let cal = calib_arm::files::read_robot(Path::new(&p("cal.toml"))).expect("calibrated file");
+    let prior = calib_arm::files::read_robot(Path::new(&p("robot.toml"))).expect("robot");
+    for (((param, v), r), r0) in report["parameters"]
+        .as_array()
+        .expect("parameters")
+        .iter()
+        .zip(cal.nominal())
+        .zip(cal.radius())
+        .zip(prior.radius())
+    {
+        let (lo, hi) = (
+            param["outer"][0].as_f64().expect("lo"),
+            param["outer"][1].as_f64().expect("hi"),
+        );
+        if r0 > 0.0 {
+            assert!(
+                v - r <= lo && hi <= v + r && r <= r0 * (1.0 + 1e-9),
+                "{param}: {v} ± {r}"
+            );
+        } else {
+            assert_eq!(r, 0.0);
+        }
+    }
+    std::fs::write(
+        p("joints.toml"),
+        "q1 = [-10.0, 10.0]\nq2 = [-100.0, -80.0]\nq3 = [80.0, 100.0]\n",
+    )
+    .expect("write");
+    let accuracy = |joints: &str, json: &str| {
+        arm(&[
+            "accuracy",
+            "--robot",
+            &p("cal.toml"),
+            "--before",
+            &p("robot.toml"),
+            "--joints",
+            &p(joints),
+            "--uncertainty",
+            &p("uncertainty.toml"),
+            "--max-boxes",
+            "3000",
+            "--json",
+            &p(json),
+        ])
+    };
+    let o = accuracy("joints.toml", "accuracy.json");
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("calibration reduced the worst tool-point error"));
+    let a: Value =
+        serde_json::from_str(&std::fs::read_to_string(p("accuracy.json")).expect("accuracy"))
+            .expect("json");
+    for key in ["position", "before"] {
+        let (upper, lower) = (
+            a[key]["upper"].as_f64().expect("upper"),
+            a[key]["lower"].as_f64().expect("lower"),
+        );
+        assert!(upper >= lower && lower > 0.0, "{key}: {upper} {lower}");
+        assert_eq!(
+            a[key]["worst"]["joints_deg"].as_array().map(Vec::len),
+            Some(3)
+        );
+    }
+    // The improvement is the proved factor: before's lower bound over after's upper bound.
+    let factor = a["before"]["lower"].as_f64().expect("lower")
+        / a["position"]["upper"].as_f64().expect("upper");
+    assert_eq!(a["improvement"].as_f64(), Some(factor), "{a}");
+    // A bad joint space: file, line and field named, nothing written.
+    std::fs::write(
+        p("bad.toml"),
+        "q1 = [-10.0, 10.0]\nq2 = [-80.0, -100.0]\nq3 = [80.0, 100.0]\n",
+    )
+    .expect("write");
+    let o = accuracy("bad.toml", "never.json");
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        err.contains("bad.toml") && err.contains("line 2") && err.contains("q2"),
+        "{err}"
+    );
+    assert!(!dir.join("never.json").exists());
+}

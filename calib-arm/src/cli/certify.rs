@@ -4,13 +4,15 @@ use super::output::{
     file_name, print_identifiability, print_outcome, spinner, write_certificate, write_json,
 };
 use super::DataFiles;
+use calib_arm::calibrated::calibrated_arm;
 use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{certify_request, CertifyRequest};
 use calib_arm::files::{parse_measurements, parse_robot, parse_uncertainty};
+use calib_arm::write::robot_toml;
 use calib_core::Status;
 use calib_pipeline::html::{command_line, now, Input};
-use calib_pipeline::read_text;
 use calib_pipeline::verdict::{self, ConfigurationNames};
+use calib_pipeline::{read_text, write_atomically};
 use calib_pipeline::{Depth, OutlierBudget};
 use std::path::PathBuf;
 
@@ -54,6 +56,13 @@ pub struct Args {
     /// SHA-256 and the settings.
     #[arg(long, value_name = "FILE")]
     report: Option<PathBuf>,
+    /// Write the calibrated robot file a controller loads: each free parameter at the midpoint
+    /// of its certified outer box, radius = the outer half-width (rounded up), so its boxes
+    /// contain the certified ones; fixed parameters as in --robot. `arm accuracy --robot FILE`
+    /// then bounds the tool-point error. Refused (nothing written) when the data are proved
+    /// inconsistent.
+    #[arg(long, value_name = "FILE")]
+    write_calibrated: Option<PathBuf>,
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
@@ -91,6 +100,19 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("{}", verdict::auto_outliers(q, run.outcome.status));
     }
     print_outcome(&run, &names, q);
+    if let Some(path) = &a.write_calibrated {
+        let calibrated = calibrated_arm(&arm, run.outcome.outer.as_deref())?;
+        let comment = format!(
+            "# calibrated by certicalib {} from {} and {}: each free parameter at the midpoint of\n\
+             # its certified outer box, radius = its outer half-width\n",
+            calib_pipeline::html::VERSION,
+            a.files.robot.display(),
+            a.files.measurements.display()
+        );
+        write_atomically(path, &(comment + &robot_toml(&calibrated)))
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        println!("calibrated robot written to {}", path.display());
+    }
     if let Some(path) = &a.json {
         write_json(path, &run, &names, q)?;
         println!("wrote {}", path.display());

@@ -1,5 +1,6 @@
 //! The `arm` subcommands.
 
+mod accuracy;
 mod certify;
 mod demo;
 mod lsq;
@@ -71,6 +72,22 @@ enum Command {
     ///   arm simulate --configs 50 --seed 7 --out data/ --outlier 12:0.5
     #[command(verbatim_doc_comment)]
     Simulate(simulate::Args),
+    /// The accuracy certificate: how far the tool point can be from where the controller
+    /// computes it, anywhere in a joint-space box, for every geometry the robot file's box allows
+    /// and every joint error within the bound. A bracket: an upper bound proved over the whole
+    /// box and a lower bound attained by an explicit configuration and geometry.
+    ///
+    /// Example:
+    ///   arm certify --robot robot.toml --measurements measurements.csv \
+    ///               --uncertainty uncertainty.toml --write-calibrated calibrated.toml
+    ///   arm accuracy --robot calibrated.toml --before robot.toml \
+    ///                --joints joints.toml --uncertainty uncertainty.toml --json accuracy.json
+    ///
+    /// joints.toml: q1 = [lo, hi], q2 = [lo, hi], … (degrees). The bracket tightens as the joint
+    /// box shrinks: over a whole ±170° space the upper bound may stay several times the lower;
+    /// over the cell a task uses it is much closer (see --max-boxes).
+    #[command(verbatim_doc_comment)]
+    Accuracy(accuracy::Args),
 }
 
 /// The data files every command reads.
@@ -93,5 +110,6 @@ pub fn run(cli: Cli) -> Result<i32, Box<dyn std::error::Error>> {
         Command::Certify(a) => certify::run(a),
         Command::Lsq(a) => lsq::run(a),
         Command::Simulate(a) => simulate::run(a),
+        Command::Accuracy(a) => accuracy::run(a),
     }
 }

@@ -1,0 +1,187 @@
+//! `arm accuracy`.
+
+use super::output::spinner;
+use calib_arm::accuracy::{
+    certify_tool_accuracy, ToolAccuracyProblem, ToolAccuracyReport, ToolAccuracySettings,
+    ToolBracket,
+};
+use calib_arm::certification::names;
+use calib_arm::files::{read_robot, read_uncertainty};
+use calib_arm::joint_space::{read_joint_space, JointSpace};
+use calib_arm::params;
+use calib_arm::simulate::JOINT_LIMIT_DEG;
+use calib_pipeline::write_atomically;
+use std::path::PathBuf;
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The robot file the controller loads (e.g. from `arm certify --write-calibrated`): its
+    /// values are what the controller computes with, its radii bound the real geometry.
+    #[arg(long, value_name = "FILE")]
+    robot: PathBuf,
+    /// The joint space: q1 = [lo, hi], q2 = …, one range per joint (degrees). Default: every
+    /// joint within ±170° (the simulator's).
+    #[arg(long, value_name = "FILE")]
+    joints: Option<PathBuf>,
+    /// The error bounds (uncertainty.toml): joint_deg, how far a joint may be from its command,
+    /// widens every theta_i. Default: exact joints.
+    #[arg(long, value_name = "FILE")]
+    uncertainty: Option<PathBuf>,
+    /// The robot before calibration (design nominal with its prior box), for the improvement
+    /// calibration brought.
+    #[arg(long, value_name = "FILE")]
+    before: Option<PathBuf>,
+    /// Stop at upper <= (1 + TOL) × lower.
+    #[arg(long, value_name = "TOL", default_value_t = 0.04)]
+    tolerance: f64,
+    /// Examine at most this many boxes per bound (the bracket stays proved; its ratio is
+    /// reported).
+    #[arg(long, value_name = "N", default_value_t = 100_000)]
+    max_boxes: usize,
+    /// Write the JSON report to this file.
+    #[arg(long, value_name = "FILE")]
+    json: Option<PathBuf>,
+}
+
+pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    if !(a.tolerance.is_finite() && a.tolerance > 0.0) {
+        return Err(format!("--tolerance {}: expected a number > 0", a.tolerance).into());
+    }
+    if a.max_boxes == 0 {
+        return Err("--max-boxes 0: expected at least 1".into());
+    }
+    let arm = read_robot(&a.robot)?;
+    let joints = arm.joints.len();
+    let before = a.before.as_deref().map(read_robot).transpose()?;
+    if let Some(b) = &before {
+        if b.joints.len() != joints {
+            return Err(format!(
+                "--before has {} joints; --robot has {joints}",
+                b.joints.len()
+            )
+            .into());
+        }
+    }
+    let space = match &a.joints {
+        Some(path) => read_joint_space(path, joints)?,
+        None => JointSpace::simulator(joints),
+    };
+    let joint_deg = a
+        .uncertainty
+        .as_deref()
+        .map(read_uncertainty)
+        .transpose()?
+        .map_or(0.0, |u| u.joint_deg);
+    let settings = ToolAccuracySettings {
+        rel_tol: a.tolerance,
+        max_boxes: a.max_boxes,
+    };
+    let after_problem = ToolAccuracyProblem::new(&arm, &space, joint_deg)?;
+    let before_problem = before
+        .as_ref()
+        .map(|b| ToolAccuracyProblem::new(b, &space, joint_deg))
+        .transpose()?;
+    let bar = spinner(&format!(
+        "bounding the tool-point error over the joint space ({} boxes at most per robot)",
+        a.max_boxes
+    ));
+    let (after, before) = std::thread::scope(|s| {
+        let b = s.spawn(|| {
+            before_problem
+                .as_ref()
+                .map(|p| certify_tool_accuracy(p, &settings))
+        });
+        let after = certify_tool_accuracy(&after_problem, &settings);
+        (after, b.join().ok().flatten())
+    });
+    bar.finish_and_clear();
+    let report = ToolAccuracyReport {
+        space,
+        joint_deg,
+        after,
+        before,
+    };
+    print_report(&report, &a);
+    if let Some(path) = &a.json {
+        let units: Vec<params::Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
+        write_atomically(path, &report.to_json(&names(joints), &units))
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
+    Ok(0)
+}
+
+fn print_report(r: &ToolAccuracyReport, a: &Args) {
+    let space: Vec<String> = r
+        .space
+        .ranges_deg
+        .iter()
+        .enumerate()
+        .map(|(k, [lo, hi])| format!("q{} [{lo}, {hi}]", k + 1))
+        .collect();
+    println!(
+        "tool-point error |p(q; θ*) - p(q; θ̂)| (mm, tracker frame) over the joint space {}°{}, \
+         every geometry θ* in the robot file's box, joint error ±{}°:",
+        space.join(", "),
+        if a.joints.is_none() {
+            format!(" (the default: ±{JOINT_LIMIT_DEG}° per joint)")
+        } else {
+            String::new()
+        },
+        r.joint_deg
+    );
+    println!(
+        "  {:<8} {:>14} {:>16} {:>7} {:>9} {:>8}",
+        "robot", "upper (proved)", "lower (attained)", "ratio", "boxes", "seconds"
+    );
+    let row = |name: &str, b: &ToolBracket| {
+        println!(
+            "  {:<8} {:>14.4} {:>16.4} {:>7.3} {:>9} {:>8.2}{}",
+            name,
+            b.upper,
+            b.lower,
+            b.ratio(),
+            b.boxes,
+            b.seconds,
+            if b.converged {
+                ""
+            } else {
+                "  (box budget reached: raise --max-boxes to tighten)"
+            }
+        )
+    };
+    row("after", &r.after);
+    if let Some(b) = &r.before {
+        row("before", b);
+    }
+    if let Some(f) = r.improvement() {
+        println!(
+            "calibration reduced the worst tool-point error at least {f:.2}× (before's lower bound \
+             / after's upper bound, both proved)"
+        );
+    }
+    if let Some(w) = &r.after.worst {
+        let q: Vec<String> = w.joints_deg.iter().map(|v| format!("{v:.3}")).collect();
+        println!(
+            "worst instance found: q = ({})°, error ({:.4}, {:.4}, {:.4}) mm, |error| >= {:.4} mm",
+            q.join(", "),
+            w.error[0],
+            w.error[1],
+            w.error[2],
+            w.value
+        );
+    }
+    if !r.after.converged {
+        let f: Vec<String> = r
+            .after
+            .frontier_deg
+            .iter()
+            .enumerate()
+            .map(|(k, [lo, hi])| format!("q{} [{lo:.1}, {hi:.1}]", k + 1))
+            .collect();
+        println!(
+            "a larger error could still hide near {}° (the box giving the upper bound)",
+            f.join(", ")
+        );
+    }
+}

@@ -1,0 +1,149 @@
+//! The joint-space file `joints.toml` (degrees): the joint readings a controller may command, one
+//! range per joint, base to flange.
+//!
+//! ```toml
+//! q1 = [-170.0, 170.0]
+//! q2 = [-170.0, 170.0]
+//! q3 = [-150.0, 150.0]
+//! q4 = [-170.0, 170.0]
+//! q5 = [-120.0, 120.0]
+//! q6 = [-170.0, 170.0]
+//! ```
+//!
+//! Keys `q1..qN` are the measurement file's column names; every joint of the arm needs one.
+
+use crate::simulate::JOINT_LIMIT_DEG;
+use calib_pipeline::{line_at, read_text, toml_error, DataError, MAX_MAGNITUDE};
+use std::collections::BTreeMap;
+use std::path::Path;
+use toml::Spanned;
+
+/// The joint ranges (degrees), base to flange.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointSpace {
+    /// `[lo, hi]` per joint, degrees.
+    pub ranges_deg: Vec<[f64; 2]>,
+}
+
+impl JointSpace {
+    /// The joint space of the simulator (`arm simulate`): every joint within ±170°.
+    pub fn simulator(joints: usize) -> JointSpace {
+        JointSpace {
+            ranges_deg: vec![[-JOINT_LIMIT_DEG, JOINT_LIMIT_DEG]; joints],
+        }
+    }
+}
+
+const FORMAT: &str = "expected q1 = [lo, hi], q2 = [lo, hi], … (degrees), one range per joint";
+
+/// Reads `joints.toml` for an arm with `joints` joints (see [`parse_joint_space`]).
+pub fn read_joint_space(file: &Path, joints: usize) -> Result<JointSpace, DataError> {
+    parse_joint_space(file, &read_text(file)?, joints)
+}
+
+/// Parses `joints.toml`: keys `q1..qN` (`N = joints`), each `[lo, hi]` in degrees with
+/// `lo <= hi`, finite. Errors name the file, the line and the field.
+pub fn parse_joint_space(file: &Path, text: &str, joints: usize) -> Result<JointSpace, DataError> {
+    let table: BTreeMap<Spanned<String>, Spanned<[f64; 2]>> =
+        toml::from_str(text).map_err(|e| toml_error(file, text, &e, FORMAT))?;
+    let err = |start: usize, field: &str, message: String| {
+        DataError::new(file, Some(line_at(text, start)), Some(field), message)
+    };
+    let mut ranges = vec![None; joints];
+    for (key, value) in &table {
+        let name = key.get_ref();
+        let index = name
+            .strip_prefix('q')
+            .and_then(|k| k.parse::<usize>().ok())
+            .filter(|k| (1..=joints).contains(k) && name == &format!("q{k}"));
+        let Some(k) = index else {
+            return Err(err(
+                key.span().start,
+                name,
+                format!("unknown key: the arm has {joints} joints, q1 to q{joints}"),
+            ));
+        };
+        let [lo, hi] = *value.get_ref();
+        let finite = |t: f64| t.is_finite() && t.abs() <= MAX_MAGNITUDE;
+        if !(finite(lo) && finite(hi)) {
+            return Err(err(
+                value.span().start,
+                name,
+                format!("expected finite numbers of magnitude below {MAX_MAGNITUDE:e}"),
+            ));
+        }
+        if lo > hi {
+            return Err(err(
+                value.span().start,
+                name,
+                format!("[{lo}, {hi}]: expected [lo, hi] with lo <= hi"),
+            ));
+        }
+        ranges[k - 1] = Some([lo, hi]);
+    }
+    let ranges_deg = ranges
+        .into_iter()
+        .enumerate()
+        .map(|(k, r)| {
+            r.ok_or_else(|| {
+                DataError::new(
+                    file,
+                    None,
+                    Some(&format!("q{}", k + 1)),
+                    format!("missing: {FORMAT}"),
+                )
+            })
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(JointSpace { ranges_deg })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<JointSpace, String> {
+        parse_joint_space(Path::new("joints.toml"), text, 3).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn reads_one_range_per_joint() {
+        let s = parse("q1 = [-10.0, 10.0]\nq3 = [0, 5.5]\nq2 = [-1.0, 2.0]\n").unwrap();
+        assert_eq!(s.ranges_deg, vec![[-10.0, 10.0], [-1.0, 2.0], [0.0, 5.5]]);
+    }
+
+    #[test]
+    fn bad_files_name_the_line_and_the_field() {
+        for (text, line, field) in [
+            (
+                "q1 = [-1.0, 1.0]\nq2 = [2.0, 1.0]\nq3 = [0.0, 1.0]\n",
+                "line 2",
+                "q2",
+            ),
+            (
+                "q1 = [-1.0, 1.0]\nq2 = [0.0, 1.0]\nq4 = [0.0, 1.0]\n",
+                "line 3",
+                "q4",
+            ),
+            (
+                "q1 = [-1.0, 1.0]\nq2 = [0.0, nan]\nq3 = [0.0, 1.0]\n",
+                "line 2",
+                "q2",
+            ),
+            (
+                "q1 = [-1.0, 1.0]\nq2 = [0.0, 1.0]\nq3 = 4\n",
+                "line 3",
+                "q3",
+            ),
+            ("q1 = [-1.0, 1.0]\nq2 = [0.0, 1.0]\n", "joints.toml", "q3"),
+            (
+                "q1 = [-1.0, 1.0]\nq02 = [0.0, 1.0]\nq3 = [0.0, 1.0]\n",
+                "line 2",
+                "q02",
+            ),
+        ] {
+            let e = parse(text).unwrap_err();
+            assert!(e.contains(line) && e.contains(field), "{text}: {e}");
+        }
+    }
+}

@@ -1,0 +1,172 @@
+//! The tool-point accuracy certificate against an independent forward kinematics: on random
+//! arms, joint boxes and joint errors, no sampled error exceeds the proved upper bound, the worst
+//! instance is rechecked and lies in the boxes, and a single configuration is bracketed tightly.
+
+use calib_arm::accuracy::{certify_tool_accuracy, ToolAccuracyProblem, ToolAccuracySettings};
+use calib_arm::joint_space::JointSpace;
+use calib_arm::params::{self, Unit};
+use calib_arm::{builtin_arm, Arm};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+
+mod common;
+use common::forward;
+
+/// Parameters in the model's units (radians for angles).
+fn to_model(arm: &Arm, values: &[f64]) -> Vec<f64> {
+    params::names(arm.joints.len())
+        .iter()
+        .zip(values)
+        .map(|((_, u), v)| match u {
+            Unit::Deg => v.to_radians(),
+            Unit::Mm => *v,
+        })
+        .collect()
+}
+
+/// Whether parameter `j` is a joint's `theta` (where the joint error goes).
+fn is_theta(arm: &Arm, j: usize) -> bool {
+    j < 5 * arm.joints.len() && j % 5 == 0
+}
+
+fn norm(e: [f64; 3]) -> f64 {
+    (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt()
+}
+
+/// The built-in arm with every prior half-width scaled by `s`.
+fn scaled(s: f64) -> Arm {
+    let mut arm = builtin_arm();
+    for j in &mut arm.joints {
+        j.radius = j.radius.map(|r| r * s);
+    }
+    arm.base_radius = arm.base_radius.map(|r| r * s);
+    arm.tool_radius = arm.tool_radius.map(|r| r * s);
+    arm
+}
+
+#[test]
+fn the_upper_bound_holds_and_the_worst_instance_is_rechecked() {
+    let mut rng = StdRng::seed_from_u64(11);
+    for case in 0..5 {
+        let arm = scaled(rng.random_range(0.05..1.5));
+        let ranges_deg: Vec<[f64; 2]> = (0..arm.joints.len())
+            .map(|_| {
+                let c: f64 = rng.random_range(-150.0..150.0);
+                let h: f64 = rng.random_range(1.0..20.0);
+                [c - h, c + h]
+            })
+            .collect();
+        let joint_deg = [0.0, 0.001, 0.01][case % 3];
+        let space = JointSpace { ranges_deg };
+        let problem = ToolAccuracyProblem::new(&arm, &space, joint_deg).expect("problem");
+        let b = certify_tool_accuracy(
+            &problem,
+            &ToolAccuracySettings {
+                rel_tol: 0.04,
+                max_boxes: 1500,
+            },
+        );
+        assert!(
+            b.upper.is_finite() && b.upper >= b.lower && b.lower > 0.0,
+            "{b:?}"
+        );
+        let (nominal, radius) = (arm.nominal(), arm.radius());
+        let controller = to_model(&arm, &nominal);
+        // Every geometry of the box, every joint error: random points and random vertices.
+        let mut largest: f64 = 0.0;
+        for k in 0..400 {
+            let q: Vec<f64> = space
+                .ranges_deg
+                .iter()
+                .map(|[lo, hi]| rng.random_range(*lo..=*hi).to_radians())
+                .collect();
+            let real: Vec<f64> = (0..nominal.len())
+                .map(|j| {
+                    let r = radius[j] + if is_theta(&arm, j) { joint_deg } else { 0.0 };
+                    let t: f64 = if k % 2 == 0 {
+                        rng.random_range(-1.0..=1.0)
+                    } else if rng.random_bool(0.5) {
+                        1.0
+                    } else {
+                        -1.0
+                    };
+                    nominal[j] + t * r
+                })
+                .collect();
+            let (p, p0) = (
+                forward(&to_model(&arm, &real), &q),
+                forward(&controller, &q),
+            );
+            let e = norm([p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]]);
+            largest = largest.max(e);
+            assert!(
+                e <= b.upper * (1.0 + 1e-9) + 1e-9,
+                "case {case}: error {e} above the proved {}",
+                b.upper
+            );
+        }
+        // The instance, rechecked by matrix products, inside the joint and geometry boxes.
+        let w = b.worst.as_ref().expect("an instance");
+        let theta: Vec<f64> = w.theta.iter().map(|v| v.mid()).collect();
+        let (p, p0) = (
+            forward(&theta, &w.joints_rad),
+            forward(&controller, &w.joints_rad),
+        );
+        let e = norm([p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]]);
+        assert!(
+            e >= w.value * (1.0 - 1e-9),
+            "case {case}: {e} < {}",
+            w.value
+        );
+        assert_eq!(w.value, b.lower);
+        for (q, [lo, hi]) in w.joints_deg.iter().zip(&space.ranges_deg) {
+            assert!(*lo - 1e-9 <= *q && *q <= *hi + 1e-9, "case {case}: q {q}");
+        }
+        for (j, (t, u)) in theta
+            .iter()
+            .zip(params::names(arm.joints.len()))
+            .enumerate()
+        {
+            let r = radius[j] + if is_theta(&arm, j) { joint_deg } else { 0.0 };
+            let v = match u.1 {
+                Unit::Deg => t.to_degrees(),
+                Unit::Mm => *t,
+            };
+            assert!(
+                (v - nominal[j]).abs() <= r * (1.0 + 1e-9) + 1e-9,
+                "case {case}: {} = {v} outside {} ± {r}",
+                u.0,
+                nominal[j]
+            );
+        }
+        // The search finds at least what random sampling does.
+        assert!(
+            b.lower >= 0.97 * largest,
+            "case {case}: lower {} below a sampled {largest}",
+            b.lower
+        );
+    }
+}
+
+#[test]
+fn a_single_configuration_is_bracketed_tightly() {
+    // One configuration: only the direction is searched, so the bracket closes.
+    let arm = scaled(1.0);
+    let space = JointSpace {
+        ranges_deg: [10.0, -80.0, 95.0, -100.0, 85.0, 30.0]
+            .iter()
+            .map(|q| [*q, *q])
+            .collect(),
+    };
+    let problem = ToolAccuracyProblem::new(&arm, &space, 0.001).expect("problem");
+    let b = certify_tool_accuracy(&problem, &ToolAccuracySettings::default());
+    assert!(b.converged && b.ratio() <= 1.05, "{b:?}");
+}
+
+#[test]
+fn a_joint_space_of_the_wrong_size_is_refused() {
+    let arm = builtin_arm();
+    let e = ToolAccuracyProblem::new(&arm, &JointSpace::simulator(5), 0.0).unwrap_err();
+    assert!(e.contains("5 ranges") && e.contains("6 joints"), "{e}");
+    assert!(ToolAccuracyProblem::new(&arm, &JointSpace::simulator(6), f64::NAN).is_err());
+}
