@@ -54,6 +54,8 @@ pub struct ToolAccuracyProblem {
     domain: [Interval; D],
     /// The joint box in radians moved inward past rounding (where instances are taken).
     inner: [[f64; 2]; MAX_JOINTS],
+    /// A joint whose range is one angle: the enclosure of that angle in radians.
+    fixed_joint: [Option<Interval>; MAX_JOINTS],
 }
 
 /// An explicit instance of the tool-point error.
@@ -61,7 +63,8 @@ pub struct ToolAccuracyProblem {
 pub struct ToolInstance {
     /// The commanded joints (degrees, to the nearest double of the radians used).
     pub joints_deg: Vec<f64>,
-    /// The commanded joints in radians, inside the joint box.
+    /// The commanded joints in radians, inside the joint box (a joint fixed at one angle: the
+    /// nearest double; the error is then enclosed over the angle's enclosure).
     pub joints_rad: Vec<f64>,
     /// The true geometry `θ*` in model order and units (radians), the joint error included in
     /// `theta_i`: points inside the box, a fixed angle as the enclosure of its value.
@@ -183,6 +186,7 @@ impl ToolAccuracyProblem {
             vertex: [[Interval::ZERO; NX]; 2],
             domain: [Interval::ZERO; D],
             inner: [[0.0; 2]; MAX_JOINTS],
+            fixed_joint: [None; MAX_JOINTS],
         };
         for (j, &p) in index.iter().enumerate() {
             let (v, unit) = (values[j], units[j]);
@@ -192,8 +196,8 @@ impl ToolAccuracyProblem {
             } else {
                 0.0
             };
-            let r = (Interval::point(radius[j]) + Interval::point(extra)).sup();
-            let file_box = Interval::mid_rad(v, r);
+            let sum = Interval::point(radius[j]) + Interval::point(extra);
+            let file_box = Interval::mid_rad(v, sum.sup());
             let model_box = match unit {
                 Unit::Deg => deg_to_rad(file_box),
                 Unit::Mm => file_box,
@@ -205,7 +209,8 @@ impl ToolAccuracyProblem {
             out.theta[p] = model_box.hull(Interval::point(out.nominal[p]));
             out.spread[p] = out.theta[p] - Interval::point(out.nominal[p]);
             for (k, up) in [false, true].into_iter().enumerate() {
-                out.vertex[k][p] = inward_end(v, r, up, unit);
+                // Vertices stay inside the true box: its half-width rounded down.
+                out.vertex[k][p] = inward_end(v, sum.inf(), up, unit);
             }
         }
         for (i, &[lo, hi]) in space.ranges_deg.iter().enumerate() {
@@ -216,8 +221,9 @@ impl ToolAccuracyProblem {
             out.domain[i] = Interval::new(l.inf(), h.sup());
             out.inner[i] = [l.sup().min(h.inf()), h.inf().max(l.sup())];
             if lo == hi {
-                // A fixed joint: the enclosure of its value (a point would miss it).
+                // A fixed joint: evaluated over the enclosure of its value (no double is it).
                 out.inner[i] = [l.mid(); 2];
+                out.fixed_joint[i] = Some(l);
             }
         }
         let pi = Interval::PI.sup();
@@ -267,7 +273,7 @@ impl ToolAccuracyProblem {
     fn error_enclosure(&self, q: &[f64; MAX_JOINTS], theta: &[Interval; NX]) -> [Interval; 3] {
         let m: [Interval; NM] = core::array::from_fn(|k| {
             if k < MAX_JOINTS {
-                Interval::point(q[k])
+                self.fixed_joint[k].unwrap_or(Interval::point(q[k]))
             } else {
                 Interval::ZERO
             }
