@@ -44,7 +44,7 @@ pub fn read_joint_space(file: &Path, joints: usize) -> Result<JointSpace, DataEr
 /// Parses `joints.toml`: keys `q1..qN` (`N = joints`), each `[lo, hi]` in degrees with
 /// `lo <= hi`, finite. Errors name the file, the line and the field.
 pub fn parse_joint_space(file: &Path, text: &str, joints: usize) -> Result<JointSpace, DataError> {
-    let table: BTreeMap<Spanned<String>, Spanned<[f64; 2]>> =
+    let table: BTreeMap<Spanned<String>, Spanned<toml::Value>> =
         toml::from_str(text).map_err(|e| toml_error(file, text, &e, FORMAT))?;
     let err = |start: usize, field: &str, message: String| {
         DataError::new(file, Some(line_at(text, start)), Some(field), message)
@@ -63,7 +63,18 @@ pub fn parse_joint_space(file: &Path, text: &str, joints: usize) -> Result<Joint
                 format!("unknown key: the arm has {joints} joints, q1 to q{joints}"),
             ));
         };
-        let [lo, hi] = *value.get_ref();
+        let number = |v: &toml::Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
+        let pair = value.get_ref().as_array().and_then(|a| match a.as_slice() {
+            [lo, hi] => Some([number(lo)?, number(hi)?]),
+            _ => None,
+        });
+        let Some([lo, hi]) = pair else {
+            return Err(err(
+                value.span().start,
+                name,
+                format!("found {}: {FORMAT}", value.get_ref()),
+            ));
+        };
         let finite = |t: f64| t.is_finite() && t.abs() <= MAX_MAGNITUDE;
         if !(finite(lo) && finite(hi)) {
             return Err(err(
