@@ -378,7 +378,7 @@ fn accuracy(
     tolerance: f64,
     max_boxes: usize,
 ) -> PyResult<String> {
-    use calib_gough::accuracy::{certify_accuracy, AccuracyReport, AccuracySettings};
+    use calib_gough::accuracy::{accuracy_report, AccuracySettings};
     let robot = read_robot(&robot).map_err(value_error)?;
     let workspace = calib_gough::workspace::read_workspace(&workspace).map_err(value_error)?;
     let before = before
@@ -399,12 +399,15 @@ fn accuracy(
         rel_tol: tolerance,
         max_boxes,
     };
-    let report = py.detach(|| AccuracyReport {
-        workspace,
-        after: certify_accuracy(&robot, &workspace, &settings),
-        before: before.map(|b| certify_accuracy(&b, &workspace, &settings)),
-        actuator,
-        map: None,
+    let report = py.detach(|| {
+        accuracy_report(
+            &robot,
+            before.as_deref(),
+            &workspace,
+            actuator,
+            &settings,
+            false,
+        )
     });
     Ok(report.json().to_string())
 }

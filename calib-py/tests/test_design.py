@@ -72,6 +72,9 @@ def test_accuracy_matches_the_command_line(tmp_path):
                     "--json", str(out)], check=True, capture_output=True)
     cli = json.loads(out.read_text())
     assert mine["leg_length"] == cli["leg_length"]
+    for key in ("position", "orientation"):
+        assert mine[key] == cli[key]
+        assert mine[key]["upper"] is None and mine[key]["lower"] > 0
     assert mine["actuator"] == cli["actuator"] == 0.0005
     for leg in mine["leg_length"]:
         assert 0 < leg["lower"] <= leg["upper"] <= 1.05 * leg["lower"]

@@ -16,6 +16,9 @@ use crate::measurement::measured;
 use crate::workspace::Workspace;
 use calib_core::{Interval, Model};
 
+/// The most rounds of [`AccuracyProblem::climb`].
+const MAX_CLIMB_ROUNDS: usize = 500;
+
 /// A pose as `(p_x, p_y, p_z, q_1, q_2, q_3)`: centre (cm) and Rodrigues vector.
 pub type PoseVector = [f64; 6];
 
@@ -99,6 +102,11 @@ impl AccuracyProblem {
             stroke: workspace.stroke,
             ranges: [workspace.x, workspace.y, workspace.z],
         }
+    }
+
+    /// The values `θ̂_i` the controller loads for leg `i`.
+    pub(crate) fn nominal(&self, i: usize) -> &[f64; 7] {
+        &self.legs[i].nominal
     }
 
     /// The number of legs.
@@ -223,7 +231,7 @@ impl AccuracyProblem {
 
     /// The vertex of leg `i`'s box where `ΔL_i` at `x` is largest (`up`) or smallest, by the
     /// signs of its gradient at the nominal geometry.
-    fn vertex(&self, i: usize, x: &PoseVector, up: bool) -> [Interval; 7] {
+    pub(crate) fn vertex(&self, i: usize, x: &PoseVector, up: bool) -> [Interval; 7] {
         let leg = &self.legs[i];
         let m: [f64; 13] = core::array::from_fn(|k| if k < 6 { x[k] } else { leg.nominal[k - 6] });
         let g = LegLengthError.jacobian_x(&leg.nominal, &m);
@@ -252,15 +260,12 @@ impl AccuracyProblem {
             .fold(0.0, f64::max)
     }
 
-    /// The worst instance of leg `i` found from the pose `x`: a local search within the workspace
-    /// (steps along each coordinate, rotations projected back onto the largest tilt, halving down
-    /// to 1e-7 of the workspace; jumps to the position bounds and out to the largest tilt), then the vertex of the leg's box with the larger `|ΔL_i|`. `None` when `x`
-    /// is not proved to lie in the workspace.
-    pub fn instance(&self, i: usize, x: &PoseVector) -> Option<Instance> {
-        if !self.proved_feasible(x) {
-            return None;
-        }
-        let mut best = (*x, self.estimate(i, x));
+    /// A local search for the largest `score` from the pose `x` (proved inside the workspace)
+    /// over poses proved inside it: steps along each coordinate, rotations projected back onto
+    /// the largest tilt, halving down to 1e-7 of the workspace; jumps to the position bounds and
+    /// out to the largest tilt; at most 500 rounds.
+    pub(crate) fn climb(&self, x: &PoseVector, score: impl Fn(&PoseVector) -> f64) -> PoseVector {
+        let mut best = (*x, score(x));
         let widths = self.domain.map(|v| v.wid());
         let t_max = self.tilt_sq.inf().sqrt() * (1.0 - 1e-9);
         // Onto the ball |q| <= t_max: rotations larger than the tilt are not poses.
@@ -274,7 +279,10 @@ impl AccuracyProblem {
             y
         };
         let mut step = 0.25;
-        while step >= 1e-7 {
+        // A ridge may be climbed in ever smaller gains: the rounds are capped.
+        let mut rounds = 0;
+        while step >= 1e-7 && rounds < MAX_CLIMB_ROUNDS {
+            rounds += 1;
             let mut tries: Vec<PoseVector> = Vec::with_capacity(20);
             for k in 0..6 {
                 for sign in [-1.0, 1.0] {
@@ -301,7 +309,7 @@ impl AccuracyProblem {
             }
             let mut moved = false;
             for y in tries {
-                let v = self.estimate(i, &y);
+                let v = score(&y);
                 if v > best.1 && self.proved_feasible(&y) {
                     best = (y, v);
                     moved = true;
@@ -311,7 +319,17 @@ impl AccuracyProblem {
                 step /= 2.0;
             }
         }
-        let x = best.0;
+        best.0
+    }
+
+    /// The worst instance of leg `i` found from the pose `x`: [`Self::climb`] on the larger
+    /// `|ΔL_i|` of the two extreme vertices, then the vertex with the larger `|ΔL_i|`. `None` when
+    /// `x` is not proved to lie in the workspace.
+    pub fn instance(&self, i: usize, x: &PoseVector) -> Option<Instance> {
+        if !self.proved_feasible(x) {
+            return None;
+        }
+        let x = self.climb(x, |y| self.estimate(i, y));
         let (value, theta) = [true, false]
             .map(|up| {
                 let theta = self.vertex(i, &x, up);

@@ -16,9 +16,14 @@
 //! the workspace).
 mod enclosure;
 mod model;
+mod pose_error;
 
 pub use enclosure::{AccuracyProblem, Instance, PoseBox, PoseVector};
 pub use model::{leg_length_error, leg_reading, LegLengthError, LegReading};
+pub use pose_error::{
+    pose_error_instances, prove_instance, reached_reading, worst_instance, PoseErrorInstance,
+    PoseErrorKind, PoseErrors, ReachedReading,
+};
 
 use crate::files::LegSpec;
 use crate::workspace::Workspace;
@@ -109,6 +114,9 @@ impl Default for AccuracySettings {
 pub struct Accuracy {
     /// Per leg, the leg-length error (cm).
     pub leg_length: Vec<Bracket>,
+    /// The platform's position and orientation errors: proved instances (lower bounds), when
+    /// computed (see [`accuracy_report`]).
+    pub pose: Option<PoseErrors>,
     /// Wall-clock seconds.
     pub seconds: f64,
 }
@@ -128,7 +136,36 @@ pub fn certify_accuracy(
         .collect();
     Accuracy {
         leg_length,
+        pose: None,
         seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// What `gough accuracy` computes: the leg-length brackets and the pose-error instances of
+/// `robot` and, when given, of the robot `before` calibration, with the actuator error `± len`
+/// when known (0 otherwise), and the error map when `map` is set.
+pub fn accuracy_report(
+    robot: &[LegSpec],
+    before: Option<&[LegSpec]>,
+    workspace: &Workspace,
+    actuator: Option<f64>,
+    settings: &AccuracySettings,
+    map: bool,
+) -> AccuracyReport {
+    let eps = actuator.unwrap_or(0.0);
+    let assess = |legs: &[LegSpec]| {
+        let mut a = certify_accuracy(legs, workspace, settings);
+        let pose = pose_error_instances(&AccuracyProblem::new(legs, workspace), eps);
+        a.seconds += pose.seconds;
+        a.pose = Some(pose);
+        a
+    };
+    AccuracyReport {
+        workspace: *workspace,
+        after: assess(robot),
+        before: before.map(assess),
+        actuator,
+        map: map.then(|| error_map(robot, workspace, MAP_CELLS, MAP_SLABS)),
     }
 }
 
@@ -217,6 +254,43 @@ fn bracket_json(leg: usize, b: &Bracket) -> serde_json::Value {
     })
 }
 
+/// The JSON of a pose-error instance: `upper` (null: not proved by this version), `lower` and
+/// `worst` (the commanded pose, the true geometry per leg, the actuator errors, the reached
+/// pose).
+fn pose_json(i: Option<&PoseErrorInstance>, kind: PoseErrorKind) -> serde_json::Value {
+    let worst = i.map(|w| {
+        let (p, axis, angle_deg) = axis_angle(&w.commanded);
+        let reached: Vec<[f64; 2]> = w.reached.iter().map(|v| [v.inf(), v.sup()]).collect();
+        serde_json::json!({
+            "pose": { "p": p, "axis": axis, "angle_deg": angle_deg, "rodrigues": &w.commanded[3..] },
+            "theta": w.theta.iter().map(|t| t.map(|v| v.mid())).collect::<Vec<_>>(),
+            "actuator": w.actuator,
+            "reached": { "d": &reached[..3], "w": &reached[3..] },
+            "position": w.position,
+            "orientation_deg": w.orientation_deg,
+        })
+    });
+    let lower = i.map(|w| match kind {
+        PoseErrorKind::Position => w.position,
+        PoseErrorKind::Orientation => w.orientation_deg,
+    });
+    serde_json::json!({ "upper": null, "lower": lower, "worst": worst })
+}
+
+fn pose_fields(a: &Accuracy) -> (serde_json::Value, serde_json::Value) {
+    let pose = a.pose.as_ref();
+    (
+        pose_json(
+            pose.and_then(|p| p.position.as_ref()),
+            PoseErrorKind::Position,
+        ),
+        pose_json(
+            pose.and_then(|p| p.orientation.as_ref()),
+            PoseErrorKind::Orientation,
+        ),
+    )
+}
+
 fn legs_json(a: &Accuracy) -> Vec<serde_json::Value> {
     a.leg_length
         .iter()
@@ -241,10 +315,14 @@ impl AccuracyReport {
     /// The JSON of `gough accuracy --json` (schema version 1; cm and degrees): `workspace`,
     /// `leg_length` (per leg `upper`, `lower`, `ratio`, `converged`, `boxes` and `worst`: the
     /// pose as `p`, `axis`, `angle_deg` and `rodrigues`, the true geometry `theta` in the order
-    /// of [`crate::PARAMETER_NAMES`], its `error`), `before` (the same for the uncalibrated robot,
-    /// or null), `improvement` (per leg, the proved factor) and `actuator`.
+    /// of [`crate::PARAMETER_NAMES`], its `error`), `position` and `orientation` (`upper`: null,
+    /// not proved by this version; `lower`: attained by `worst`, whose reached pose is proved —
+    /// the commanded pose, `theta` per leg, `actuator` errors, `reached` as enclosures of the
+    /// move `d` and the rotation error's Rodrigues vector `w`), `before` (the same for the
+    /// uncalibrated robot, or null), `improvement` (per leg, the proved factor) and `actuator`.
     pub fn json(&self) -> serde_json::Value {
         let w = &self.workspace;
+        let (position, orientation) = pose_fields(&self.after);
         serde_json::json!({
             "version": 1,
             "workspace": {
@@ -252,7 +330,16 @@ impl AccuracyReport {
             },
             "param_order": crate::PARAMETER_NAMES,
             "leg_length": legs_json(&self.after),
-            "before": self.before.as_ref().map(|b| serde_json::json!({ "leg_length": legs_json(b) })),
+            "position": position,
+            "orientation": orientation,
+            "before": self.before.as_ref().map(|b| {
+                let (position, orientation) = pose_fields(b);
+                serde_json::json!({
+                    "leg_length": legs_json(b),
+                    "position": position,
+                    "orientation": orientation,
+                })
+            }),
             "improvement": self.before.as_ref().map(|b| {
                 b.leg_length
                     .iter()
@@ -322,16 +409,24 @@ impl AccuracyReport {
             ));
         }
         paragraphs.push(
-            "The platform's position and orientation errors are not certified by this version."
+            "The platform's position and orientation errors below are lower bounds: each is \
+             attained by an explicit instance (a commanded pose of the workspace, a true \
+             geometry at a corner of the boxes, actuator errors within their bounds) whose \
+             reached pose is proved by interval Newton along the path from the commanded \
+             pose. Their upper bounds are not proved by this version."
                 .to_string(),
         );
+        let mut tables = vec![(
+            "Leg-length error per leg: the truth lies between lower and upper.".to_string(),
+            calib_pipeline::html::Table { header, rows },
+        )];
+        if let Some(pose) = &self.after.pose {
+            tables.push(self.pose_table(pose));
+        }
         calib_pipeline::html::Section {
             heading: "Accuracy over the workspace".to_string(),
             paragraphs,
-            tables: vec![(
-                "Leg-length error per leg: the truth lies between lower and upper.".to_string(),
-                calib_pipeline::html::Table { header, rows },
-            )],
+            tables,
             figures: self
                 .map
                 .as_ref()
@@ -354,6 +449,57 @@ impl AccuracyReport {
                 .into_iter()
                 .collect(),
         }
+    }
+}
+
+impl AccuracyReport {
+    /// The certificate's table of the platform's pose errors (lower bounds, before and after).
+    fn pose_table(&self, pose: &PoseErrors) -> (String, calib_pipeline::html::Table) {
+        let before = self.before.as_ref().and_then(|b| b.pose.as_ref());
+        let cell = |i: Option<&PoseErrorInstance>, kind: PoseErrorKind| {
+            i.map_or("not proved".to_string(), |i| match kind {
+                PoseErrorKind::Position => format!("≥ {:.4} cm", i.position),
+                PoseErrorKind::Orientation => format!("≥ {:.4}°", i.orientation_deg),
+            })
+        };
+        let mut header: Vec<String> = ["error", "after calibration", "at the commanded pose"]
+            .map(String::from)
+            .to_vec();
+        if before.is_some() {
+            header.push("before calibration".to_string());
+        }
+        let rows = [
+            ("position", PoseErrorKind::Position),
+            ("orientation", PoseErrorKind::Orientation),
+        ]
+        .map(|(name, kind)| {
+            let pick = |p: &PoseErrors| match kind {
+                PoseErrorKind::Position => p.position.clone(),
+                PoseErrorKind::Orientation => p.orientation.clone(),
+            };
+            let at = pick(pose);
+            let mut row = vec![
+                name.to_string(),
+                cell(at.as_ref(), kind),
+                at.as_ref().map_or(String::new(), |i| {
+                    let (p, axis, angle) = axis_angle(&i.commanded);
+                    format!(
+                        "p = ({:.3}, {:.3}, {:.3}) cm, {:.3}° about ({:.3}, {:.3}, {:.3})",
+                        p[0], p[1], p[2], angle, axis[0], axis[1], axis[2]
+                    )
+                }),
+            ];
+            if let Some(b) = before {
+                row.push(cell(pick(b).as_ref(), kind));
+            }
+            row
+        })
+        .to_vec();
+        (
+            "Platform pose error: at least these values, each attained by a proved instance."
+                .to_string(),
+            calib_pipeline::html::Table { header, rows },
+        )
     }
 }
 

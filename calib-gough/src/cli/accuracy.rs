@@ -1,8 +1,8 @@
 //! `gough accuracy`.
 
 use calib_gough::accuracy::{
-    axis_angle, certify_accuracy, error_map, improvement, Accuracy, AccuracyReport,
-    AccuracySettings, MAP_CELLS, MAP_SLABS,
+    accuracy_report, axis_angle, improvement, Accuracy, AccuracyReport, AccuracySettings,
+    PoseErrorInstance,
 };
 use calib_gough::files::{read_robot, read_uncertainty};
 use calib_gough::report::write_atomically;
@@ -63,20 +63,15 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let bar = indicatif::ProgressBar::new_spinner();
     bar.set_message("bracketing the leg-length errors");
     bar.enable_steady_tick(std::time::Duration::from_millis(120));
-    let after = certify_accuracy(&robot, &workspace, &settings);
-    let before = before.map(|b| certify_accuracy(&b, &workspace, &settings));
-    bar.finish_and_clear();
-    let map = a
-        .report
-        .is_some()
-        .then(|| error_map(&robot, &workspace, MAP_CELLS, MAP_SLABS));
-    let report = AccuracyReport {
-        workspace,
-        after,
-        before,
+    let report = accuracy_report(
+        &robot,
+        before.as_deref(),
+        &workspace,
         actuator,
-        map,
-    };
+        &settings,
+        a.report.is_some(),
+    );
+    bar.finish_and_clear();
     print_report(
         &report,
         &a.robot.display().to_string(),
@@ -180,6 +175,7 @@ pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
         );
     }
     print_worst(&r.after);
+    print_pose_errors(r);
     if let Some(before) = &r.before {
         let factor = before
             .leg_length
@@ -197,6 +193,63 @@ pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
         "\nthe upper bounds hold over the whole workspace (boxes at its boundary are bounded \
               whole, a superset); total {seconds:.1} s"
     );
+}
+
+/// The platform's position and orientation errors: proved instances, before and after.
+fn print_pose_errors(r: &AccuracyReport) {
+    let Some(after) = &r.after.pose else {
+        return;
+    };
+    println!(
+        "\nplatform pose error: at least (an instance whose reached pose is proved by interval \
+         Newton along the path from the commanded pose; upper bounds are not proved by this \
+         version)"
+    );
+    let before = r.before.as_ref().and_then(|b| b.pose.as_ref());
+    for (name, unit, value, at) in [
+        (
+            "position",
+            "cm",
+            (|i: &PoseErrorInstance| i.position) as fn(&PoseErrorInstance) -> f64,
+            after.position.as_ref(),
+        ),
+        (
+            "orientation",
+            "°",
+            |i: &PoseErrorInstance| i.orientation_deg,
+            after.orientation.as_ref(),
+        ),
+    ] {
+        let before_value = before
+            .and_then(|b| match name {
+                "position" => b.position.as_ref(),
+                _ => b.orientation.as_ref(),
+            })
+            .map_or(String::new(), |i| {
+                format!("; before calibration at least {:.4} {unit}", value(i))
+            });
+        match at {
+            Some(i) => {
+                let (p, axis, angle) = axis_angle(&i.commanded);
+                println!(
+                    "  {name:<12}{:>10.4} {unit}  commanded p = ({:.3}, {:.3}, {:.3}) cm \
+                     rotated {:.3}° about ({:.3}, {:.3}, {:.3}){before_value}",
+                    value(i),
+                    p[0],
+                    p[1],
+                    p[2],
+                    angle,
+                    axis[0],
+                    axis[1],
+                    axis[2]
+                );
+            }
+            None => println!(
+                "  {name:<12}no instance proved: the path from the commanded pose to the reached \
+                 one may meet a singular pose{before_value}"
+            ),
+        }
+    }
 }
 
 fn print_worst(a: &Accuracy) {

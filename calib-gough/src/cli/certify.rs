@@ -2,9 +2,7 @@
 
 use super::DataFiles;
 use calib_core::Status;
-use calib_gough::accuracy::{
-    certify_accuracy, error_map, AccuracyReport, AccuracySettings, MAP_CELLS, MAP_SLABS,
-};
+use calib_gough::accuracy::{accuracy_report, AccuracyReport, AccuracySettings};
 use calib_gough::calibrated::{calibrated_robot, robot_toml};
 use calib_gough::certificate::{self, Certificate, Input, LegEntry};
 use calib_gough::certification::{
@@ -183,17 +181,14 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     }
     let accuracy = match (&workspace, &calibrated) {
         (Some(w), Some(legs)) => {
-            let settings = AccuracySettings::default();
-            let report = AccuracyReport {
-                workspace: *w,
-                after: certify_accuracy(legs, w, &settings),
-                before: Some(certify_accuracy(&robot, w, &settings)),
-                actuator: Some(u.len),
-                map: a
-                    .report
-                    .is_some()
-                    .then(|| error_map(legs, w, MAP_CELLS, MAP_SLABS)),
-            };
+            let report = accuracy_report(
+                legs,
+                Some(&robot),
+                w,
+                Some(u.len),
+                &AccuracySettings::default(),
+                a.report.is_some(),
+            );
             println!();
             super::accuracy::print_report(&report, "the calibrated robot", &a.workspace_name());
             Some(report)

@@ -391,7 +391,9 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
     ``workspace.toml``) and every geometry in ``robot``'s boxes — as ``gough accuracy`` does.
     ``before``: the uncalibrated robot file (the improvement is then a proved factor);
     ``uncertainty``: adds the actuators' error. Returns the JSON of ``gough accuracy --json`` as a
-    dict: ``leg_length`` (per leg ``upper``, ``lower``, ``ratio``, ``worst``), ``before``,
+    dict: ``leg_length`` (per leg ``upper``, ``lower``, ``ratio``, ``worst``), ``position`` and
+    ``orientation`` of the platform (``lower``: attained by ``worst``, an instance whose reached
+    pose is proved; ``upper``: ``None``, not proved by this version), ``before``,
     ``improvement``.
 
     >>> import os, tempfile
@@ -401,6 +403,8 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
     >>> _ = open(ws, "w").write("x = [-2, 2]\ny = [-2, 2]\nz = [58, 62]\ntilt_deg = 5\n")
     >>> result = accuracy(os.path.join(d, "robot.toml"), ws)
     >>> all(0 < leg["lower"] <= leg["upper"] <= 1.05 * leg["lower"] for leg in result["leg_length"])
+    True
+    >>> result["position"]["lower"] > 0 and result["position"]["upper"] is None
     True
     """
     def opt(p: Optional[PathLike]) -> Optional[str]:

@@ -1,0 +1,456 @@
+//! The platform's position and orientation errors: certified lower bounds by explicit instances.
+//!
+//! At a commanded pose `X = (p, R)` the controller sends the readings `L_i(X; θ̂_i)`; the actuators
+//! realise them within `± ε`; the real robot, with geometry `θ*`, reaches the pose `X'` with
+//! `L_i(X'; θ*_i) = L_i(X; θ̂_i) + e_i` — the solution connected to `X`. Writing
+//! `X' = (p + d, R(w) R)` (`w` the Rodrigues vector of the rotation error, in the base frame), the
+//! position error is `|d|` and the orientation error the angle `2 atan |w|`.
+//!
+//! [`pose_error_instances`] finds, for each of the two errors, an explicit instance
+//! `(X, θ*, e)` with a large error — a search on the first-order error `δ ≈ J⁻¹ s`
+//! (`s_i = L_i(X; θ̂_i) + e_i - L_i(X; θ*_i)` taken at the vertices that make each `s_i` extreme),
+//! then the exact forward kinematics — and proves the pose reached: a parametric Krawczyk test
+//! follows the homotopy `t ↦ L_i(X'; θ*_i) = (1 - t) L_i(X; θ*_i) + t (L_i(X; θ̂_i) + e_i)` from
+//! `X' = X` at `t = 0` to `t = 1`, each segment of `t` proving a unique solution in a box that
+//! contains the previous segment's end, so the enclosed `X'` is the solution connected to `X`.
+//! The instance's error is then a proved lower bound of the worst error over the workspace.
+//! Where the path cannot be proved (near a singular pose) the instance is not reported.
+//!
+//! Upper bounds are not proved by this version: with the legs nearly vertical the errors are
+//! large against the legs' horizontal offsets (centimetres and degrees for a ±0.1 cm box), and a
+//! Krawczyk enclosure over every geometry of the box does not contract.
+
+use super::enclosure::{AccuracyProblem, PoseVector};
+use calib_core::{interval_model, Interval, Model, Scalar};
+use nalgebra::{Matrix6, Vector6};
+use rand::{Rng, SeedableRng};
+
+/// The reading of a leg when the platform is moved from `X = (p, q)` by `δ = (d, w)` to
+/// `(p + d, R(w) R(q))`: `||p + d + R(w) R(q) b - a|| - l` (paper eq. 3), with
+/// `R(w) c = c + 2 (w × c + w × (w × c)) / (1 + |w|²)`. `x = δ`, `m = (p, q, a, b, l)`.
+#[interval_model]
+pub fn reached_reading<S: Scalar>(x: &[S; 6], m: &[S; 13]) -> S {
+    let [d1, d2, d3, w1, w2, w3] = *x;
+    let [px, py, pz, q1, q2, q3, ax, ay, az, bx, by, bz, l] = *m;
+    let (s1, s2, s3) = (q1.sqr(), q2.sqr(), q3.sqr());
+    let dq = 1.0 + s1 + s2 + s3;
+    let c1 =
+        ((1.0 + s1 - s2 - s3) * bx + 2.0 * (q1 * q2 - q3) * by + 2.0 * (q1 * q3 + q2) * bz) / dq;
+    let c2 =
+        (2.0 * (q1 * q2 + q3) * bx + (1.0 - s1 + s2 - s3) * by + 2.0 * (q2 * q3 - q1) * bz) / dq;
+    let c3 =
+        (2.0 * (q1 * q3 - q2) * bx + 2.0 * (q2 * q3 + q1) * by + (1.0 - s1 - s2 + s3) * bz) / dq;
+    let (k1, k2, k3) = (w2 * c3 - w3 * c2, w3 * c1 - w1 * c3, w1 * c2 - w2 * c1);
+    let (h1, h2, h3) = (w2 * k3 - w3 * k2, w3 * k1 - w1 * k3, w1 * k2 - w2 * k1);
+    let dw = 1.0 + w1.sqr() + w2.sqr() + w3.sqr();
+    let v1 = px + d1 + c1 + 2.0 * (k1 + h1) / dw - ax;
+    let v2 = py + d2 + c2 + 2.0 * (k2 + h2) / dw - ay;
+    let v3 = pz + d3 + c3 + 2.0 * (k3 + h3) / dw - az;
+    (v1.sqr() + v2.sqr() + v3.sqr()).sqrt() - l
+}
+
+/// Which error an instance is searched for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PoseErrorKind {
+    /// `|p' - p|` (cm).
+    Position,
+    /// The rotation angle of `R'ᵀ R` (degrees).
+    Orientation,
+}
+
+/// An explicit instance of the platform's pose error, its reached pose proved.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PoseErrorInstance {
+    /// The commanded pose `X = (p, q)`, proved to lie in the workspace.
+    pub commanded: PoseVector,
+    /// Per leg, the true geometry `θ*` (a vertex of the leg's box).
+    pub theta: Vec<[Interval; 7]>,
+    /// Per leg, the actuator error `e_i` (within `± ε`).
+    pub actuator: Vec<f64>,
+    /// An enclosure of the move `δ = (d, w)` to the reached pose `X' = (p + d, R(w) R(q))`,
+    /// the solution connected to `X` (unique in this box).
+    pub reached: [Interval; 6],
+    /// `|d|`, rounded down (cm): a lower bound of the position error over the workspace.
+    pub position: f64,
+    /// `2 atan |w|`, rounded down (degrees): a lower bound of the orientation error.
+    pub orientation_deg: f64,
+    /// Segments of the homotopy proved.
+    pub segments: usize,
+}
+
+/// The instances of the two errors (`None` where no instance was proved).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PoseErrors {
+    /// The instance with the largest position error found.
+    pub position: Option<PoseErrorInstance>,
+    /// The instance with the largest orientation error found.
+    pub orientation: Option<PoseErrorInstance>,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// Random starting poses of the search.
+const STARTS: usize = 400;
+/// Starting poses climbed.
+const CLIMBED: usize = 4;
+/// Vertex patterns followed with the exact forward kinematics.
+const EXACT: usize = 4;
+
+/// The inputs `m = (X, θ)` of [`reached_reading`].
+fn inputs<T: Copy>(x: &[T; 6], theta: &[T; 7]) -> [T; 13] {
+    core::array::from_fn(|k| if k < 6 { x[k] } else { theta[k - 6] })
+}
+
+/// The first-order candidates at a pose: per sign pattern of the legs, the geometry and actuator
+/// error that make each `s_i` extreme, and `δ = J⁻¹ s` with `J` the nominal leg Jacobian.
+struct FirstOrder {
+    /// Per pattern (bit `i` set: `s_i` at its largest), `δ`.
+    moves: Vec<Vector6<f64>>,
+}
+
+impl FirstOrder {
+    fn at(problem: &AccuracyProblem, x: &PoseVector, eps: f64) -> Option<FirstOrder> {
+        let n = problem.legs();
+        if n != 6 {
+            return None;
+        }
+        let mut jac = Matrix6::zeros();
+        let mut ends = [[0.0; 2]; 6];
+        for i in 0..6 {
+            let nominal = problem.nominal(i);
+            let g = ReachedReading.jacobian_x(&[0.0; 6], &inputs(x, nominal));
+            for k in 0..6 {
+                jac[(i, k)] = g[k];
+            }
+            let commanded = ReachedReading.residual(&[0.0; 6], &inputs(x, nominal));
+            for (end, up) in [(0, true), (1, false)] {
+                let theta = problem.vertex(i, x, up).map(|v| v.mid());
+                let real = ReachedReading.residual(&[0.0; 6], &inputs(x, &theta));
+                // `up`: the largest ΔL, so the smallest s; `e` at the same end.
+                let e = if up { -eps } else { eps };
+                ends[i][end] = commanded + e - real;
+            }
+        }
+        let inverse = jac.try_inverse()?;
+        let moves = (0..64u32)
+            .map(|pattern| {
+                let s = Vector6::from_fn(|i, _| ends[i][usize::from(pattern >> i & 1 == 1)]);
+                inverse * s
+            })
+            .collect();
+        Some(FirstOrder { moves })
+    }
+
+    fn size(kind: PoseErrorKind, m: &Vector6<f64>) -> f64 {
+        match kind {
+            PoseErrorKind::Position => m.fixed_rows::<3>(0).norm(),
+            PoseErrorKind::Orientation => 2.0 * m.fixed_rows::<3>(3).norm().atan(),
+        }
+    }
+
+    /// The patterns by decreasing first-order error.
+    fn ranked(&self, kind: PoseErrorKind) -> Vec<(u32, f64)> {
+        let mut r: Vec<(u32, f64)> = self
+            .moves
+            .iter()
+            .enumerate()
+            .map(|(p, m)| (p as u32, Self::size(kind, m)))
+            .collect();
+        r.sort_by(|a, b| b.1.total_cmp(&a.1));
+        r
+    }
+
+    fn best(&self, kind: PoseErrorKind) -> f64 {
+        self.moves
+            .iter()
+            .map(|m| Self::size(kind, m))
+            .fold(0.0, f64::max)
+    }
+}
+
+/// The concrete instance of a sign pattern at a pose: per leg the geometry and actuator error.
+fn pattern_instance(
+    problem: &AccuracyProblem,
+    x: &PoseVector,
+    pattern: u32,
+    eps: f64,
+) -> (Vec<[Interval; 7]>, Vec<f64>) {
+    (0..problem.legs())
+        .map(|i| {
+            // Bit set: s_i largest, i.e. ΔL_i smallest and e_i = +ε.
+            let high = pattern >> i & 1 == 1;
+            let e = if high { eps } else { -eps };
+            (problem.vertex(i, x, !high), e)
+        })
+        .unzip()
+}
+
+/// The homotopy of an instance: `G_i(δ, t) = L_i(X + δ; θ*_i) - (A_i + t (B_i - A_i))` with
+/// `A_i ∋ L_i(X; θ*_i)` and `B_i ∋ L_i(X; θ̂_i) + e_i`.
+struct Homotopy<'a> {
+    x: [Interval; 6],
+    theta: &'a [[Interval; 7]],
+    start: Vec<Interval>,
+    end: Vec<Interval>,
+}
+
+impl Homotopy<'_> {
+    fn residual(&self, d: &[Interval; 6], t: Interval) -> Vec<Interval> {
+        (0..6)
+            .map(|i| {
+                ReachedReading.residual_interval(d, &inputs(&self.x, &self.theta[i]))
+                    - (self.start[i] + t * (self.end[i] - self.start[i]))
+            })
+            .collect()
+    }
+
+    fn jacobian(&self, d: &[Interval; 6]) -> [[Interval; 6]; 6] {
+        core::array::from_fn(|i| {
+            ReachedReading.jacobian_x_interval(d, &inputs(&self.x, &self.theta[i]))
+        })
+    }
+
+    /// A floating-point solution at `t` from `guess` (Newton), with the inverse Jacobian there.
+    fn solve(&self, t: f64, guess: &Vector6<f64>) -> Option<(Vector6<f64>, Matrix6<f64>)> {
+        let mid = |v: &[Interval; 7]| v.map(|e| e.mid());
+        let x = self.x.map(|v| v.mid());
+        let mut d = *guess;
+        for _ in 0..40 {
+            let dd: [f64; 6] = core::array::from_fn(|k| d[k]);
+            let mut jac = Matrix6::zeros();
+            let mut g = Vector6::zeros();
+            for i in 0..6 {
+                let m = inputs(&x, &mid(&self.theta[i]));
+                let target = self.start[i].mid() + t * (self.end[i].mid() - self.start[i].mid());
+                g[i] = ReachedReading.residual(&dd, &m) - target;
+                let row = ReachedReading.jacobian_x(&dd, &m);
+                for k in 0..6 {
+                    jac[(i, k)] = row[k];
+                }
+            }
+            let step = jac.lu().solve(&g)?;
+            d -= step;
+            if step.norm() <= 1e-14 * (1.0 + d.norm()) {
+                break;
+            }
+        }
+        let mut jac = Matrix6::zeros();
+        let dd: [f64; 6] = core::array::from_fn(|k| d[k]);
+        for i in 0..6 {
+            let row = ReachedReading.jacobian_x(&dd, &inputs(&x, &mid(&self.theta[i])));
+            for k in 0..6 {
+                jac[(i, k)] = row[k];
+            }
+        }
+        let inverse = jac.try_inverse()?;
+        // Near a singular pose the solution or the preconditioner may not be finite.
+        (d.iter().chain(inverse.iter()).all(|v| v.is_finite())).then_some((d, inverse))
+    }
+
+    /// The Krawczyk operator over `bx` for every `t` in `t`, about `c` with the preconditioner
+    /// `inv`: every solution in `bx` lies in it; inside `bx`'s interior, exactly one does.
+    fn krawczyk(
+        &self,
+        bx: &[Interval; 6],
+        t: Interval,
+        c: &Vector6<f64>,
+        inv: &Matrix6<f64>,
+    ) -> [Interval; 6] {
+        let centre: [Interval; 6] = core::array::from_fn(|k| Interval::point(c[k]));
+        let g = self.residual(&centre, t);
+        let jac = self.jacobian(bx);
+        core::array::from_fn(|r| {
+            let mut k = centre[r];
+            for i in 0..6 {
+                k -= Interval::point(inv[(r, i)]) * g[i];
+            }
+            for col in 0..6 {
+                let mut m = Interval::point(if r == col { 1.0 } else { 0.0 });
+                for i in 0..6 {
+                    m -= Interval::point(inv[(r, i)]) * jac[i][col];
+                }
+                k += m * (bx[col] - centre[col]);
+            }
+            k
+        })
+    }
+
+    /// One segment `[t0, t1]` from the enclosure `prev` of the solution at `t0`: the enclosure
+    /// of the solution at `t1`, or `None` when no box could be proved.
+    fn segment(
+        &self,
+        prev: &[Interval; 6],
+        t0: f64,
+        t1: f64,
+        guess: &Vector6<f64>,
+    ) -> Option<([Interval; 6], Vector6<f64>)> {
+        let t = Interval::new(t0, t1);
+        let (c, inv) = self.solve(0.5 * (t0 + t1), guess)?;
+        let (end, _) = self.solve(t1, &c)?;
+        let mut bx: [Interval; 6] = core::array::from_fn(|k| {
+            prev[k]
+                .hull(Interval::point(c[k]))
+                .hull(Interval::point(end[k]))
+        });
+        for _ in 0..12 {
+            bx = bx.map(|v| {
+                let r = 0.1 * v.wid() + 1e-12 + 1e-9 * v.mag();
+                Interval::new(v.inf() - r, v.sup() + r)
+            });
+            let k = self.krawczyk(&bx, t, &c, &inv);
+            if k.iter().zip(&bx).all(|(k, b)| k.is_interior_of(*b)) {
+                // Unique for every t of the segment; the solution at t1 lies in K(t1) ∩ bx.
+                let k1 = self.krawczyk(&bx, Interval::point(t1), &c, &inv);
+                let e: [Interval; 6] = core::array::from_fn(|j| k1[j].intersection(bx[j]));
+                if e.iter().any(|v| v.is_empty()) {
+                    return None;
+                }
+                return Some((e, end));
+            }
+            bx = core::array::from_fn(|j| bx[j].hull(k[j]));
+            if bx.iter().any(|v| !v.is_bounded()) {
+                return None;
+            }
+        }
+        None
+    }
+
+    /// Follows the homotopy from `δ = 0` at `t = 0` to `t = 1`: the enclosure of the solution
+    /// connected to `X` at `t = 1` and the number of segments, or `None`.
+    fn follow(&self) -> Option<([Interval; 6], usize)> {
+        let mut enclosure = [Interval::ZERO; 6];
+        let mut guess = Vector6::zeros();
+        let (mut t, mut step, mut segments) = (0.0f64, 0.125f64, 0);
+        while t < 1.0 {
+            let t1 = (t + step).min(1.0);
+            match self.segment(&enclosure, t, t1, &guess) {
+                Some((e, end)) => {
+                    enclosure = e;
+                    guess = end;
+                    t = t1;
+                    segments += 1;
+                    step = (step * 1.5).min(0.25);
+                }
+                None if step > 1.0 / 1024.0 => step /= 2.0,
+                None => return None,
+            }
+        }
+        // Tighten at t = 1 about the floating-point solution: every iterate still holds it.
+        if let Some((c, inv)) = self.solve(1.0, &guess) {
+            for _ in 0..4 {
+                let k = self.krawczyk(&enclosure, Interval::ONE, &c, &inv);
+                let next: [Interval; 6] = core::array::from_fn(|j| k[j].intersection(enclosure[j]));
+                if next.iter().any(|v| v.is_empty()) {
+                    break;
+                }
+                enclosure = next;
+            }
+        }
+        Some((enclosure, segments))
+    }
+}
+
+/// Proves the reached pose of the instance `(x, θ*, e)` (see the module documentation).
+pub fn prove_instance(
+    problem: &AccuracyProblem,
+    x: &PoseVector,
+    theta: Vec<[Interval; 7]>,
+    actuator: Vec<f64>,
+) -> Option<PoseErrorInstance> {
+    let xi = x.map(Interval::point);
+    let zero = [Interval::ZERO; 6];
+    let start = (0..problem.legs())
+        .map(|i| ReachedReading.residual_interval(&zero, &inputs(&xi, &theta[i])))
+        .collect();
+    let end = (0..problem.legs())
+        .map(|i| {
+            let nominal = problem.nominal(i).map(Interval::point);
+            ReachedReading.residual_interval(&zero, &inputs(&xi, &nominal))
+                + Interval::point(actuator[i])
+        })
+        .collect();
+    let homotopy = Homotopy {
+        x: xi,
+        theta: &theta,
+        start,
+        end,
+    };
+    let (reached, segments) = homotopy.follow()?;
+    let norm = |v: &[Interval]| (v[0].sqr() + v[1].sqr() + v[2].sqr()).sqrt().inf();
+    let w = norm(&reached[3..]);
+    // atan below its libm value by far more than libm's error (a few ulps).
+    let angle =
+        Interval::point(2.0 * w.atan() * (1.0 - 1e-12)) * Interval::point(180.0) / Interval::PI;
+    Some(PoseErrorInstance {
+        commanded: *x,
+        theta,
+        actuator,
+        reached,
+        position: norm(&reached[..3]),
+        orientation_deg: angle.inf().max(0.0),
+        segments,
+    })
+}
+
+/// The worst instance of `kind` found (see the module documentation), with the actuator error
+/// `± eps` (0 when unknown), from the random starts of `seed`.
+pub fn worst_instance(
+    problem: &AccuracyProblem,
+    kind: PoseErrorKind,
+    eps: f64,
+    seed: u64,
+) -> Option<PoseErrorInstance> {
+    let domain = problem.domain();
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let score = |x: &PoseVector| FirstOrder::at(problem, x, eps).map_or(0.0, |f| f.best(kind));
+    let mut starts: Vec<(PoseVector, f64)> = (0..STARTS)
+        .map(|_| core::array::from_fn(|k| rng.random_range(domain[k].inf()..=domain[k].sup())))
+        .filter(|x| problem.proved_feasible(x))
+        .map(|x| (x, score(&x)))
+        .collect();
+    starts.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let mut climbed: Vec<(PoseVector, f64)> = starts
+        .iter()
+        .take(CLIMBED)
+        .map(|(x, _)| {
+            let y = problem.climb(x, score);
+            (y, score(&y))
+        })
+        .collect();
+    climbed.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let value = |i: &PoseErrorInstance| match kind {
+        PoseErrorKind::Position => i.position,
+        PoseErrorKind::Orientation => i.orientation_deg,
+    };
+    let mut best: Option<PoseErrorInstance> = None;
+    for (x, _) in climbed.iter().take(2) {
+        let Some(first) = FirstOrder::at(problem, x, eps) else {
+            continue;
+        };
+        for (pattern, _) in first.ranked(kind).into_iter().take(EXACT) {
+            let (theta, actuator) = pattern_instance(problem, x, pattern, eps);
+            if let Some(i) = prove_instance(problem, x, theta, actuator) {
+                if best.as_ref().is_none_or(|b| value(&i) > value(b)) {
+                    best = Some(i);
+                }
+            }
+        }
+    }
+    best
+}
+
+/// The instances of both errors for `problem` with the actuator error `± eps` as read (the
+/// instances take the float below it, inside the decimal bound).
+pub fn pose_error_instances(problem: &AccuracyProblem, eps: f64) -> PoseErrors {
+    let start = std::time::Instant::now();
+    let eps = if eps > 0.0 { eps.next_down() } else { 0.0 };
+    let (position, orientation) = rayon::join(
+        || worst_instance(problem, PoseErrorKind::Position, eps, 1),
+        || worst_instance(problem, PoseErrorKind::Orientation, eps, 2),
+    );
+    PoseErrors {
+        position,
+        orientation,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}

@@ -1,0 +1,275 @@
+//! The platform pose-error instances of the accuracy certificate: on random robots and
+//! workspaces each instance is rechecked by an independent forward kinematics (rotation vectors
+//! and `nalgebra` rotations, Newton with a finite-difference Jacobian along its own homotopy):
+//! the commanded pose lies in the workspace, the geometry in the box, the actuator errors within
+//! their bound, the reached pose inside the proved enclosure, and its errors at least the lower
+//! bounds. The search beats random sampling; a workspace at a singular pose proves nothing.
+
+use calib_gough::accuracy::{
+    accuracy_report, axis_angle, pose_error_instances, AccuracyProblem, AccuracySettings,
+    PoseErrorInstance,
+};
+use calib_gough::files::LegSpec;
+use calib_gough::geometry::{leg_reading, Leg, Pose};
+use calib_gough::simulate::builtin_hexapod;
+use calib_gough::workspace::Workspace;
+use nalgebra::{Matrix6, Rotation3, Vector3, Vector6};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+
+fn robot(radius: f64) -> Vec<LegSpec> {
+    builtin_hexapod()
+        .into_iter()
+        .map(|nominal| LegSpec {
+            nominal,
+            radius: [radius; 7],
+        })
+        .collect()
+}
+
+fn random_workspace(rng: &mut StdRng) -> Workspace {
+    let range = |c: f64, w: f64, rng: &mut StdRng| {
+        let lo = c - rng.random_range(0.5..w);
+        [lo, lo + rng.random_range(0.5..w)]
+    };
+    Workspace {
+        x: range(0.0, 4.0, rng),
+        y: range(0.0, 4.0, rng),
+        z: range(60.0, 4.0, rng),
+        tilt_deg: rng.random_range(1.0..15.0),
+        stroke: rng.random_bool(0.5).then_some([0.0, 15.0]),
+    }
+}
+
+/// The pose `(p + d, Rot(φ) R)` of the commanded pose `(p, R)`, as a [`Pose`].
+fn moved(p: &Vector3<f64>, r: &Rotation3<f64>, x: &Vector6<f64>) -> Pose {
+    let rot = Rotation3::from_scaled_axis(Vector3::new(x[3], x[4], x[5])) * r;
+    let (axis, angle) = rot
+        .axis_angle()
+        .map_or(([0.0, 0.0, 1.0], 0.0), |(a, t)| ([a.x, a.y, a.z], t));
+    Pose {
+        p: [p.x + x[0], p.y + x[1], p.z + x[2]],
+        axis,
+        angle_deg: angle.to_degrees(),
+    }
+}
+
+/// The reached move `(d, φ)` (`φ` the rotation vector of the rotation error), by Newton along
+/// `t ↦ L(X'; θ*) = (1 - t) L(X; θ*) + t (L(X; θ̂) + e)` in 200 steps.
+fn reached(spec: &[LegSpec], i: &PoseErrorInstance) -> Vector6<f64> {
+    let (p, axis, angle) = axis_angle(&i.commanded);
+    let commanded = Pose {
+        p,
+        axis,
+        angle_deg: angle,
+    };
+    let p = Vector3::from(p);
+    let r = Rotation3::from_axis_angle(
+        &nalgebra::Unit::new_normalize(Vector3::from(axis)),
+        angle.to_radians(),
+    );
+    let truth: Vec<Leg> = i
+        .theta
+        .iter()
+        .map(|t| Leg::from_params(&t.map(|v| v.mid())))
+        .collect();
+    let start: Vec<f64> = truth.iter().map(|l| leg_reading(l, &commanded)).collect();
+    let end: Vec<f64> = spec
+        .iter()
+        .zip(&i.actuator)
+        .map(|(s, e)| leg_reading(&s.nominal, &commanded) + e)
+        .collect();
+    let residual = |x: &Vector6<f64>, t: f64| {
+        let pose = moved(&p, &r, x);
+        Vector6::from_fn(|k, _| {
+            leg_reading(&truth[k], &pose) - (start[k] + t * (end[k] - start[k]))
+        })
+    };
+    let mut x = Vector6::zeros();
+    for step in 1..=200 {
+        let t = step as f64 / 200.0;
+        for _ in 0..20 {
+            let f = residual(&x, t);
+            let mut jac = Matrix6::zeros();
+            for k in 0..6 {
+                let mut h = Vector6::zeros();
+                h[k] = 1e-7;
+                let col = (residual(&(x + h), t) - residual(&(x - h), t)) / 2e-7;
+                jac.set_column(k, &col);
+            }
+            let dx = jac.lu().solve(&f).expect("the path is regular");
+            x -= dx;
+            if dx.norm() < 1e-13 {
+                break;
+            }
+        }
+    }
+    x
+}
+
+fn recheck(spec: &[LegSpec], workspace: &Workspace, eps: f64, i: &PoseErrorInstance) {
+    let [px, py, pz, ..] = i.commanded;
+    for (v, [lo, hi]) in [(px, workspace.x), (py, workspace.y), (pz, workspace.z)] {
+        assert!(lo <= v && v <= hi, "commanded pose outside the workspace");
+    }
+    let (_, _, angle) = axis_angle(&i.commanded);
+    assert!(angle <= workspace.tilt_deg + 1e-9);
+    for (s, t) in spec.iter().zip(&i.theta) {
+        let n = s.nominal.params();
+        for j in 0..7 {
+            let v = t[j].mid();
+            assert!((v - n[j]).abs() <= s.radius[j] * (1.0 + 1e-12) + 1e-15);
+        }
+    }
+    assert!(i.actuator.iter().all(|e| e.abs() <= eps));
+    let x = reached(spec, i);
+    // The rotation error's Rodrigues vector: axis · tan(angle / 2).
+    let phi = Vector3::new(x[3], x[4], x[5]);
+    let w = if phi.norm() > 0.0 {
+        phi / phi.norm() * (phi.norm() / 2.0).tan()
+    } else {
+        phi
+    };
+    for k in 0..6 {
+        let v = if k < 3 { x[k] } else { w[k - 3] };
+        let b = i.reached[k];
+        assert!(
+            b.inf() - 1e-7 <= v && v <= b.sup() + 1e-7,
+            "component {k}: {v} outside [{}, {}]",
+            b.inf(),
+            b.sup()
+        );
+    }
+    let position = Vector3::new(x[0], x[1], x[2]).norm();
+    assert!(
+        position >= i.position * (1.0 - 1e-9),
+        "{position} < {}",
+        i.position
+    );
+    let orientation = phi.norm().to_degrees();
+    assert!(orientation >= i.orientation_deg * (1.0 - 1e-9));
+}
+
+#[test]
+fn instances_recheck_independently_on_random_robots_and_workspaces() {
+    let mut rng = StdRng::seed_from_u64(23);
+    for _ in 0..4 {
+        let spec = robot(rng.random_range(0.005..0.1));
+        let workspace = random_workspace(&mut rng);
+        let eps = rng.random_range(0.0..0.01);
+        let problem = AccuracyProblem::new(&spec, &workspace);
+        let found = pose_error_instances(&problem, eps);
+        let (position, orientation) = (
+            found.position.expect("a position instance"),
+            found.orientation.expect("an orientation instance"),
+        );
+        assert!(position.position > 0.0 && orientation.orientation_deg > 0.0);
+        recheck(&spec, &workspace, eps, &position);
+        recheck(&spec, &workspace, eps, &orientation);
+    }
+}
+
+/// The largest errors of random commanded poses, geometries at random corners of the boxes and
+/// random actuator errors at their bounds (independent forward kinematics).
+fn sampled(spec: &[LegSpec], workspace: &Workspace, eps: f64, rng: &mut StdRng) -> (f64, f64) {
+    let problem = AccuracyProblem::new(spec, workspace);
+    let t = (workspace.tilt_deg.to_radians() / 2.0).tan();
+    let (mut position, mut orientation) = (0.0f64, 0.0f64);
+    let mut n = 0;
+    while n < 150 {
+        let x: [f64; 6] = [
+            rng.random_range(workspace.x[0]..workspace.x[1]),
+            rng.random_range(workspace.y[0]..workspace.y[1]),
+            rng.random_range(workspace.z[0]..workspace.z[1]),
+            rng.random_range(-t..t),
+            rng.random_range(-t..t),
+            rng.random_range(-t..t),
+        ];
+        if !problem.proved_feasible(&x) {
+            continue;
+        }
+        n += 1;
+        let theta = spec
+            .iter()
+            .map(|s| {
+                let v = s.nominal.params();
+                core::array::from_fn(|j| {
+                    let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
+                    calib_core::Interval::point(v[j] + sign * s.radius[j] * (1.0 - 1e-9))
+                })
+            })
+            .collect();
+        let actuator = (0..6)
+            .map(|_| if rng.random_bool(0.5) { eps } else { -eps })
+            .collect();
+        let i = PoseErrorInstance {
+            commanded: x,
+            theta,
+            actuator,
+            reached: [calib_core::Interval::ENTIRE; 6],
+            position: 0.0,
+            orientation_deg: 0.0,
+            segments: 0,
+        };
+        let m = reached(spec, &i);
+        position = position.max(Vector3::new(m[0], m[1], m[2]).norm());
+        orientation = orientation.max(Vector3::new(m[3], m[4], m[5]).norm().to_degrees());
+    }
+    (position, orientation)
+}
+
+#[test]
+fn the_search_beats_random_sampling() {
+    let mut rng = StdRng::seed_from_u64(5);
+    let spec = robot(0.05);
+    let workspace = Workspace::SIMULATOR;
+    let eps = 0.0005;
+    let found = pose_error_instances(&AccuracyProblem::new(&spec, &workspace), eps);
+    let (position, orientation) = sampled(&spec, &workspace, eps, &mut rng);
+    let p = found.position.expect("a position instance").position;
+    let o = found
+        .orientation
+        .expect("an orientation instance")
+        .orientation_deg;
+    assert!(p >= position, "search {p} < sampled {position}");
+    assert!(o >= orientation, "search {o} < sampled {orientation}");
+}
+
+#[test]
+fn a_workspace_at_a_singular_pose_proves_no_instance() {
+    // Every leg vertical at the centre: horizontal moves change no leg length to first order.
+    let spec: Vec<LegSpec> = builtin_hexapod()
+        .into_iter()
+        .map(|leg| {
+            let mut nominal = leg;
+            nominal.a = [leg.b[0], leg.b[1], leg.a[2]];
+            LegSpec {
+                nominal,
+                radius: [0.05; 7],
+            }
+        })
+        .collect();
+    let workspace = Workspace {
+        x: [-1e-9, 1e-9],
+        y: [-1e-9, 1e-9],
+        z: [59.0, 61.0],
+        tilt_deg: 1e-7,
+        stroke: None,
+    };
+    let report = accuracy_report(
+        &spec,
+        None,
+        &workspace,
+        Some(0.0005),
+        &AccuracySettings {
+            rel_tol: 0.04,
+            max_boxes: 20_000,
+        },
+        false,
+    );
+    let pose = report.after.pose.as_ref().expect("computed");
+    assert!(pose.position.is_none() && pose.orientation.is_none());
+    let json = report.json();
+    assert!(json["position"]["lower"].is_null() && json["position"]["upper"].is_null());
+    assert!(json["orientation"]["worst"].is_null());
+}
