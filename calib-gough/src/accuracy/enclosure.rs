@@ -322,9 +322,10 @@ impl AccuracyProblem {
         best.0
     }
 
-    /// The worst instance of leg `i` found from the pose `x`: [`Self::climb`] on the larger
-    /// `|ΔL_i|` of the two extreme vertices, then the vertex with the larger `|ΔL_i|`. `None` when
-    /// `x` is not proved to lie in the workspace.
+    /// The worst instance of leg `i` found from the pose `x`: a local search (steps along each
+    /// coordinate, jumps to the workspace's bounds) on the larger `|ΔL_i|` of the two extreme
+    /// vertices, then the vertex with the larger `|ΔL_i|`. `None` when `x` is not proved to lie
+    /// in the workspace.
     pub fn instance(&self, i: usize, x: &PoseVector) -> Option<Instance> {
         if !self.proved_feasible(x) {
             return None;
