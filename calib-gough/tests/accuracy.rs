@@ -4,6 +4,8 @@
 //! workspace, its geometry in the box, its error at least the lower bound), and the bracket meets
 //! its tolerance.
 
+mod support;
+
 use calib_gough::accuracy::{axis_angle, certify_accuracy, AccuracySettings};
 use calib_gough::files::LegSpec;
 use calib_gough::geometry::{leg_reading, Leg, Pose};
@@ -11,6 +13,7 @@ use calib_gough::simulate::builtin_hexapod;
 use calib_gough::workspace::Workspace;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
+use support::random_workspace;
 
 /// Rounding of the plain floating-point recomputation (the bounds are for exact values).
 const SLACK: f64 = 1e-12;
@@ -32,20 +35,6 @@ fn random_robot(rng: &mut StdRng) -> Vec<LegSpec> {
         .collect()
 }
 
-fn random_workspace(rng: &mut StdRng) -> Workspace {
-    let range = |c: f64, w: f64, rng: &mut StdRng| {
-        let lo = c - rng.random_range(0.5..w);
-        [lo, lo + rng.random_range(0.5..w)]
-    };
-    Workspace {
-        x: range(0.0, 4.0, rng),
-        y: range(0.0, 4.0, rng),
-        z: range(60.0, 4.0, rng),
-        tilt_deg: rng.random_range(1.0..20.0),
-        stroke: rng.random_bool(0.5).then_some([0.0, 15.0]),
-    }
-}
-
 fn pose_of(x: &[f64; 6]) -> Pose {
     let (p, axis, angle_deg) = axis_angle(x);
     Pose { p, axis, angle_deg }
@@ -56,7 +45,7 @@ fn upper_bounds_hold_at_random_poses_and_geometries_and_instances_recheck() {
     let mut rng = StdRng::seed_from_u64(17);
     for case in 0..4 {
         let robot = random_robot(&mut rng);
-        let workspace = random_workspace(&mut rng);
+        let workspace = random_workspace(&mut rng, 20.0);
         let settings = AccuracySettings::default();
         let a = certify_accuracy(&robot, &workspace, &settings);
         let nominal: Vec<Leg> = robot.iter().map(|s| s.nominal).collect();

@@ -5,6 +5,8 @@
 //! their bound, the reached pose inside the proved enclosure, and its errors at least the lower
 //! bounds. The search beats random sampling; a workspace at a singular pose proves nothing.
 
+mod support;
+
 use calib_gough::accuracy::{
     accuracy_report, axis_angle, pose_error_instances, AccuracyProblem, AccuracySettings,
     PoseErrorInstance,
@@ -16,6 +18,7 @@ use calib_gough::workspace::Workspace;
 use nalgebra::{Matrix6, Rotation3, Vector3, Vector6};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
+use support::random_workspace;
 
 fn robot(radius: f64) -> Vec<LegSpec> {
     builtin_hexapod()
@@ -25,20 +28,6 @@ fn robot(radius: f64) -> Vec<LegSpec> {
             radius: [radius; 7],
         })
         .collect()
-}
-
-fn random_workspace(rng: &mut StdRng) -> Workspace {
-    let range = |c: f64, w: f64, rng: &mut StdRng| {
-        let lo = c - rng.random_range(0.5..w);
-        [lo, lo + rng.random_range(0.5..w)]
-    };
-    Workspace {
-        x: range(0.0, 4.0, rng),
-        y: range(0.0, 4.0, rng),
-        z: range(60.0, 4.0, rng),
-        tilt_deg: rng.random_range(1.0..15.0),
-        stroke: rng.random_bool(0.5).then_some([0.0, 15.0]),
-    }
 }
 
 /// The pose `(p + d, Rot(φ) R)` of the commanded pose `(p, R)`, as a [`Pose`].
@@ -155,7 +144,7 @@ fn instances_recheck_independently_on_random_robots_and_workspaces() {
     let mut rng = StdRng::seed_from_u64(23);
     for _ in 0..4 {
         let spec = robot(rng.random_range(0.005..0.1));
-        let workspace = random_workspace(&mut rng);
+        let workspace = random_workspace(&mut rng, 15.0);
         let eps = rng.random_range(0.0..0.01);
         let problem = AccuracyProblem::new(&spec, &workspace);
         let found = pose_error_instances(&problem, eps);

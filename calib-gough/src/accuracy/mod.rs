@@ -207,6 +207,15 @@ pub fn axis_angle(x: &PoseVector) -> ([f64; 3], [f64; 3], f64) {
     (p, q.map(|v| v / n), 2.0 * n.atan().to_degrees())
 }
 
+/// A pose in words: `p = (x, y, z) cm rotated A° about (u, v, w)`.
+pub fn pose_words(x: &PoseVector) -> String {
+    let (p, axis, angle) = axis_angle(x);
+    format!(
+        "p = ({:.3}, {:.3}, {:.3}) cm rotated {:.3}° about ({:.3}, {:.3}, {:.3})",
+        p[0], p[1], p[2], angle, axis[0], axis[1], axis[2]
+    )
+}
+
 /// The leg-length brackets of a robot file after calibration and, when given, of the robot
 /// before it (the design nominal with its prior box): what `gough accuracy` reports.
 #[derive(Clone, Debug, PartialEq)]
@@ -481,13 +490,8 @@ impl AccuracyReport {
             let mut row = vec![
                 name.to_string(),
                 cell(at.as_ref(), kind),
-                at.as_ref().map_or(String::new(), |i| {
-                    let (p, axis, angle) = axis_angle(&i.commanded);
-                    format!(
-                        "p = ({:.3}, {:.3}, {:.3}) cm, {:.3}° about ({:.3}, {:.3}, {:.3})",
-                        p[0], p[1], p[2], angle, axis[0], axis[1], axis[2]
-                    )
-                }),
+                at.as_ref()
+                    .map_or(String::new(), |i| pose_words(&i.commanded)),
             ];
             if let Some(b) = before {
                 row.push(cell(pick(b).as_ref(), kind));

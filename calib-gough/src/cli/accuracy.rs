@@ -1,7 +1,7 @@
 //! `gough accuracy`.
 
 use calib_gough::accuracy::{
-    accuracy_report, axis_angle, improvement, Accuracy, AccuracyReport, AccuracySettings,
+    accuracy_report, improvement, pose_words, Accuracy, AccuracyReport, AccuracySettings,
     PoseErrorInstance,
 };
 use calib_gough::files::{read_robot, read_uncertainty};
@@ -229,21 +229,11 @@ fn print_pose_errors(r: &AccuracyReport) {
                 format!("; before calibration at least {:.4} {unit}", value(i))
             });
         match at {
-            Some(i) => {
-                let (p, axis, angle) = axis_angle(&i.commanded);
-                println!(
-                    "  {name:<12}{:>10.4} {unit}  commanded p = ({:.3}, {:.3}, {:.3}) cm \
-                     rotated {:.3}° about ({:.3}, {:.3}, {:.3}){before_value}",
-                    value(i),
-                    p[0],
-                    p[1],
-                    p[2],
-                    angle,
-                    axis[0],
-                    axis[1],
-                    axis[2]
-                );
-            }
+            Some(i) => println!(
+                "  {name:<12}{:>10.4} {unit}  commanded {}{before_value}",
+                value(i),
+                pose_words(&i.commanded)
+            ),
             None => println!(
                 "  {name:<12}no instance proved: the path from the commanded pose to the reached \
                  one may meet a singular pose{before_value}"
@@ -264,18 +254,10 @@ fn print_worst(a: &Accuracy) {
     let Some(w) = &b.worst else {
         return;
     };
-    let (p, axis, angle) = axis_angle(&w.pose);
     println!(
-        "\nworst: leg {} is {:.5} cm off at p = ({:.3}, {:.3}, {:.3}) cm rotated {:.3}° about \
-         ({:.3}, {:.3}, {:.3}), with its true geometry at a corner of its box",
+        "\nworst: leg {} is {:.5} cm off at {}, with its true geometry at a corner of its box",
         i + 1,
         w.value,
-        p[0],
-        p[1],
-        p[2],
-        angle,
-        axis[0],
-        axis[1],
-        axis[2]
+        pose_words(&w.pose)
     );
 }

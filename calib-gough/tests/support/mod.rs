@@ -78,3 +78,23 @@ pub fn truth_values(truth: &serde_json::Value, i: usize) -> Vec<f64> {
         .chain([t["l"].as_f64().unwrap()])
         .collect()
 }
+
+/// A random workspace near the simulator's: ranges of 0.5 to 4 cm about x = y = 0, z = 60 cm,
+/// a tilt of 1° to `max_tilt_deg`, a stroke half of the time.
+pub fn random_workspace(
+    rng: &mut rand::rngs::StdRng,
+    max_tilt_deg: f64,
+) -> calib_gough::workspace::Workspace {
+    use rand::Rng;
+    let range = |c: f64, w: f64, rng: &mut rand::rngs::StdRng| {
+        let lo = c - rng.random_range(0.5..w);
+        [lo, lo + rng.random_range(0.5..w)]
+    };
+    calib_gough::workspace::Workspace {
+        x: range(0.0, 4.0, rng),
+        y: range(0.0, 4.0, rng),
+        z: range(60.0, 4.0, rng),
+        tilt_deg: rng.random_range(1.0..max_tilt_deg),
+        stroke: rng.random_bool(0.5).then_some([0.0, 15.0]),
+    }
+}
