@@ -97,11 +97,7 @@ pub struct ToolBracket {
 impl ToolBracket {
     /// `upper / lower` (`+∞` without a positive lower bound).
     pub fn ratio(&self) -> f64 {
-        if self.lower > 0.0 {
-            self.upper / self.lower
-        } else {
-            f64::INFINITY
-        }
+        calib_core::maximum::bracket_ratio(self.upper, self.lower)
     }
 }
 

@@ -104,6 +104,23 @@ pub struct Maximum<const N: usize> {
     pub converged: bool,
 }
 
+impl<const N: usize> Maximum<N> {
+    /// `upper / lower`: how far the bracket is from the truth (see [`bracket_ratio`]).
+    pub fn ratio(&self) -> f64 {
+        bracket_ratio(self.upper, self.lower)
+    }
+}
+
+/// The quality of a bracket `[lower, upper]` of a non-negative maximum: `upper / lower`, `+∞`
+/// without a positive lower bound.
+pub fn bracket_ratio(upper: f64, lower: f64) -> f64 {
+    if lower > 0.0 {
+        upper / lower
+    } else {
+        f64::INFINITY
+    }
+}
+
 /// A queued box, ordered by the upper end of `f` over it.
 struct Queued<const N: usize> {
     sup: f64,

@@ -113,6 +113,14 @@ fn check_random<const N: usize>(seeds: std::ops::Range<u64>, gradient: bool, rel
                 m.upper
             );
         }
+        // The ratio is the bracket's: the bounds' quotient, +∞ without a positive lower bound.
+        let r = m.ratio();
+        if m.lower > 0.0 {
+            assert_eq!(r, m.upper / m.lower);
+            assert!(r >= 1.0, "seed {seed}: ratio {r}");
+        } else {
+            assert_eq!(r, f64::INFINITY);
+        }
     }
 }
 
