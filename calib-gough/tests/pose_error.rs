@@ -258,7 +258,19 @@ fn a_workspace_at_a_singular_pose_proves_no_instance() {
     );
     let pose = report.after.pose.as_ref().expect("computed");
     assert!(pose.position.is_none() && pose.orientation.is_none());
+    // The output says where: a commanded pose of the workspace whose path was not proved.
+    for at in [pose.position_unproved, pose.orientation_unproved] {
+        let x = at.expect("the unproved pose is named");
+        assert!(x[0].abs() <= 1e-9 && x[1].abs() <= 1e-9 && (59.0..=61.0).contains(&x[2]));
+    }
     let json = report.json();
     assert!(json["position"]["lower"].is_null() && json["position"]["upper"].is_null());
     assert!(json["orientation"]["worst"].is_null());
+    assert_eq!(
+        json["position"]["unproved_at"]["p"]
+            .as_array()
+            .unwrap()
+            .len(),
+        3
+    );
 }

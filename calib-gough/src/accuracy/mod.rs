@@ -262,7 +262,11 @@ fn bracket_json(leg: usize, b: &Bracket) -> serde_json::Value {
 /// The JSON of a pose-error instance: `upper` (null: not proved by this version), `lower` and
 /// `worst` (the commanded pose, the true geometry per leg, the actuator errors, the reached
 /// pose).
-fn pose_json(i: Option<&PoseErrorInstance>, kind: PoseErrorKind) -> serde_json::Value {
+fn pose_json(
+    i: Option<&PoseErrorInstance>,
+    unproved: Option<&PoseVector>,
+    kind: PoseErrorKind,
+) -> serde_json::Value {
     let worst = i.map(|w| {
         let (p, axis, angle_deg) = axis_angle(&w.commanded);
         let reached: Vec<[f64; 2]> = w.reached.iter().map(|v| [v.inf(), v.sup()]).collect();
@@ -279,7 +283,11 @@ fn pose_json(i: Option<&PoseErrorInstance>, kind: PoseErrorKind) -> serde_json::
         PoseErrorKind::Position => w.position,
         PoseErrorKind::Orientation => w.orientation_deg,
     });
-    serde_json::json!({ "upper": null, "lower": lower, "worst": worst })
+    let unproved = unproved.map(|x| {
+        let (p, axis, angle_deg) = axis_angle(x);
+        serde_json::json!({ "p": p, "axis": axis, "angle_deg": angle_deg, "rodrigues": &x[3..] })
+    });
+    serde_json::json!({ "upper": null, "lower": lower, "worst": worst, "unproved_at": unproved })
 }
 
 fn pose_fields(a: &Accuracy) -> (serde_json::Value, serde_json::Value) {
@@ -287,10 +295,12 @@ fn pose_fields(a: &Accuracy) -> (serde_json::Value, serde_json::Value) {
     (
         pose_json(
             pose.and_then(|p| p.position.as_ref()),
+            pose.and_then(|p| p.position_unproved.as_ref()),
             PoseErrorKind::Position,
         ),
         pose_json(
             pose.and_then(|p| p.orientation.as_ref()),
+            pose.and_then(|p| p.orientation_unproved.as_ref()),
             PoseErrorKind::Orientation,
         ),
     )
@@ -323,7 +333,8 @@ impl AccuracyReport {
     /// of [`crate::PARAMETER_NAMES`], its `error`), `position` and `orientation` (`upper`: null,
     /// not proved by this version; `lower`: attained by `worst`, whose reached pose is proved —
     /// the commanded pose, `theta` per leg, `actuator` errors, `reached` as enclosures of the
-    /// move `d` and the rotation error's Rodrigues vector `w`), `before` (the same for the
+    /// move `d` and the rotation error's Rodrigues vector `w`; without an instance, `unproved_at`:
+    /// the commanded pose whose path could not be proved), `before` (the same for the
     /// uncalibrated robot, or null), `improvement` (per leg, the proved factor) and `actuator`.
     pub fn json(&self) -> serde_json::Value {
         let w = &self.workspace;

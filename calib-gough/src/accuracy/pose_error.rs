@@ -85,6 +85,11 @@ pub struct PoseErrors {
     pub position: Option<PoseErrorInstance>,
     /// The instance with the largest orientation error found.
     pub orientation: Option<PoseErrorInstance>,
+    /// Without a position instance: the commanded pose of the worst candidate, whose path to
+    /// the reached pose could not be proved (a singular pose may lie on it).
+    pub position_unproved: Option<PoseVector>,
+    /// The same for the orientation error.
+    pub orientation_unproved: Option<PoseVector>,
     /// Wall-clock seconds.
     pub seconds: f64,
 }
@@ -400,6 +405,17 @@ pub fn worst_instance(
     eps: f64,
     seed: u64,
 ) -> Option<PoseErrorInstance> {
+    search(problem, kind, eps, seed).0
+}
+
+/// [`worst_instance`], and without one the commanded pose of the worst candidate (whose path
+/// could not be proved), if any pose of the workspace was found.
+fn search(
+    problem: &AccuracyProblem,
+    kind: PoseErrorKind,
+    eps: f64,
+    seed: u64,
+) -> (Option<PoseErrorInstance>, Option<PoseVector>) {
     let domain = problem.domain();
     let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
     let score = |x: &PoseVector| FirstOrder::at(problem, x, eps).map_or(0.0, |f| f.best(kind));
@@ -436,7 +452,11 @@ pub fn worst_instance(
             }
         }
     }
-    best
+    let unproved = match best {
+        Some(_) => None,
+        None => climbed.first().map(|c| c.0),
+    };
+    (best, unproved)
 }
 
 /// The instances of both errors for `problem` with the actuator error `± eps` as read (the
@@ -444,13 +464,15 @@ pub fn worst_instance(
 pub fn pose_error_instances(problem: &AccuracyProblem, eps: f64) -> PoseErrors {
     let start = std::time::Instant::now();
     let eps = if eps > 0.0 { eps.next_down() } else { 0.0 };
-    let (position, orientation) = rayon::join(
-        || worst_instance(problem, PoseErrorKind::Position, eps, 1),
-        || worst_instance(problem, PoseErrorKind::Orientation, eps, 2),
+    let ((position, position_unproved), (orientation, orientation_unproved)) = rayon::join(
+        || search(problem, PoseErrorKind::Position, eps, 1),
+        || search(problem, PoseErrorKind::Orientation, eps, 2),
     );
     PoseErrors {
         position,
         orientation,
+        position_unproved,
+        orientation_unproved,
         seconds: start.elapsed().as_secs_f64(),
     }
 }

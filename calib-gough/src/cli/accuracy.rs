@@ -206,18 +206,20 @@ fn print_pose_errors(r: &AccuracyReport) {
          version)"
     );
     let before = r.before.as_ref().and_then(|b| b.pose.as_ref());
-    for (name, unit, value, at) in [
+    for (name, unit, value, at, unproved) in [
         (
             "position",
             "cm",
             (|i: &PoseErrorInstance| i.position) as fn(&PoseErrorInstance) -> f64,
             after.position.as_ref(),
+            after.position_unproved,
         ),
         (
             "orientation",
             "°",
             |i: &PoseErrorInstance| i.orientation_deg,
             after.orientation.as_ref(),
+            after.orientation_unproved,
         ),
     ] {
         let before_value = before
@@ -235,8 +237,15 @@ fn print_pose_errors(r: &AccuracyReport) {
                 pose_words(&i.commanded)
             ),
             None => println!(
-                "  {name:<12}no instance proved: the path from the commanded pose to the reached \
-                 one may meet a singular pose{before_value}"
+                "  {name:<12}no instance proved: {}{before_value}",
+                unproved.map_or(
+                    "no pose of the workspace was found".to_string(),
+                    |x| format!(
+                    "the path from the commanded pose {} to the reached one may meet a singular \
+                     pose",
+                    pose_words(&x)
+                )
+                )
             ),
         }
     }
