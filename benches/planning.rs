@@ -2,11 +2,14 @@
 //! geometry, the paper's error bounds, the simulator's workspace): `gough design` (21 poses from
 //! 2,000 candidates, certified criterion; issue target ≤ 60 s on 2 cores) and the accuracy
 //! certificate's leg-length brackets (all six legs to 1.04, ± 0.01 cm and ± 0.1 cm boxes; issue
-//! target ≤ 30 s on 2 cores).
+//! target ≤ 30 s on 2 cores) and its platform pose-error instances (search and proof of the reached
+//! pose, position and orientation).
 //!
 //! `cargo bench --bench planning`. One iteration is one whole design or one whole certificate.
 
-use calib_gough::accuracy::{certify_accuracy, AccuracySettings};
+use calib_gough::accuracy::{
+    certify_accuracy, pose_error_instances, AccuracyProblem, AccuracySettings,
+};
 use calib_gough::design::{builtin_robot, design, DesignRequest};
 use calib_gough::files::LegSpec;
 use calib_gough::measurement::Uncertainty;
@@ -47,6 +50,11 @@ fn bench(c: &mut Criterion) {
                 ))
             })
         });
+        let problem = AccuracyProblem::new(&boxes, &Workspace::SIMULATOR);
+        g.bench_function(
+            format!("accuracy/pose-error instances, ±{radius} cm"),
+            |b| b.iter(|| black_box(pose_error_instances(&problem, Uncertainty::PAPER.len))),
+        );
     }
     g.finish();
 }
