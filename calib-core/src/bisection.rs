@@ -53,8 +53,8 @@ pub struct SweepResult<const NX: usize> {
 
 /// Splits `b` at the midpoint of its widest side relative to `reference` (`None` when no side
 /// can be split: the midpoint equals a bound). Used by [`crate::hull`] (relative to the outer
-/// box) and [`crate::maximize`] (relative to the domain).
-pub(crate) fn split_widest<const NX: usize>(
+/// box), [`crate::maximize`] (relative to the domain), and by robot crates' own searches.
+pub fn split_widest<const NX: usize>(
     b: &[Interval; NX],
     reference: &[Interval; NX],
 ) -> Option<([Interval; NX], [Interval; NX])> {

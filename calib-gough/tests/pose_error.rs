@@ -7,9 +7,11 @@
 
 mod support;
 
+use calib_core::{Interval, Model};
 use calib_gough::accuracy::{
-    accuracy_report, axis_angle, pose_error_instances, AccuracyProblem, AccuracySettings,
-    PoseErrorInstance,
+    accuracy_report, axis_angle, pose_error_instances, pose_errors, AccuracyProblem,
+    AccuracySettings, LegReading, PoseBoundSettings, PoseErrorInstance, ReachedChange,
+    ReachedReading,
 };
 use calib_gough::files::LegSpec;
 use calib_gough::geometry::{leg_reading, Leg, Pose};
@@ -265,6 +267,19 @@ fn a_workspace_at_a_singular_pose_proves_no_instance() {
     }
     let json = report.json();
     assert!(json["position"]["lower"].is_null() && json["position"]["upper"].is_null());
+    // No upper bound either: the box of poses where the reached pose was not enclosed is named.
+    let bounds = pose.bounds.as_ref().expect("computed");
+    assert!(bounds.position.is_none() && bounds.orientation_deg.is_none());
+    let at = bounds.unproved_at.expect("named");
+    assert!(at[0].inf() <= 1e-9 && at[0].sup() >= -1e-9 && at[2].inf() < 61.0);
+    assert!(json["orientation"]["upper"].is_null());
+    assert_eq!(
+        json["position"]["upper_unproved_at"]["p"]
+            .as_array()
+            .unwrap()
+            .len(),
+        3
+    );
     assert!(json["orientation"]["worst"].is_null());
     assert_eq!(
         json["position"]["unproved_at"]["p"]
@@ -273,4 +288,97 @@ fn a_workspace_at_a_singular_pose_proves_no_instance() {
             .len(),
         3
     );
+}
+
+/// A small workspace about the simulator's centre (half-ranges of 0.2 to 1 cm, a tilt of 0.5°
+/// to 2°): where the reached pose of a tightly calibrated robot can be enclosed.
+fn small_workspace(rng: &mut StdRng) -> Workspace {
+    let mut range = |c: f64| {
+        let h = rng.random_range(0.2..1.0);
+        [c - h, c + h]
+    };
+    Workspace {
+        x: range(0.0),
+        y: range(0.0),
+        z: range(60.0),
+        tilt_deg: rng.random_range(0.5..2.0),
+        stroke: None,
+    }
+}
+
+#[test]
+fn upper_bounds_hold_for_every_sampled_error_and_meet_the_instances() {
+    let mut rng = StdRng::seed_from_u64(31);
+    let settings = PoseBoundSettings {
+        max_pose_boxes: 200,
+        max_seconds: f64::INFINITY,
+        ..PoseBoundSettings::default()
+    };
+    for _ in 0..3 {
+        let spec = robot(rng.random_range(0.0003..0.001));
+        let workspace = small_workspace(&mut rng);
+        let eps = rng.random_range(0.0..0.0005);
+        let found = pose_errors(&AccuracyProblem::new(&spec, &workspace), eps, &settings);
+        let bounds = found.bounds.expect("computed");
+        let (p, o) = (
+            bounds.position.expect("a proved position bound"),
+            bounds.orientation_deg.expect("a proved orientation bound"),
+        );
+        let (lp, lo) = (
+            found.position.expect("a position instance").position,
+            found
+                .orientation
+                .expect("an orientation instance")
+                .orientation_deg,
+        );
+        assert!(
+            lp <= p && lo <= o,
+            "instances {lp} {lo} above bounds {p} {o}"
+        );
+        // Independent forward kinematics at random poses, corners and actuator errors.
+        let (sp, so) = sampled(&spec, &workspace, eps, &mut rng);
+        assert!(sp <= p && so <= o, "sampled {sp} {so} above bounds {p} {o}");
+    }
+}
+
+#[test]
+fn the_leg_change_without_cancellation_is_the_difference_of_two_readings() {
+    let mut rng = StdRng::seed_from_u64(8);
+    for _ in 0..200 {
+        let x: [f64; 6] = core::array::from_fn(|k| {
+            if k < 3 {
+                rng.random_range(-2.0..2.0) + if k == 2 { 60.0 } else { 0.0 }
+            } else {
+                rng.random_range(-0.2..0.2)
+            }
+        });
+        let d: [f64; 6] =
+            core::array::from_fn(|k| rng.random_range(-0.5..0.5) * 0.1f64.powi((k / 3) as i32));
+        let theta: [f64; 7] = core::array::from_fn(|k| match k {
+            0..=1 => rng.random_range(-40.0..40.0),
+            2 => rng.random_range(-2.0..2.0),
+            3..=5 => rng.random_range(-20.0..20.0),
+            _ => rng.random_range(-1.0..1.0),
+        });
+        let m: [f64; 12] = core::array::from_fn(|k| if k < 6 { x[k] } else { theta[k - 6] });
+        let m13: [f64; 13] = core::array::from_fn(|k| if k < 6 { x[k] } else { theta[k - 6] });
+        let change = ReachedChange.residual(&d, &m);
+        let difference = ReachedReading.residual(&d, &m13) - LegReading.residual(&theta, &x);
+        assert!(
+            (change - difference).abs() <= 1e-9,
+            "{change} vs {difference}"
+        );
+        // The interval evaluator encloses the point value over a small box around it.
+        let boxed = |v: &[f64]| -> Vec<Interval> {
+            v.iter()
+                .map(|c| Interval::new(c - 1e-6, c + 1e-6))
+                .collect()
+        };
+        let (bd, bm) = (boxed(&d), boxed(&m));
+        let e = ReachedChange.residual_interval(
+            &core::array::from_fn(|k| bd[k]),
+            &core::array::from_fn(|k| bm[k]),
+        );
+        assert!(e.contains(change), "{change} outside {e:?}");
+    }
 }

@@ -74,7 +74,9 @@ def test_accuracy_matches_the_command_line(tmp_path):
     assert mine["leg_length"] == cli["leg_length"]
     for key in ("position", "orientation"):
         assert mine[key] == cli[key]
-        assert mine[key]["upper"] is None and mine[key]["lower"] > 0
+        upper, lower = mine[key]["upper"], mine[key]["lower"]
+        assert lower > 0 and (upper is None or upper >= lower)
+        assert upper is not None or mine[key]["upper_unproved_at"] is not None
     assert mine["actuator"] == cli["actuator"] == 0.0005
     for leg in mine["leg_length"]:
         assert 0 < leg["lower"] <= leg["upper"] <= 1.05 * leg["lower"]

@@ -109,6 +109,11 @@ impl AccuracyProblem {
         &self.legs[i].nominal
     }
 
+    /// The box `Θ_i` the real leg `i` lies in (decimal bounds enclosed).
+    pub(crate) fn theta(&self, i: usize) -> &[Interval; 7] {
+        &self.legs[i].theta
+    }
+
     /// The number of legs.
     pub fn legs(&self) -> usize {
         self.legs.len()

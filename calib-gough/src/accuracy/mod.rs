@@ -16,13 +16,17 @@
 //! the workspace).
 mod enclosure;
 mod model;
+mod pose_bound;
 mod pose_error;
 
 pub use enclosure::{AccuracyProblem, Instance, PoseBox, PoseVector};
 pub use model::{leg_length_error, leg_reading, LegLengthError, LegReading};
+pub use pose_bound::{
+    pose_error_bounds, reached_change, PoseBoundSettings, PoseErrorBounds, ReachedChange,
+};
 pub use pose_error::{
-    pose_error_instances, prove_instance, reached_reading, worst_instance, PoseErrorInstance,
-    PoseErrorKind, PoseErrors, ReachedReading,
+    pose_error_instances, pose_errors, prove_instance, reached_reading, worst_instance,
+    PoseErrorInstance, PoseErrorKind, PoseErrors, ReachedReading,
 };
 
 use crate::files::LegSpec;
@@ -151,7 +155,11 @@ pub fn accuracy_report(
     let eps = actuator.unwrap_or(0.0);
     let assess = |legs: &[LegSpec]| {
         let mut a = certify_accuracy(legs, workspace, settings);
-        let pose = pose_error_instances(&AccuracyProblem::new(legs, workspace), eps);
+        let pose = pose_errors(
+            &AccuracyProblem::new(legs, workspace),
+            eps,
+            &PoseBoundSettings::default(),
+        );
         a.seconds += pose.seconds;
         a.pose = Some(pose);
         a
@@ -259,12 +267,13 @@ fn bracket_json(leg: usize, b: &Bracket) -> serde_json::Value {
     })
 }
 
-/// The JSON of a pose-error instance: `upper` (null: not proved by this version), `lower` and
-/// `worst` (the commanded pose, the true geometry per leg, the actuator errors, the reached
-/// pose).
+/// The JSON of a pose error: `upper` (null when not proved; then `upper_unproved_at` names the
+/// box of poses where the reached pose could not be enclosed), `lower` and `worst` (the commanded
+/// pose, the true geometry per leg, the actuator errors, the reached pose).
 fn pose_json(
     i: Option<&PoseErrorInstance>,
     unproved: Option<&PoseVector>,
+    bounds: Option<&PoseErrorBounds>,
     kind: PoseErrorKind,
 ) -> serde_json::Value {
     let worst = i.map(|w| {
@@ -287,7 +296,22 @@ fn pose_json(
         let (p, axis, angle_deg) = axis_angle(x);
         serde_json::json!({ "p": p, "axis": axis, "angle_deg": angle_deg, "rodrigues": &x[3..] })
     });
-    serde_json::json!({ "upper": null, "lower": lower, "worst": worst, "unproved_at": unproved })
+    let upper = bounds.and_then(|b| match kind {
+        PoseErrorKind::Position => b.position,
+        PoseErrorKind::Orientation => b.orientation_deg,
+    });
+    let upper_unproved = bounds.and_then(|b| b.unproved_at).map(|x| {
+        let range = |v: &[Interval]| v.iter().map(|c| [c.inf(), c.sup()]).collect::<Vec<_>>();
+        serde_json::json!({ "p": range(&x[..3]), "rodrigues": range(&x[3..]) })
+    });
+    serde_json::json!({
+        "upper": upper,
+        "lower": lower,
+        "ratio": upper.zip(lower).map(|(u, l)| calib_core::maximum::bracket_ratio(u, l)),
+        "worst": worst,
+        "unproved_at": unproved,
+        "upper_unproved_at": upper_unproved,
+    })
 }
 
 fn pose_fields(a: &Accuracy) -> (serde_json::Value, serde_json::Value) {
@@ -296,11 +320,13 @@ fn pose_fields(a: &Accuracy) -> (serde_json::Value, serde_json::Value) {
         pose_json(
             pose.and_then(|p| p.position.as_ref()),
             pose.and_then(|p| p.position_unproved.as_ref()),
+            pose.and_then(|p| p.bounds.as_ref()),
             PoseErrorKind::Position,
         ),
         pose_json(
             pose.and_then(|p| p.orientation.as_ref()),
             pose.and_then(|p| p.orientation_unproved.as_ref()),
+            pose.and_then(|p| p.bounds.as_ref()),
             PoseErrorKind::Orientation,
         ),
     )
@@ -472,11 +498,26 @@ impl AccuracyReport {
     /// The certificate's table of the platform's pose errors (lower bounds, before and after).
     fn pose_table(&self, pose: &PoseErrors) -> (String, calib_pipeline::html::Table) {
         let before = self.before.as_ref().and_then(|b| b.pose.as_ref());
-        let cell = |i: Option<&PoseErrorInstance>, kind: PoseErrorKind| {
-            i.map_or("not proved".to_string(), |i| match kind {
-                PoseErrorKind::Position => format!("≥ {:.4} cm", i.position),
-                PoseErrorKind::Orientation => format!("≥ {:.4}°", i.orientation_deg),
-            })
+        let cell = |p: &PoseErrors, kind: PoseErrorKind| {
+            let (i, upper, unit) = match kind {
+                PoseErrorKind::Position => (
+                    p.position.as_ref().map(|i| i.position),
+                    p.bounds.as_ref().and_then(|b| b.position),
+                    " cm",
+                ),
+                PoseErrorKind::Orientation => (
+                    p.orientation.as_ref().map(|i| i.orientation_deg),
+                    p.bounds.as_ref().and_then(|b| b.orientation_deg),
+                    "°",
+                ),
+            };
+            let upper = upper.map_or("upper bound not proved".to_string(), |u| {
+                format!("≤ {u:.4}{unit}")
+            });
+            let lower = i.map_or("no instance proved".to_string(), |l| {
+                format!("≥ {l:.4}{unit}")
+            });
+            format!("{upper}, {lower}")
         };
         let mut header: Vec<String> = ["error", "after calibration", "at the commanded pose"]
             .map(String::from)
@@ -496,18 +537,20 @@ impl AccuracyReport {
             let at = pick(pose);
             let mut row = vec![
                 name.to_string(),
-                cell(at.as_ref(), kind),
+                cell(pose, kind),
                 at.as_ref()
                     .map_or(String::new(), |i| pose_words(&i.commanded)),
             ];
             if let Some(b) = before {
-                row.push(cell(pick(b).as_ref(), kind));
+                row.push(cell(b, kind));
             }
             row
         })
         .to_vec();
         (
-            "Platform pose error: at least these values, each attained by a proved instance."
+            "Platform pose error: upper bounds proved over the whole workspace (where the \
+             reached pose could be enclosed), lower bounds attained by proved instances at the \
+             commanded poses shown."
                 .to_string(),
             calib_pipeline::html::Table { header, rows },
         )

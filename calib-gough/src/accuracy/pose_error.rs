@@ -16,11 +16,11 @@
 //! The instance's error is then a proved lower bound of the worst error over the workspace.
 //! Where the path cannot be proved (near a singular pose) the instance is not reported.
 //!
-//! Upper bounds are not proved by this version: with the legs nearly vertical the errors are
-//! large against the legs' horizontal offsets (centimetres and degrees for a ±0.1 cm box), and a
-//! Krawczyk enclosure over every geometry of the box does not contract.
+//! [`pose_errors`] adds the upper bounds of [`super::pose_bound`], proved over the whole workspace
+//! where the reached pose can be enclosed.
 
 use super::enclosure::{AccuracyProblem, PoseVector};
+use super::pose_bound::{pose_error_bounds, PoseBoundSettings, PoseErrorBounds};
 use calib_core::{interval_model, Interval, Model, Scalar};
 use nalgebra::{Matrix6, Vector6};
 use rand::{Rng, SeedableRng};
@@ -90,6 +90,8 @@ pub struct PoseErrors {
     pub position_unproved: Option<PoseVector>,
     /// The same for the orientation error.
     pub orientation_unproved: Option<PoseVector>,
+    /// The upper bounds over the workspace, when computed ([`pose_errors`]).
+    pub bounds: Option<PoseErrorBounds>,
     /// Wall-clock seconds.
     pub seconds: f64,
 }
@@ -473,6 +475,28 @@ pub fn pose_error_instances(problem: &AccuracyProblem, eps: f64) -> PoseErrors {
         orientation,
         position_unproved,
         orientation_unproved,
+        bounds: None,
         seconds: start.elapsed().as_secs_f64(),
     }
+}
+
+/// Both errors bracketed: the instances of [`pose_error_instances`] (lower bounds) and the upper
+/// bounds of [`pose_error_bounds`] over the workspace, refined towards them.
+pub fn pose_errors(
+    problem: &AccuracyProblem,
+    eps: f64,
+    settings: &PoseBoundSettings,
+) -> PoseErrors {
+    let mut errors = pose_error_instances(problem, eps);
+    let lower = [
+        errors.position.as_ref().map_or(0.0, |i| i.position),
+        errors
+            .orientation
+            .as_ref()
+            .map_or(0.0, |i| i.orientation_deg),
+    ];
+    let bounds = pose_error_bounds(problem, eps, lower, settings);
+    errors.seconds += bounds.seconds;
+    errors.bounds = Some(bounds);
+    errors
 }

@@ -2,7 +2,7 @@
 
 use calib_gough::accuracy::{
     accuracy_report, improvement, pose_words, Accuracy, AccuracyReport, AccuracySettings,
-    PoseErrorInstance,
+    PoseErrorInstance, PoseErrors,
 };
 use calib_gough::files::{read_robot, read_uncertainty};
 use calib_gough::report::write_atomically;
@@ -195,16 +195,54 @@ pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
     );
 }
 
+/// The upper bounds of the platform's pose errors, or where they could not be proved.
+fn print_pose_upper(after: &PoseErrors) {
+    let Some(b) = &after.bounds else {
+        return;
+    };
+    match (b.position, b.orientation_deg, b.unproved_at) {
+        (Some(p), Some(o), _) => {
+            let ratio = |u: f64, l: Option<f64>| {
+                l.map_or(String::new(), |l| {
+                    format!(" (bracket {:.2})", calib_core::maximum::bracket_ratio(u, l))
+                })
+            };
+            println!(
+                "  upper bounds: position ≤ {p:.4} cm{}, orientation ≤ {o:.4}°{} ({} boxes of \
+                 poses, {:.1} s{})",
+                ratio(p, after.position.as_ref().map(|i| i.position)),
+                ratio(o, after.orientation.as_ref().map(|i| i.orientation_deg)),
+                b.pose_boxes,
+                b.seconds,
+                if b.converged {
+                    ""
+                } else {
+                    "; budget reached, bounds valid but not refined further"
+                }
+            );
+        }
+        (_, _, at) => println!(
+            "  upper bounds not proved: {}",
+            at.map_or("no box of poses was bounded".to_string(), |x| format!(
+                "the reached pose could not be enclosed for commanded poses near {} (a singular \
+                 pose, or a geometry box too wide for the legs' directions)",
+                pose_words(&x.map(|v| v.mid()))
+            ))
+        ),
+    }
+}
+
 /// The platform's position and orientation errors: proved instances, before and after.
 fn print_pose_errors(r: &AccuracyReport) {
     let Some(after) = &r.after.pose else {
         return;
     };
     println!(
-        "\nplatform pose error: at least (an instance whose reached pose is proved by interval \
-         Newton along the path from the commanded pose; upper bounds are not proved by this \
-         version)"
+        "\nplatform pose error: at most (proved over the whole workspace: no path from a \
+         commanded pose can leave a region whose boundary every leg excludes), at least (an \
+         instance whose reached pose is proved by interval Newton along its path)"
     );
+    print_pose_upper(after);
     let before = r.before.as_ref().and_then(|b| b.pose.as_ref());
     for (name, unit, value, at, unproved) in [
         (
