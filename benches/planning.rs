@@ -2,13 +2,15 @@
 //! geometry, the paper's error bounds, the simulator's workspace): `gough design` (21 poses from
 //! 2,000 candidates, certified criterion; issue target ≤ 60 s on 2 cores) and the accuracy
 //! certificate's leg-length brackets (all six legs to 1.04, ± 0.01 cm and ± 0.1 cm boxes; issue
-//! target ≤ 30 s on 2 cores) and its platform pose-error instances (search and proof of the reached
-//! pose, position and orientation).
+//! target ≤ 30 s on 2 cores), its platform pose-error instances (search and proof of the reached
+//! pose, position and orientation) and both errors bracketed (instances and upper bounds) for a
+//! tightly calibrated robot (± 0.001 cm) on a small workspace (± 0.3 cm, 0.5°).
 //!
 //! `cargo bench --bench planning`. One iteration is one whole design or one whole certificate.
 
 use calib_gough::accuracy::{
-    certify_accuracy, pose_error_instances, AccuracyProblem, AccuracySettings,
+    certify_accuracy, pose_error_instances, pose_errors, AccuracyProblem, AccuracySettings,
+    PoseBoundSettings,
 };
 use calib_gough::design::{builtin_robot, design, DesignRequest};
 use calib_gough::files::LegSpec;
@@ -56,6 +58,33 @@ fn bench(c: &mut Criterion) {
             |b| b.iter(|| black_box(pose_error_instances(&problem, Uncertainty::PAPER.len))),
         );
     }
+    let tight: Vec<LegSpec> = robot
+        .iter()
+        .map(|s| LegSpec {
+            nominal: s.nominal,
+            radius: [0.001; 7],
+        })
+        .collect();
+    let small = Workspace {
+        x: [-0.3, 0.3],
+        y: [-0.3, 0.3],
+        z: [59.7, 60.3],
+        tilt_deg: 0.5,
+        stroke: None,
+    };
+    let problem = AccuracyProblem::new(&tight, &small);
+    g.bench_function(
+        "accuracy/pose errors bracketed, ±0.001 cm, small workspace",
+        |b| {
+            b.iter(|| {
+                black_box(pose_errors(
+                    &problem,
+                    Uncertainty::PAPER.len,
+                    &PoseBoundSettings::default(),
+                ))
+            })
+        },
+    );
     g.finish();
 }
 

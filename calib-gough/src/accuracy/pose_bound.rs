@@ -17,17 +17,19 @@
 //! `max |d|`, `max 2 atan |w|` over an enclosure of `D ∩ F` bound the position and orientation
 //! errors — for every solution connected to `X`, singular or not.
 //!
-//! **How `D ∩ F` is enclosed.** In the coordinates `y = J δ` (`J` the legs' Jacobian at the box's
-//! centre and nominal geometry, `δ = M y` with `M ≈ J⁻¹`, proved nonsingular by `‖I - J M‖ < 1`),
-//! `F` is close to the box `|y_i| <= U_i`; `D` is the parallelepiped `M · [-4U, 4U]`. Boxes of `y`
-//! are dropped when some leg's `G_i` over them (its natural enclosure intersected with the
-//! mean-value form `G_i(δ(y_c)) + (∇_δ G_i · M) (y - y_c)`) misses `[-U_i, U_i]`; a branch and bound
-//! splits the boxes that touch `D`'s boundary (all must go) and the one with the largest error
-//! (until the bound meets its target). `G_i` is written as `(2 v·u + |u|²) / (|v + u| + |v|)`
+//! **How `D` is closed and `D ∩ F` bounded.** In the coordinates `y = J δ` (`J` the legs'
+//! Jacobian at the box's centre and nominal geometry, `δ = M y` with `M ≈ J⁻¹`, proved
+//! nonsingular by `‖I - J M‖ < 1`), `F` is close to the box `|y_i| <= U_i`; `D` is the
+//! parallelepiped `M · [-R, R]`, `R_i = f U_i` with `f` from 3 down to 1.05 while `D` closes. Each
+//! of its 12 faces is paved until every piece is excluded: some leg's `G_i` over the piece (its
+//! natural enclosure intersected with the mean-value form `G_i(δ(y_c)) + (∇_δ G_i · M)(y - y_c)`)
+//! misses `[-U_i, U_i]`. Inside, `|y_i| <= U_i + |G_i - y_i|` (mean value from `δ = 0`, where
+//! `G = 0`) encloses `D ∩ F` in a box, and `|d|`, `|w|` — norms of linear maps of `y`, convex —
+//! are largest at one of its 64 vertices. `G_i` is written as `(2 v·u + |u|²) / (|v + u| + |v|)`
 //! (`v` the leg vector, `u` the attachment point's displacement): `l` cancels exactly and the
 //! enclosure stays relative to the small move.
 //!
-//! Over the workspace, a second branch and bound splits the boxes of poses with the largest
+//! Over the workspace, a branch and bound splits the boxes of poses with the largest
 //! bound; a box whose region cannot be closed (the move not enclosed: near a singular pose, or
 //! the geometry's box too wide for the legs' directions) is split too, and when it is already
 //! small the bound is not proved and the box is named instead.
@@ -69,8 +71,10 @@ pub fn reached_change<S: Scalar>(x: &[S; 6], m: &[S; 12]) -> S {
     num / den
 }
 
-/// The half-widths of the regions `D = M · [-R, R]` tried, in units of `U`.
-const REGIONS: [f64; 2] = [1.5, 3.0];
+/// The half-widths of the regions `D = M · [-R, R]` tried, in units of `U`: the widest first
+/// (its faces lie farthest from `F`), then narrower ones while they close — each closed region
+/// is a proof, and the narrowest gives the tightest bound.
+const REGIONS: [f64; 6] = [3.0, 2.0, 1.5, 1.25, 1.1, 1.05];
 /// A box of a face of `D` narrower than this fraction of `D` (in every coordinate) that cannot be
 /// excluded ends the attempt: the region cannot be closed.
 const FINEST_FACE: f64 = 1.0 / 64.0;
@@ -365,17 +369,27 @@ fn bound_pose_box(
         return (BoxBound::Unproved, 0);
     };
     let mut examined = 0;
+    let mut closed = None;
     for factor in REGIONS {
         let r = chart.bound.map(|u| factor * u);
-        let Some(n) = chart.closes(&r, settings.max_face_boxes) else {
-            examined += settings.max_face_boxes;
-            continue;
-        };
-        examined += n;
-        let h = chart.enclosing_box(&r);
-        return (BoxBound::Bound(chart.vertex_bound(&h)), examined);
+        match chart.closes(&r, settings.max_face_boxes) {
+            Some(n) => {
+                examined += n;
+                closed = Some(r);
+            }
+            None => {
+                examined += settings.max_face_boxes;
+                break;
+            }
+        }
     }
-    (BoxBound::Unproved, examined)
+    match closed {
+        Some(r) => {
+            let h = chart.enclosing_box(&r);
+            (BoxBound::Bound(chart.vertex_bound(&h)), examined)
+        }
+        None => (BoxBound::Unproved, examined),
+    }
 }
 
 /// Upper bounds of the platform's position and orientation errors over `problem`'s workspace,
