@@ -633,6 +633,11 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
     }
     assert!(page.contains("Platform pose error"));
     assert!(String::from_utf8_lossy(&o.stdout).contains("platform pose error"));
+    // No upper bound claimed: the page and the text say where it could not be proved.
+    if j["position"]["upper"].is_null() {
+        assert!(page.contains("could not be enclosed for commanded poses near"));
+        assert!(String::from_utf8_lossy(&o.stdout).contains("upper bounds not proved"));
+    }
 }
 
 #[test]

@@ -547,11 +547,24 @@ impl AccuracyReport {
             row
         })
         .to_vec();
+        let unproved =
+            pose.bounds
+                .as_ref()
+                .and_then(|b| b.unproved_at)
+                .map_or(String::new(), |x| {
+                    format!(
+                        " After calibration the reached pose could not be enclosed for commanded \
+                     poses near {} (a singular pose, or a geometry box too wide for the legs' \
+                     directions): no upper bound is claimed.",
+                        pose_words(&x.map(|v| v.mid()))
+                    )
+                });
         (
-            "Platform pose error: upper bounds proved over the whole workspace (where the \
-             reached pose could be enclosed), lower bounds attained by proved instances at the \
-             commanded poses shown."
-                .to_string(),
+            format!(
+                "Platform pose error: upper bounds proved over the whole workspace (where the \
+                 reached pose could be enclosed), lower bounds attained by proved instances at \
+                 the commanded poses shown.{unproved}"
+            ),
             calib_pipeline::html::Table { header, rows },
         )
     }
