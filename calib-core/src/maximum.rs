@@ -121,26 +121,31 @@ pub fn bracket_ratio(upper: f64, lower: f64) -> f64 {
     }
 }
 
-/// A queued box, ordered by the upper end of `f` over it.
-struct Queued<const N: usize> {
-    sup: f64,
-    b: [Interval; N],
+/// An item of a best-first search, ordered by its key alone (`f64::total_cmp`: `+∞` above every
+/// number), so that a `BinaryHeap<Ranked<_>>` pops the largest key first. [`maximize`] queues its
+/// boxes by the upper end of `f` over them; robot crates use it for their own searches.
+#[derive(Clone, Debug)]
+pub struct Ranked<B> {
+    /// The priority.
+    pub key: f64,
+    /// What is queued.
+    pub item: B,
 }
 
-impl<const N: usize> PartialEq for Queued<N> {
+impl<B> PartialEq for Ranked<B> {
     fn eq(&self, other: &Self) -> bool {
-        self.sup.total_cmp(&other.sup) == Ordering::Equal
+        self.key.total_cmp(&other.key) == Ordering::Equal
     }
 }
-impl<const N: usize> Eq for Queued<N> {}
-impl<const N: usize> PartialOrd for Queued<N> {
+impl<B> Eq for Ranked<B> {}
+impl<B> PartialOrd for Ranked<B> {
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
         Some(self.cmp(other))
     }
 }
-impl<const N: usize> Ord for Queued<N> {
+impl<B> Ord for Ranked<B> {
     fn cmp(&self, other: &Self) -> Ordering {
-        self.sup.total_cmp(&other.sup)
+        self.key.total_cmp(&other.key)
     }
 }
 
@@ -210,17 +215,17 @@ pub fn maximize<O: Objective<N>, const N: usize>(
     };
     probe(mid(domain), &mut out);
     let mut queue = BinaryHeap::new();
-    queue.push(Queued {
-        sup: upper_end(enclosure(f, domain)),
-        b: *domain,
+    queue.push(Ranked {
+        key: upper_end(enclosure(f, domain)),
+        item: *domain,
     });
     out.boxes = 1;
     // Boxes too small to split keep their bound for good: the largest such bound, and its box.
-    let mut settled: Option<Queued<N>> = None;
+    let mut settled: Option<Ranked<[Interval; N]>> = None;
     let reference = f.split_reference(domain);
     loop {
         let top = match (queue.peek(), &settled) {
-            (Some(q), Some(s)) if s.sup > q.sup => s,
+            (Some(q), Some(s)) if s.key > q.key => s,
             (Some(q), _) => q,
             (None, Some(s)) => s,
             (None, None) => {
@@ -230,8 +235,8 @@ pub fn maximize<O: Objective<N>, const N: usize>(
                 return out;
             }
         };
-        out.upper = top.sup.max(out.lower);
-        out.frontier = top.b;
+        out.upper = top.key.max(out.lower);
+        out.frontier = top.item;
         let gap = out.upper - out.lower;
         if gap <= settings.abs_tol || gap <= settings.rel_tol * out.lower.abs() {
             out.converged = true;
@@ -240,13 +245,13 @@ pub fn maximize<O: Objective<N>, const N: usize>(
         if out.boxes >= settings.max_boxes {
             return out;
         }
-        let Some(Queued { sup, b }) = queue.pop() else {
+        let Some(Ranked { key: sup, item: b }) = queue.pop() else {
             // Only settled boxes are left and the gap is still open: nothing more to do.
             return out;
         };
         let Some((l, r)) = split_widest(&b, &reference) else {
-            if settled.as_ref().is_none_or(|s| sup > s.sup) {
-                settled = Some(Queued { sup, b });
+            if settled.as_ref().is_none_or(|s| sup > s.key) {
+                settled = Some(Ranked { key: sup, item: b });
             }
             continue;
         };
@@ -258,7 +263,10 @@ pub fn maximize<O: Objective<N>, const N: usize>(
                 continue;
             }
             probe(mid(&half), &mut out);
-            queue.push(Queued { sup, b: half });
+            queue.push(Ranked {
+                key: sup,
+                item: half,
+            });
         }
     }
 }

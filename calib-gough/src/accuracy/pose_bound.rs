@@ -36,6 +36,7 @@
 
 use super::enclosure::{AccuracyProblem, PoseBox};
 use calib_core::bisection::split_widest;
+use calib_core::maximum::Ranked;
 use calib_core::{interval_model, Interval, Model, Scalar};
 use nalgebra::Matrix6;
 use rayon::prelude::*;
@@ -308,29 +309,6 @@ impl Chart {
     }
 }
 
-/// A queued box, ordered by its key (`+∞` first).
-struct Queued<B> {
-    key: f64,
-    b: B,
-}
-
-impl<B> PartialEq for Queued<B> {
-    fn eq(&self, other: &Self) -> bool {
-        self.key.total_cmp(&other.key) == Ordering::Equal
-    }
-}
-impl<B> Eq for Queued<B> {}
-impl<B> PartialOrd for Queued<B> {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl<B> Ord for Queued<B> {
-    fn cmp(&self, other: &Self) -> Ordering {
-        self.key.total_cmp(&other.key)
-    }
-}
-
 /// `max_k value_k / target_k` (a target of `+∞` asks nothing).
 fn key(value: [f64; 2], target: [f64; 2]) -> f64 {
     (0..2)
@@ -415,17 +393,17 @@ pub fn pose_error_bounds(
         let (b, n) = bound_pose_box(problem, &x, eps, settings);
         (x, b, n)
     };
-    let mut heap: BinaryHeap<Queued<([Interval; 6], BoxBound)>> = BinaryHeap::new();
+    let mut heap: BinaryHeap<Ranked<([Interval; 6], BoxBound)>> = BinaryHeap::new();
     let (mut pose_boxes, mut face_boxes) = (0, 0);
     let enqueue = |heap: &mut BinaryHeap<_>, x: [Interval; 6], b: BoxBound| match b {
         BoxBound::Empty => {}
-        BoxBound::Bound(v) => heap.push(Queued {
+        BoxBound::Bound(v) => heap.push(Ranked {
             key: key(v, target),
-            b: (x, b),
+            item: (x, b),
         }),
-        BoxBound::Unproved => heap.push(Queued {
+        BoxBound::Unproved => heap.push(Ranked {
             key: f64::INFINITY,
-            b: (x, b),
+            item: (x, b),
         }),
     };
     let (x, b, n) = evaluate(domain);
@@ -444,14 +422,14 @@ pub fn pose_error_bounds(
                 heap.push(top);
                 break;
             }
-            let x = top.b.0;
+            let x = top.item.0;
             let fine = (0..6).all(|c| x[c].wid() <= settings.finest_pose * domain[c].wid());
             match split_widest(&x, &domain) {
-                Some((l, r)) if !(fine && top.b.1 == BoxBound::Unproved) => {
+                Some((l, r)) if !(fine && top.item.1 == BoxBound::Unproved) => {
                     children.extend([l, r]);
                 }
                 _ => {
-                    if top.b.1 == BoxBound::Unproved {
+                    if top.item.1 == BoxBound::Unproved {
                         unproved_at = Some(x);
                     }
                     heap.push(top);
@@ -472,13 +450,13 @@ pub fn pose_error_bounds(
     if unproved_at.is_none() {
         unproved_at = heap
             .iter()
-            .find(|q| q.b.1 == BoxBound::Unproved)
-            .map(|q| q.b.0);
+            .find(|q| q.item.1 == BoxBound::Unproved)
+            .map(|q| q.item.0);
     }
     let converged = unproved_at.is_none() && heap.peek().is_none_or(|q| q.key <= 1.0);
     let mut worst = [0.0f64; 2];
     for q in &heap {
-        if let BoxBound::Bound(v) = q.b.1 {
+        if let BoxBound::Bound(v) = q.item.1 {
             worst = [worst[0].max(v[0]), worst[1].max(v[1])];
         }
     }
