@@ -25,8 +25,8 @@ pub use pose_bound::{
     pose_error_bounds, reached_change, PoseBoundSettings, PoseErrorBounds, ReachedChange,
 };
 pub use pose_error::{
-    pose_error_instances, pose_errors, prove_instance, reached_reading, worst_instance,
-    PoseErrorInstance, PoseErrorKind, PoseErrors, ReachedReading,
+    pose_error_instances, pose_errors, prove_instance, worst_instance, PoseErrorInstance,
+    PoseErrorKind, PoseErrors,
 };
 
 use crate::files::LegSpec;

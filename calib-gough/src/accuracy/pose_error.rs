@@ -20,34 +20,11 @@
 //! where the reached pose can be enclosed.
 
 use super::enclosure::{AccuracyProblem, PoseVector};
-use super::pose_bound::{pose_error_bounds, PoseBoundSettings, PoseErrorBounds};
-use calib_core::{interval_model, Interval, Model, Scalar};
+use super::model::LegLengthError;
+use super::pose_bound::{pose_error_bounds, PoseBoundSettings, PoseErrorBounds, ReachedChange};
+use calib_core::{Interval, Model};
 use nalgebra::{Matrix6, Vector6};
 use rand::{Rng, SeedableRng};
-
-/// The reading of a leg when the platform is moved from `X = (p, q)` by `δ = (d, w)` to
-/// `(p + d, R(w) R(q))`: `||p + d + R(w) R(q) b - a|| - l` (paper eq. 3), with
-/// `R(w) c = c + 2 (w × c + w × (w × c)) / (1 + |w|²)`. `x = δ`, `m = (p, q, a, b, l)`.
-#[interval_model]
-pub fn reached_reading<S: Scalar>(x: &[S; 6], m: &[S; 13]) -> S {
-    let [d1, d2, d3, w1, w2, w3] = *x;
-    let [px, py, pz, q1, q2, q3, ax, ay, az, bx, by, bz, l] = *m;
-    let (s1, s2, s3) = (q1.sqr(), q2.sqr(), q3.sqr());
-    let dq = 1.0 + s1 + s2 + s3;
-    let c1 =
-        ((1.0 + s1 - s2 - s3) * bx + 2.0 * (q1 * q2 - q3) * by + 2.0 * (q1 * q3 + q2) * bz) / dq;
-    let c2 =
-        (2.0 * (q1 * q2 + q3) * bx + (1.0 - s1 + s2 - s3) * by + 2.0 * (q2 * q3 - q1) * bz) / dq;
-    let c3 =
-        (2.0 * (q1 * q3 - q2) * bx + 2.0 * (q2 * q3 + q1) * by + (1.0 - s1 - s2 + s3) * bz) / dq;
-    let (k1, k2, k3) = (w2 * c3 - w3 * c2, w3 * c1 - w1 * c3, w1 * c2 - w2 * c1);
-    let (h1, h2, h3) = (w2 * k3 - w3 * k2, w3 * k1 - w1 * k3, w1 * k2 - w2 * k1);
-    let dw = 1.0 + w1.sqr() + w2.sqr() + w3.sqr();
-    let v1 = px + d1 + c1 + 2.0 * (k1 + h1) / dw - ax;
-    let v2 = py + d2 + c2 + 2.0 * (k2 + h2) / dw - ay;
-    let v3 = pz + d3 + c3 + 2.0 * (k3 + h3) / dw - az;
-    (v1.sqr() + v2.sqr() + v3.sqr()).sqrt() - l
-}
 
 /// Which error an instance is searched for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -103,9 +80,14 @@ const CLIMBED: usize = 4;
 /// Vertex patterns followed with the exact forward kinematics.
 const EXACT: usize = 4;
 
-/// The inputs `m = (X, θ)` of [`reached_reading`].
-fn inputs<T: Copy>(x: &[T; 6], theta: &[T; 7]) -> [T; 13] {
+/// The inputs `m = (X, a, b)` of [`ReachedChange`] (`l` cancels in a leg's change).
+fn inputs<T: Copy>(x: &[T; 6], theta: &[T; 7]) -> [T; 12] {
     core::array::from_fn(|k| if k < 6 { x[k] } else { theta[k - 6] })
+}
+
+/// The inputs `m = (X, θ̂)` of [`LegLengthError`].
+fn error_inputs<T: Copy>(x: &[T; 6], nominal: &[T; 7]) -> [T; 13] {
+    core::array::from_fn(|k| if k < 6 { x[k] } else { nominal[k - 6] })
 }
 
 /// The first-order candidates at a pose: per sign pattern of the legs, the geometry and actuator
@@ -125,17 +107,16 @@ impl FirstOrder {
         let mut ends = [[0.0; 2]; 6];
         for i in 0..6 {
             let nominal = problem.nominal(i);
-            let g = ReachedReading.jacobian_x(&[0.0; 6], &inputs(x, nominal));
+            let g = ReachedChange.jacobian_x(&[0.0; 6], &inputs(x, nominal));
             for k in 0..6 {
                 jac[(i, k)] = g[k];
             }
-            let commanded = ReachedReading.residual(&[0.0; 6], &inputs(x, nominal));
             for (end, up) in [(0, true), (1, false)] {
                 let theta = problem.vertex(i, x, up).map(|v| v.mid());
-                let real = ReachedReading.residual(&[0.0; 6], &inputs(x, &theta));
+                let error = LegLengthError.residual(&theta, &error_inputs(x, nominal));
                 // `up`: the largest ΔL, so the smallest s; `e` at the same end.
                 let e = if up { -eps } else { eps };
-                ends[i][end] = commanded + e - real;
+                ends[i][end] = e - error;
             }
         }
         let inverse = jac.try_inverse()?;
@@ -192,28 +173,29 @@ fn pattern_instance(
         .unzip()
 }
 
-/// The homotopy of an instance: `G_i(δ, t) = L_i(X + δ; θ*_i) - (A_i + t (B_i - A_i))` with
-/// `A_i ∋ L_i(X; θ*_i)` and `B_i ∋ L_i(X; θ̂_i) + e_i`.
+/// The homotopy of an instance: `H_i(δ, t) = G_i(δ) - t s_i` with `G_i(δ) = L_i(X + δ; θ*_i) -
+/// L_i(X; θ*_i)` ([`ReachedChange`], without cancellation) and
+/// `s_i ∋ L_i(X; θ̂_i) + e_i - L_i(X; θ*_i) = e_i - ΔL_i(X, θ*)`: the same path as
+/// `L_i(X + δ; θ*_i) = (1 - t) L_i(X; θ*_i) + t (L_i(X; θ̂_i) + e_i)`.
 struct Homotopy<'a> {
     x: [Interval; 6],
     theta: &'a [[Interval; 7]],
-    start: Vec<Interval>,
-    end: Vec<Interval>,
+    shift: Vec<Interval>,
 }
 
 impl Homotopy<'_> {
     fn residual(&self, d: &[Interval; 6], t: Interval) -> Vec<Interval> {
         (0..6)
             .map(|i| {
-                ReachedReading.residual_interval(d, &inputs(&self.x, &self.theta[i]))
-                    - (self.start[i] + t * (self.end[i] - self.start[i]))
+                ReachedChange.residual_interval(d, &inputs(&self.x, &self.theta[i]))
+                    - t * self.shift[i]
             })
             .collect()
     }
 
     fn jacobian(&self, d: &[Interval; 6]) -> [[Interval; 6]; 6] {
         core::array::from_fn(|i| {
-            ReachedReading.jacobian_x_interval(d, &inputs(&self.x, &self.theta[i]))
+            ReachedChange.jacobian_x_interval(d, &inputs(&self.x, &self.theta[i]))
         })
     }
 
@@ -228,9 +210,8 @@ impl Homotopy<'_> {
             let mut g = Vector6::zeros();
             for i in 0..6 {
                 let m = inputs(&x, &mid(&self.theta[i]));
-                let target = self.start[i].mid() + t * (self.end[i].mid() - self.start[i].mid());
-                g[i] = ReachedReading.residual(&dd, &m) - target;
-                let row = ReachedReading.jacobian_x(&dd, &m);
+                g[i] = ReachedChange.residual(&dd, &m) - t * self.shift[i].mid();
+                let row = ReachedChange.jacobian_x(&dd, &m);
                 for k in 0..6 {
                     jac[(i, k)] = row[k];
                 }
@@ -244,7 +225,7 @@ impl Homotopy<'_> {
         let mut jac = Matrix6::zeros();
         let dd: [f64; 6] = core::array::from_fn(|k| d[k]);
         for i in 0..6 {
-            let row = ReachedReading.jacobian_x(&dd, &inputs(&x, &mid(&self.theta[i])));
+            let row = ReachedChange.jacobian_x(&dd, &inputs(&x, &mid(&self.theta[i])));
             for k in 0..6 {
                 jac[(i, k)] = row[k];
             }
@@ -365,22 +346,17 @@ pub fn prove_instance(
     actuator: Vec<f64>,
 ) -> Option<PoseErrorInstance> {
     let xi = x.map(Interval::point);
-    let zero = [Interval::ZERO; 6];
-    let start = (0..problem.legs())
-        .map(|i| ReachedReading.residual_interval(&zero, &inputs(&xi, &theta[i])))
-        .collect();
-    let end = (0..problem.legs())
+    let shift = (0..problem.legs())
         .map(|i| {
             let nominal = problem.nominal(i).map(Interval::point);
-            ReachedReading.residual_interval(&zero, &inputs(&xi, &nominal))
-                + Interval::point(actuator[i])
+            Interval::point(actuator[i])
+                - LegLengthError.residual_interval(&theta[i], &error_inputs(&xi, &nominal))
         })
         .collect();
     let homotopy = Homotopy {
         x: xi,
         theta: &theta,
-        start,
-        end,
+        shift,
     };
     let (reached, segments) = homotopy.follow()?;
     let norm = |v: &[Interval]| (v[0].sqr() + v[1].sqr() + v[2].sqr()).sqrt().inf();
