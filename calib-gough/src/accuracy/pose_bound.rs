@@ -437,6 +437,8 @@ pub fn pose_error_bounds(
                 }
             }
         }
+        // Once a box is named unproved no bound is claimed, so the boxes popped in this batch
+        // need not be evaluated.
         if children.is_empty() || unproved_at.is_some() {
             break;
         }
