@@ -248,20 +248,27 @@ fn least_squares_runs_on_the_files() {
     assert!(text(&o).contains("residuals: rms"), "{}", text(&o));
 }
 
+/// A pipe whose read end is closed: every write to it fails (EPIPE), as under `… | head -0`.
+fn closed_pipe() -> std::process::Stdio {
+    let (reader, writer) = std::io::pipe().expect("a pipe");
+    drop(reader);
+    writer.into()
+}
+
 #[test]
 fn a_closed_output_ends_the_program_quietly() {
     let dir = tempdir("pipe");
     simulated(&dir, 6, &[]);
     let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
-    // `arm lsq … | head -0`: the reader is gone before the first line is printed.
+    // `arm lsq … | head -0`: the reader is gone before the program starts (a
+    // pipe whose read end is already closed: no race with the first line).
     let mut child = Command::new(env!("CARGO_BIN_EXE_arm"))
         .args(["lsq", "--robot", &p("robot.toml")])
         .args(["--measurements", &p("measurements.csv")])
-        .stdout(std::process::Stdio::piped())
+        .stdout(closed_pipe())
         .stderr(std::process::Stdio::piped())
         .spawn()
         .expect("the arm binary runs");
-    drop(child.stdout.take());
     let o = child.wait_with_output().expect("the arm binary ends");
     assert!(!text(&o).contains("panicked"), "{}", text(&o));
     assert_eq!(

@@ -431,21 +431,28 @@ fn lsq_and_reproduce_run_end_to_end() {
     assert!(String::from_utf8_lossy(&help.stdout).contains("Example"));
 }
 
+/// A pipe whose read end is closed: every write to it fails (EPIPE), as under `… | head -0`.
+fn closed_pipe() -> std::process::Stdio {
+    let (reader, writer) = std::io::pipe().expect("a pipe");
+    drop(reader);
+    writer.into()
+}
+
 #[test]
 fn a_closed_output_ends_the_program_quietly() {
     let dir = tempdir("pipe");
     simulate(&dir, 5, &[]);
     let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
-    // `gough certify … | head -0`: the reader is gone before the first line is printed.
+    // `gough certify … | head -0`: the reader is gone before the program starts (a
+    // pipe whose read end is already closed: no race with the first line).
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gough"))
         .args(["certify", "--fast", "--robot", &p("robot.toml")])
         .args(["--measurements", &p("measurements.csv")])
         .args(["--uncertainty", &p("uncertainty.toml")])
-        .stdout(std::process::Stdio::piped())
+        .stdout(closed_pipe())
         .stderr(std::process::Stdio::piped())
         .spawn()
         .expect("gough runs");
-    drop(child.stdout.take());
     let out = child.wait_with_output().expect("gough ends");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!stderr.contains("panicked"), "{stderr}");
