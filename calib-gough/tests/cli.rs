@@ -431,13 +431,16 @@ fn lsq_and_reproduce_run_end_to_end() {
     assert!(String::from_utf8_lossy(&help.stdout).contains("Example"));
 }
 
-/// A pipe whose read end is closed: every write to it fails (EPIPE), as under `… | head -0`.
+/// A stream whose reading end is closed: every write to it fails (EPIPE), as under
+/// `… | head -0`.
+#[cfg(unix)]
 fn closed_pipe() -> std::process::Stdio {
-    let (reader, writer) = std::io::pipe().expect("a pipe");
+    let (writer, reader) = std::os::unix::net::UnixStream::pair().expect("a socket pair");
     drop(reader);
-    writer.into()
+    std::os::fd::OwnedFd::from(writer).into()
 }
 
+#[cfg(unix)]
 #[test]
 fn a_closed_output_ends_the_program_quietly() {
     let dir = tempdir("pipe");
@@ -445,7 +448,7 @@ fn a_closed_output_ends_the_program_quietly() {
     let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
     // `gough certify … | head -0`: the reader is gone before the program starts (a
     // pipe whose read end is already closed: no race with the first line).
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gough"))
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_gough"))
         .args(["certify", "--fast", "--robot", &p("robot.toml")])
         .args(["--measurements", &p("measurements.csv")])
         .args(["--uncertainty", &p("uncertainty.toml")])
