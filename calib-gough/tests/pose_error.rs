@@ -309,7 +309,8 @@ fn small_workspace(rng: &mut StdRng) -> Workspace {
 fn upper_bounds_hold_for_every_sampled_error_and_meet_the_instances() {
     let mut rng = StdRng::seed_from_u64(31);
     let settings = PoseBoundSettings {
-        max_pose_boxes: 200,
+        max_pose_boxes: 100,
+        max_content_boxes: 100,
         max_seconds: f64::INFINITY,
         ..PoseBoundSettings::default()
     };
@@ -399,4 +400,34 @@ fn the_leg_change_without_cancellation_matches_an_independent_forward_kinematics
         );
         assert!(e.contains(change), "{change} outside {e:?}");
     }
+}
+
+/// The claim of the README: on a small workspace of a tightly calibrated robot, the upper bounds
+/// meet the instances within the default tolerance (4%), so the truth is bracketed within 1.05.
+#[test]
+fn a_small_workspace_is_bracketed_within_five_percent() {
+    let spec = robot(0.001);
+    let workspace = Workspace {
+        x: [-0.1, 0.1],
+        y: [-0.1, 0.1],
+        z: [59.9, 60.1],
+        tilt_deg: 0.2,
+        stroke: None,
+    };
+    let settings = PoseBoundSettings {
+        max_seconds: f64::INFINITY,
+        ..PoseBoundSettings::default()
+    };
+    let found = pose_errors(&AccuracyProblem::new(&spec, &workspace), 0.001, &settings);
+    let bounds = found.bounds.expect("computed");
+    assert!(bounds.converged, "not converged: {bounds:?}");
+    let ratio = [
+        bounds.position.expect("a position bound") / found.position.expect("an instance").position,
+        bounds.orientation_deg.expect("an orientation bound")
+            / found.orientation.expect("an instance").orientation_deg,
+    ];
+    assert!(
+        ratio.iter().all(|&r| (1.0..=1.05).contains(&r)),
+        "brackets {ratio:?}"
+    );
 }

@@ -554,8 +554,8 @@ impl AccuracyReport {
                 .map_or(String::new(), |x| {
                     format!(
                         " After calibration the reached pose could not be enclosed for commanded \
-                     poses near {} (a singular pose, or a geometry box too wide for the legs' \
-                     directions): no upper bound is claimed.",
+                     poses near {} (a singular pose, or errors so large that the legs' \
+                     directions change across them): no upper bound is claimed.",
                         pose_words(&x.map(|v| v.mid()))
                     )
                 });

@@ -29,10 +29,22 @@
 //! (`v` the leg vector, `u` the attachment point's displacement): `l` cancels exactly and the
 //! enclosure stays relative to the small move.
 //!
-//! Over the workspace, a branch and bound splits the boxes of poses with the largest
-//! bound; a box whose region cannot be closed (the move not enclosed: near a singular pose, or
-//! the geometry's box too wide for the legs' directions) is split too, and when it is already
-//! small the bound is not proved and the box is named instead.
+//! **Refined in the leg changes.** That box overstates the errors by the whole nonlinear
+//! remainder `|G_i - y_i|` at once. In the leg changes `s = G(X, δ, θ*)` themselves `F` is
+//! exactly the box `[-U, U]`, so a best-first branch and bound splits it into boxes `p` and
+//! encloses the moves of `D ∩ F` reaching each: from `(p ± ρ) ∩ [-h, h]` (`ρ` the remainder
+//! over the box above) by Krawczyk steps for every pose, geometry and `s ∈ p` at once — every
+//! solution in a box stays in its Krawczyk image, no uniqueness needed. The pose enters
+//! `G(X, M ỹ, θ*)` through a centred form whose part `C ∇_X G (X - X_c)` is mapped to the moves
+//! as one matrix, `-(M C ∇_X G)(X - X_c)`: the reached move shifts with the pose far less than
+//! each leg's change does, and the box of that shift (in `d` and `w`, added to the vertices'
+//! values) keeps it so. Boxes near the worst corner are split until each is within its target
+//! ([`PoseBoundSettings::max_content_boxes`]).
+//!
+//! Over the workspace, a branch and bound splits the boxes of poses with the largest bound; a
+//! box whose region cannot be closed (the move not enclosed: near a singular pose, or errors so
+//! large that the legs' Jacobian changes across them) is split too, and when it is already small
+//! the bound is not proved and the box is named instead.
 
 use super::enclosure::{AccuracyProblem, PoseBox};
 use calib_core::bisection::split_widest;
@@ -81,6 +93,18 @@ const REGIONS: [f64; 6] = [3.0, 2.0, 1.5, 1.25, 1.1, 1.05];
 const FINEST_FACE: f64 = 1.0 / 64.0;
 /// Rounds of the enclosure of `D ∩ F` by the box `|y_i| <= U_i + r_i`.
 const SHRINK_ROUNDS: usize = 3;
+/// The relative margin added to a floating-point sum of six products (at most `7u` off, `u =
+/// 2⁻⁵³`): see [`Chart::vertex_value`].
+const ERROR_MARGIN: f64 = 1e-13;
+/// Boxes of leg changes between two checks of [`Chart::content_bound`]'s progress.
+const CONTENT_ROUND: usize = 100;
+/// The relative fall of the largest value per round below which [`Chart::content_bound`] stops.
+const CONTENT_STALL: f64 = 0.005;
+/// Krawczyk steps per box of leg changes in [`Chart::piece`].
+const KRAWCZYK_STEPS: usize = 5;
+/// A Krawczyk step that narrows the box by less than this fraction (summed widths, relative to
+/// `p`'s) is the last.
+const KRAWCZYK_STALL: f64 = 0.1;
 
 /// When to stop [`pose_error_bounds`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -91,6 +115,9 @@ pub struct PoseBoundSettings {
     pub max_pose_boxes: usize,
     /// Boxes of `D`'s faces examined at most per box of poses and region (default 300).
     pub max_face_boxes: usize,
+    /// Boxes of leg changes examined at most per box of poses, to bound the errors over
+    /// `D ∩ F` (default 1000).
+    pub max_content_boxes: usize,
     /// A box of poses whose region cannot be closed and which is narrower than this fraction of
     /// the workspace in every coordinate ends the search unproved (default 1/16).
     pub finest_pose: f64,
@@ -106,6 +133,7 @@ impl Default for PoseBoundSettings {
             rel_tol: 0.04,
             max_pose_boxes: 1500,
             max_face_boxes: 300,
+            max_content_boxes: 1000,
             finest_pose: 1.0 / 16.0,
             max_seconds: 30.0,
         }
@@ -123,8 +151,9 @@ pub struct PoseErrorBounds {
     pub unproved_at: Option<PoseBox>,
     /// Boxes of poses examined.
     pub pose_boxes: usize,
-    /// Boxes of the regions' faces examined, over all boxes of poses.
-    pub face_boxes: usize,
+    /// Boxes of moves examined over all boxes of poses: pieces of the regions' faces, and boxes
+    /// of leg changes inside them.
+    pub move_boxes: usize,
     /// Whether both bounds met their targets (else a budget ran out; the bounds stay valid).
     pub converged: bool,
     /// Wall-clock seconds.
@@ -139,6 +168,15 @@ struct Chart {
     m: [[Interval; 6]; 6],
     /// `U_i`, rounded up.
     bound: [f64; 6],
+}
+
+/// The reached moves of a box of leg changes ([`Chart::piece`]).
+struct Piece {
+    /// Their enclosure in `y`.
+    y: [Interval; 6],
+    /// The same, split as `δ = M y + t`: `y` in the first box (for the pose box's centre), `t`
+    /// in the second (in `δ`: the pose's part). `None` when that enclosure failed.
+    split: Option<([Interval; 6], [Interval; 6])>,
 }
 
 impl Chart {
@@ -227,16 +265,40 @@ impl Chart {
         })
     }
 
-    /// Upper bounds of the position (cm) and orientation (degrees) errors over the box `y`.
-    fn errors(&self, y: &[Interval; 6]) -> [f64; 2] {
-        let d = self.delta(y);
-        let norm = |v: &[Interval]| (v[0].sqr() + v[1].sqr() + v[2].sqr()).sqrt().sup();
-        let w = norm(&d[3..]);
+    /// Upper bounds of the position (cm) and orientation (degrees) errors over the moves
+    /// `δ = M y + t`, `y` in the box `y`, `t` in the box `shift`: `|d|` and `|w|` are norms of
+    /// linear maps, convex, so their largest values are at one of the box's 64 vertices, and
+    /// `|a + t|² = Σ (a_k + t_k)²` is largest with each `t_k` at one of its ends.
+    /// Each vertex is evaluated in floating point; a component `Σ_c M_kc y_c` is off by at most
+    /// `γ_6 Σ_c |M_kc| |y_c|` (`γ_6 < 7u`), and `ERROR_MARGIN` (far above it) is added to every
+    /// component's magnitude before the norms, which are rounded up.
+    fn vertex_value(&self, y: &[Interval; 6], shift: &[Interval; 6]) -> [f64; 2] {
+        let ends = y.map(|v| [v.inf(), v.sup()]);
+        let scale: [f64; 6] = core::array::from_fn(|r| {
+            (0..6).map(|c| self.m[r][c].mag() * y[c].mag()).sum::<f64>() * ERROR_MARGIN
+        });
+        let mut best = [0.0f64; 2];
+        for pattern in 0..64u32 {
+            let v: [f64; 6] = core::array::from_fn(|c| ends[c][(pattern >> c & 1) as usize]);
+            let comp: [f64; 6] = core::array::from_fn(|r| {
+                let a = (0..6).map(|c| self.m[r][c].inf() * v[c]).sum::<f64>();
+                // |a + t| over t in the shift's interval, each end rounded up.
+                let lo = (Interval::point(a) + Interval::point(shift[r].inf())).mag();
+                let hi = (Interval::point(a) + Interval::point(shift[r].sup())).mag();
+                lo.max(hi) + scale[r]
+            });
+            let sq = |k: usize| {
+                comp[k] * comp[k] + comp[k + 1] * comp[k + 1] + comp[k + 2] * comp[k + 2]
+            };
+            best = [best[0].max(sq(0)), best[1].max(sq(3))];
+        }
+        // Square roots rounded up by far more than their half-ulp error.
+        let [d, w] = best.map(|v| v.sqrt() * (1.0 + 1e-12));
         // atan above its libm value by far more than libm's error (a few ulps).
         let angle =
             Interval::point(2.0 * w.atan() * (1.0 + 1e-12)) * Interval::point(180.0) / Interval::PI;
         // A failed enclosure (NaN) bounds nothing.
-        [norm(&d[..3]), angle.sup()].map(|v| if v.is_nan() { f64::INFINITY } else { v })
+        [d, angle.sup()].map(|v| if v.is_nan() { f64::INFINITY } else { v })
     }
 
     /// Whether no move on the boundary of `D = M · [-r, r]` lies in `F`: each of the 12 faces
@@ -267,45 +329,244 @@ impl Chart {
         Some(examined)
     }
 
-    /// Half-widths `h` with `D ∩ F ⊆ [-h, h]` for `D = M · [-r, r]`: on `D`,
-    /// `G_i(M y) - y_i = Σ_c (S_ic - [i = c]) y_c` (`S = ∇_δ G · M` over `D`, mean value from
-    /// `δ = 0` where `G = 0`), so a move of `F` has `|y_i| <= U_i + |G_i - y_i|`; repeated on the
-    /// smaller box, which still holds `D ∩ F`.
-    fn enclosing_box(&self, r: &[f64; 6]) -> [f64; 6] {
-        let mut h = *r;
-        for _ in 0..SHRINK_ROUNDS {
-            let y: [Interval; 6] = h.map(|v| Interval::new(-v, v));
-            let d = self.delta(&y);
-            let next: [f64; 6] = core::array::from_fn(|i| {
-                let grad = ReachedChange.jacobian_x_interval(&d, &self.inputs[i]);
-                let rest = (0..6).fold(Interval::point(0.0), |s, c| {
+    /// Per leg, a bound of the nonlinear remainder `|G_i(M y) - y_i|` over the box `[-h, h]`
+    /// of `y`: `G_i(M y) - y_i = Σ_c (S_ic - [i = c]) y_c` (`S = ∇_δ G · M` over the box, mean
+    /// value from `δ = 0`, where `G = 0`). NaN where the enclosure failed.
+    fn remainder(&self, h: &[f64; 6]) -> [f64; 6] {
+        let y: [Interval; 6] = h.map(|v| Interval::new(-v, v));
+        let d = self.delta(&y);
+        core::array::from_fn(|i| {
+            let grad = ReachedChange.jacobian_x_interval(&d, &self.inputs[i]);
+            (0..6)
+                .fold(Interval::point(0.0), |s, c| {
                     let slope =
                         (0..6).fold(Interval::point(0.0), |s, k| s + grad[k] * self.m[k][c]);
                     let off = if c == i { slope - 1.0 } else { slope };
                     s + off * y[c]
-                });
-                let v = (Interval::point(self.bound[i]) + Interval::point(rest.mag())).sup();
+                })
+                .mag()
+        })
+    }
+
+    /// Half-widths `h` with `D ∩ F ⊆ [-h, h]` for `D = M · [-r, r]`: a move of `F` has
+    /// `|y_i| <= U_i + |G_i - y_i|` ([`Chart::remainder`]); repeated on the smaller box, which
+    /// still holds `D ∩ F`.
+    fn enclosing_box(&self, r: &[f64; 6]) -> [f64; 6] {
+        let mut h = *r;
+        for _ in 0..SHRINK_ROUNDS {
+            let rest = self.remainder(&h);
+            h = core::array::from_fn(|i| {
+                let v = (Interval::point(self.bound[i]) + Interval::point(rest[i])).sup();
                 if v.is_nan() {
                     h[i]
                 } else {
                     v.min(h[i])
                 }
             });
-            h = next;
         }
         h
     }
 
-    /// Upper bounds of both errors over the box `[-h, h]` of `y`: `|d|` and `|w|` are norms of
-    /// linear maps of `y`, convex, so their largest values are at one of the 64 vertices.
-    fn vertex_bound(&self, h: &[f64; 6]) -> [f64; 2] {
-        (0..64u32).fold([0.0f64; 2], |acc, pattern| {
-            let v: [Interval; 6] = core::array::from_fn(|c| {
-                Interval::point(if pattern & (1 << c) != 0 { h[c] } else { -h[c] })
+    /// An enclosure, in `y`, of the reached moves of `D ∩ F` whose leg changes `s = G(X, δ,
+    /// θ*)` lie in the box `p` (for every pose of the box and geometry), `None` only when there
+    /// are proved to be none. Such a move has `y ∈ Y₀ = (p + [-ρ, ρ]) ∩ [-h, h]` (`ρ` the [`Chart::remainder`]
+    /// over `[-h, h] ⊇ D ∩ F`); then Krawczyk steps `Y ← Y ∩ K(Y)`,
+    /// `K(Y) = ỹ - C (G(X, M ỹ, θ*) - p) + (I - C A(Y)) (Y - ỹ)`, keep every solution of `Y`
+    /// (mean value: `G(M y) - G(M ỹ) = A (y - ỹ)` with `A ∈ ∇_δ G(M Y) · M`). `ỹ` solves the
+    /// centre's equations in floating point and `C ≈ A(ỹ)⁻¹`. `G(X, M ỹ, θ*)` is centred in
+    /// the pose and geometry, `G(m_c) + ∇_m G (m - m_c)`, and the pose's part is multiplied
+    /// by `C` as one matrix: the legs' changes move together with the pose, and the box of
+    /// `K` keeps that.
+    fn piece(&self, p: &[Interval; 6], rho: &[f64; 6], h: &[f64; 6]) -> Option<Piece> {
+        let mut y: [Interval; 6] = core::array::from_fn(|i| {
+            (p[i] + Interval::new(-rho[i], rho[i])).intersection(Interval::new(-h[i], h[i]))
+        });
+        if y.iter().any(|v| v.is_empty()) {
+            return None;
+        }
+        // Without a floating-point solution or preconditioner, `Y₀` itself encloses them.
+        let unrefined = Piece { y, split: None };
+        let centres: Vec<[f64; 12]> = self.inputs.iter().map(|m| m.map(|v| v.mid())).collect();
+        let mf: [[f64; 6]; 6] =
+            core::array::from_fn(|r| core::array::from_fn(|c| self.m[r][c].inf()));
+        let to_delta = |y: &[f64; 6]| -> [f64; 6] {
+            core::array::from_fn(|r| (0..6).map(|c| mf[r][c] * y[c]).sum())
+        };
+        // Floating-point Newton for G(X_c, M ỹ, θ_c) = mid p, from mid p.
+        let mut yt: [f64; 6] = p.map(|v| v.mid());
+        let mut a = Matrix6::zeros();
+        for _ in 0..3 {
+            let d = to_delta(&yt);
+            let mut g = nalgebra::Vector6::zeros();
+            for i in 0..6 {
+                g[i] = ReachedChange.residual(&d, &centres[i]) - p[i].mid();
+                let row = ReachedChange.jacobian_x(&d, &centres[i]);
+                for c in 0..6 {
+                    a[(i, c)] = (0..6).map(|k| row[k] * mf[k][c]).sum();
+                }
+            }
+            let Some(step) = a.lu().solve(&g) else {
+                return Some(unrefined);
+            };
+            for c in 0..6 {
+                yt[c] -= step[c];
+            }
+        }
+        let Some(cm) = a.try_inverse() else {
+            return Some(unrefined);
+        };
+        if !yt.iter().chain(cm.iter()).all(|v| v.is_finite()) {
+            return Some(unrefined);
+        }
+        let c: [[Interval; 6]; 6] =
+            core::array::from_fn(|r| core::array::from_fn(|i| Interval::point(cm[(r, i)])));
+        let yti = yt.map(Interval::point);
+        let dt = self.delta(&yti);
+        // e_i ∋ G_i(X, M ỹ, θ*) - s_i without the pose's part; x_part[i][k] = ∂G_i/∂X_k.
+        let mut e = [Interval::ZERO; 6];
+        let mut x_part = [[Interval::ZERO; 6]; 6];
+        for i in 0..6 {
+            let m = &self.inputs[i];
+            let mc = centres[i].map(Interval::point);
+            let gm = ReachedChange.jacobian_m_interval(&dt, m);
+            let mut v = ReachedChange.residual_interval(&dt, &mc) - p[i];
+            for k in 6..12 {
+                v += gm[k] * (m[k] - mc[k]);
+            }
+            e[i] = v;
+            x_part[i] = core::array::from_fn(|k| gm[k]);
+        }
+        // The pose's part, C ∇_X G (X - X_c), as one matrix.
+        let dx: [Interval; 6] =
+            core::array::from_fn(|k| self.inputs[0][k] - self.inputs[0][k].mid());
+        let pose_term: [Interval; 6] = core::array::from_fn(|r| {
+            (0..6).fold(Interval::ZERO, |s, k| {
+                let ck = (0..6).fold(Interval::ZERO, |s, i| s + c[r][i] * x_part[i][k]);
+                s + ck * dx[k]
+            })
+        });
+        // K(Y) without the pose's part: ỹ - C e + (I - C A(Y)) (Y - ỹ).
+        let core = |y: &[Interval; 6]| -> [Interval; 6] {
+            let d = self.delta(y);
+            let slope: [[Interval; 6]; 6] = core::array::from_fn(|i| {
+                let grad = ReachedChange.jacobian_x_interval(&d, &self.inputs[i]);
+                core::array::from_fn(|col| {
+                    (0..6).fold(Interval::ZERO, |s, k| s + grad[k] * self.m[k][col])
+                })
             });
-            let e = self.errors(&v);
-            [acc[0].max(e[0]), acc[1].max(e[1])]
-        })
+            core::array::from_fn(|r| {
+                let mut k = yti[r];
+                for i in 0..6 {
+                    k -= c[r][i] * e[i];
+                }
+                for col in 0..6 {
+                    let ca = (0..6).fold(Interval::ZERO, |s, i| s + c[r][i] * slope[i][col]);
+                    let id = Interval::point(if r == col { 1.0 } else { 0.0 });
+                    k += (id - ca) * (y[col] - yti[col]);
+                }
+                k
+            })
+        };
+        let failed = |v: &[Interval; 6]| v.iter().any(|k| k.inf().is_nan() || k.sup().is_nan());
+        for _ in 0..KRAWCZYK_STEPS {
+            let core = core(&y);
+            let k: [Interval; 6] = core::array::from_fn(|r| core[r] - pose_term[r]);
+            // A failed enclosure (NaN) proves nothing: the box is kept as it is.
+            if failed(&k) {
+                break;
+            }
+            let next: [Interval; 6] = core::array::from_fn(|r| y[r].intersection(k[r]));
+            // Empty: no solution in the box, which holds them all.
+            if next.iter().any(|v| v.is_empty()) {
+                return None;
+            }
+            let gain: f64 = (0..6).map(|c| y[c].wid() - next[c].wid()).sum();
+            y = next;
+            if gain < KRAWCZYK_STALL * p.iter().map(|v| v.wid()).sum::<f64>() {
+                break;
+            }
+        }
+        // The same enclosure with the pose's part kept apart and mapped to the moves as one
+        // matrix, -(M C ∇_X G)(X - X_c): how the reached move itself shifts with the pose.
+        let core = core(&y);
+        let mc: [[Interval; 6]; 6] = core::array::from_fn(|r| {
+            core::array::from_fn(|i| (0..6).fold(Interval::ZERO, |s, k| s + self.m[r][k] * c[k][i]))
+        });
+        let shift: [Interval; 6] = core::array::from_fn(|r| {
+            (0..6).fold(Interval::ZERO, |s, k| {
+                let rk = (0..6).fold(Interval::ZERO, |s, i| s + mc[r][i] * x_part[i][k]);
+                s - rk * dx[k]
+            })
+        });
+        let split = (!failed(&core) && !failed(&shift)).then_some((core, shift));
+        Some(Piece { y, split })
+    }
+
+    /// Upper bounds of both errors over a [`Piece`]: the smaller of [`Chart::vertex_value`]
+    /// over its box and over its pose-free box shifted by the pose's part.
+    fn piece_value(&self, piece: &Piece) -> [f64; 2] {
+        let whole = self.vertex_value(&piece.y, &[Interval::ZERO; 6]);
+        match &piece.split {
+            Some((core, shift)) => {
+                let apart = self.vertex_value(core, shift);
+                [whole[0].min(apart[0]), whole[1].min(apart[1])]
+            }
+            None => whole,
+        }
+    }
+
+    /// Upper bounds of both errors over `D ∩ F ⊆ [-h, h]` (in `y`), refined towards `target`:
+    /// a best-first branch and bound over boxes `p` of the leg changes `s ∈ [-U, U]` — the exact
+    /// shape of `F` in these coordinates — each bounded by [`Chart::vertex_value`] over its
+    /// [`Chart::piece`], splitting the box with the largest value (relative to `target`) until
+    /// each box left is within its target or `budget` boxes have been examined; the bound is
+    /// the largest value left.
+    fn content_bound(&self, h: &[f64; 6], target: [f64; 2], budget: usize) -> ([f64; 2], usize) {
+        let rho = self.remainder(h);
+        if rho.iter().any(|v| v.is_nan()) {
+            return (
+                self.vertex_value(&h.map(|v| Interval::new(-v, v)), &[Interval::ZERO; 6]),
+                1,
+            );
+        }
+        let root: [Interval; 6] = self.bound.map(|u| Interval::new(-u, u));
+        let ranked = |p: [Interval; 6]| {
+            self.piece(&p, &rho, h).map(|piece| {
+                let v = self.piece_value(&piece);
+                Ranked {
+                    key: key(v, target),
+                    item: (p, v),
+                }
+            })
+        };
+        let mut heap: BinaryHeap<_> = ranked(root).into_iter().collect();
+        let mut examined = 1;
+        let mut last = f64::INFINITY;
+        while examined < budget {
+            let Some(top) = heap.pop() else { break };
+            // The largest key falls by less than CONTENT_STALL over CONTENT_ROUND boxes: what is
+            // left is the box of poses' own width, which only splitting it narrows.
+            if examined % CONTENT_ROUND < 2 {
+                if top.key > last * (1.0 - CONTENT_STALL) {
+                    heap.push(top);
+                    break;
+                }
+                last = top.key;
+            }
+            let split = (top.key > 1.0)
+                .then(|| split_widest(&top.item.0, &root))
+                .flatten();
+            let Some((l, r)) = split else {
+                heap.push(top);
+                break;
+            };
+            examined += 2;
+            heap.extend([l, r].into_iter().filter_map(&ranked));
+        }
+        let bound = heap.iter().fold([0.0f64; 2], |acc, q| {
+            [acc[0].max(q.item.1[0]), acc[1].max(q.item.1[1])]
+        });
+        (bound, examined)
     }
 }
 
@@ -333,11 +594,13 @@ enum BoxBound {
     Unproved,
 }
 
-/// The bounds over one box of poses (and the boxes of moves examined).
+/// The bounds over one box of poses, refined towards `target` (and the boxes of moves
+/// examined).
 fn bound_pose_box(
     problem: &AccuracyProblem,
     x: &PoseBox,
     eps: f64,
+    target: [f64; 2],
     settings: &PoseBoundSettings,
 ) -> (BoxBound, usize) {
     if !problem.may_be_feasible(x) {
@@ -364,7 +627,8 @@ fn bound_pose_box(
     match closed {
         Some(r) => {
             let h = chart.enclosing_box(&r);
-            (BoxBound::Bound(chart.vertex_bound(&h)), examined)
+            let (bound, n) = chart.content_bound(&h, target, settings.max_content_boxes);
+            (BoxBound::Bound(bound), examined + n)
         }
         None => (BoxBound::Unproved, examined),
     }
@@ -390,11 +654,11 @@ pub fn pose_error_bounds(
     });
     let domain = problem.domain();
     let evaluate = |x: [Interval; 6]| {
-        let (b, n) = bound_pose_box(problem, &x, eps, settings);
+        let (b, n) = bound_pose_box(problem, &x, eps, target, settings);
         (x, b, n)
     };
     let mut heap: BinaryHeap<Ranked<([Interval; 6], BoxBound)>> = BinaryHeap::new();
-    let (mut pose_boxes, mut face_boxes) = (0, 0);
+    let (mut pose_boxes, mut move_boxes) = (0, 0);
     let enqueue = |heap: &mut BinaryHeap<_>, x: [Interval; 6], b: BoxBound| match b {
         BoxBound::Empty => {}
         BoxBound::Bound(v) => heap.push(Ranked {
@@ -409,7 +673,7 @@ pub fn pose_error_bounds(
     let (x, b, n) = evaluate(domain);
     enqueue(&mut heap, x, b);
     pose_boxes += 1;
-    face_boxes += n;
+    move_boxes += n;
     let batch = 2 * rayon::current_num_threads().max(1);
     let mut unproved_at = None;
     while pose_boxes < settings.max_pose_boxes
@@ -446,7 +710,7 @@ pub fn pose_error_bounds(
         for (x, b, n) in results {
             enqueue(&mut heap, x, b);
             pose_boxes += 1;
-            face_boxes += n;
+            move_boxes += n;
         }
     }
     if unproved_at.is_none() {
@@ -468,8 +732,203 @@ pub fn pose_error_bounds(
         orientation_deg: proved.then_some(worst[1]),
         unproved_at,
         pose_boxes,
-        face_boxes,
+        move_boxes,
         converged,
         seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::files::LegSpec;
+    use crate::simulate::builtin_hexapod;
+    use crate::workspace::Workspace;
+    use rand::rngs::StdRng;
+    use rand::{Rng, SeedableRng};
+
+    /// A tightly calibrated built-in hexapod on a small workspace, where the region closes and
+    /// the Krawczyk steps contract.
+    fn problem(rng: &mut StdRng) -> AccuracyProblem {
+        let radius = rng.random_range(0.0003..0.01);
+        let robot: Vec<LegSpec> = builtin_hexapod()
+            .into_iter()
+            .map(|nominal| LegSpec {
+                nominal,
+                radius: [radius; 7],
+            })
+            .collect();
+        let h = rng.random_range(0.1..0.3);
+        let workspace = Workspace {
+            x: [-h, h],
+            y: [-h, h],
+            z: [60.0 - h, 60.0 + h],
+            tilt_deg: rng.random_range(0.2..0.5),
+            stroke: None,
+        };
+        AccuracyProblem::new(&robot, &workspace)
+    }
+
+    /// A random sub-box of `b`, each side a fraction in `[lo, 1]` of `b`'s.
+    fn sub_box(b: &[Interval; 6], lo: f64, rng: &mut StdRng) -> [Interval; 6] {
+        b.map(|v| {
+            let w = v.wid() * rng.random_range(lo..1.0);
+            let start = v.inf() + rng.random_range(0.0..=(v.wid() - w));
+            Interval::new(start, start + w)
+        })
+    }
+
+    /// A point of `v`: mostly an end (extremes are where an enclosure is tight).
+    fn point_in(v: &Interval, rng: &mut StdRng) -> f64 {
+        if rng.random_bool(0.8) {
+            if rng.random_bool(0.5) {
+                v.inf()
+            } else {
+                v.sup()
+            }
+        } else if v.wid() > 0.0 {
+            rng.random_range(v.inf()..=v.sup())
+        } else {
+            v.inf()
+        }
+    }
+
+    /// A closed region of the chart: `(h, ρ)` as the bound uses them.
+    fn closed(chart: &Chart) -> Option<([f64; 6], [f64; 6])> {
+        let r = REGIONS
+            .iter()
+            .map(|f| chart.bound.map(|u| f * u))
+            .find(|r| chart.closes(r, 2000).is_some())?;
+        let h = chart.enclosing_box(&r);
+        Some((h, chart.remainder(&h)))
+    }
+
+    /// Every move solving `G(X, δ, θ*) = s` (Newton in floating point) for a pose, geometry and
+    /// leg changes drawn from their boxes, inside `Y₀`, lies in the piece's enclosure — and a
+    /// piece proved empty has no such move.
+    #[test]
+    fn a_piece_holds_every_move_reaching_its_leg_changes() {
+        let mut rng = StdRng::seed_from_u64(5);
+        let mut checked = 0;
+        for _ in 0..16 {
+            let problem = problem(&mut rng);
+            // Boxes of poses, and single poses (where the geometry's share shows).
+            let x = sub_box(&problem.domain(), 0.02, &mut rng).map(|v| {
+                if rng.random_bool(0.5) {
+                    v
+                } else {
+                    Interval::point(v.mid())
+                }
+            });
+            let Some(chart) = Chart::new(&problem, &x, 0.0005) else {
+                continue;
+            };
+            let Some((h, rho)) = closed(&chart) else {
+                continue;
+            };
+            let s_box = chart.bound.map(|u| Interval::new(-u, u));
+            let mf: [[f64; 6]; 6] =
+                core::array::from_fn(|r| core::array::from_fn(|c| chart.m[r][c].inf()));
+            for _ in 0..30 {
+                let p = sub_box(&s_box, 0.0, &mut rng).map(|v| {
+                    let w = v.wid() * rng.random_range(0.0..0.1);
+                    Interval::new(v.inf(), v.inf() + w)
+                });
+                let piece = chart.piece(&p, &rho, &h);
+                for _ in 0..40 {
+                    let pose: [f64; 6] = core::array::from_fn(|k| point_in(&x[k], &mut rng));
+                    let m: Vec<[f64; 12]> = (0..6)
+                        .map(|i| {
+                            let t = problem.theta(i);
+                            core::array::from_fn(|k| {
+                                if k < 6 {
+                                    pose[k]
+                                } else {
+                                    point_in(&t[k - 6], &mut rng)
+                                }
+                            })
+                        })
+                        .collect();
+                    let s: [f64; 6] = core::array::from_fn(|i| point_in(&p[i], &mut rng));
+                    let mut y = s;
+                    let mut residual = f64::INFINITY;
+                    for _ in 0..30 {
+                        let d: [f64; 6] =
+                            core::array::from_fn(|r| (0..6).map(|c| mf[r][c] * y[c]).sum());
+                        let mut a = Matrix6::zeros();
+                        let mut g = nalgebra::Vector6::zeros();
+                        for i in 0..6 {
+                            g[i] = ReachedChange.residual(&d, &m[i]) - s[i];
+                            let row = ReachedChange.jacobian_x(&d, &m[i]);
+                            for c in 0..6 {
+                                a[(i, c)] = (0..6).map(|k| row[k] * mf[k][c]).sum();
+                            }
+                        }
+                        residual = g.amax();
+                        let Some(step) = a.lu().solve(&g) else { break };
+                        for c in 0..6 {
+                            y[c] -= step[c];
+                        }
+                    }
+                    let scale = chart.bound.iter().fold(0.0f64, |a, &b| a.max(b));
+                    let tol = 1e-9 * scale;
+                    let in_y0 = (0..6)
+                        .all(|i| (y[i] - s[i]).abs() <= rho[i] - tol && y[i].abs() <= h[i] - tol);
+                    if residual > 1e-13 || !in_y0 {
+                        continue;
+                    }
+                    let piece = piece.as_ref().unwrap_or_else(|| {
+                        panic!("piece {p:?} proved empty, but y = {y:?} reaches s = {s:?}")
+                    });
+                    for c in 0..6 {
+                        assert!(
+                            piece.y[c].inf() - tol <= y[c] && y[c] <= piece.y[c].sup() + tol,
+                            "y[{c}] = {} outside {:?} (s = {s:?})",
+                            y[c],
+                            piece.y[c]
+                        );
+                    }
+                    let d: [f64; 6] =
+                        core::array::from_fn(|r| (0..6).map(|c| mf[r][c] * y[c]).sum());
+                    let [pos, ori] = chart.piece_value(piece);
+                    let position = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                    let angle = 2.0 * (d[3] * d[3] + d[4] * d[4] + d[5] * d[5]).sqrt().atan();
+                    assert!(
+                        position <= pos * (1.0 + 1e-9),
+                        "|d| = {position} above {pos}"
+                    );
+                    assert!(
+                        angle.to_degrees() <= ori * (1.0 + 1e-9),
+                        "angle {} above {ori}",
+                        angle.to_degrees()
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 1000, "only {checked} moves checked");
+    }
+
+    /// The vertex value bounds both errors at every point of its box.
+    #[test]
+    fn the_vertex_value_bounds_the_errors_inside_its_box() {
+        let mut rng = StdRng::seed_from_u64(6);
+        for _ in 0..20 {
+            let problem = problem(&mut rng);
+            let x = sub_box(&problem.domain(), 0.05, &mut rng);
+            let chart = Chart::new(&problem, &x, 0.0).expect("a chart");
+            let h = chart.bound.map(|u| Interval::new(-2.0 * u, 2.0 * u));
+            let y = sub_box(&h, 0.0, &mut rng);
+            let [pos, ori] = chart.vertex_value(&y, &[Interval::ZERO; 6]);
+            for _ in 0..200 {
+                let v: [f64; 6] = core::array::from_fn(|c| point_in(&y[c], &mut rng));
+                let d: [f64; 6] =
+                    core::array::from_fn(|r| (0..6).map(|c| chart.m[r][c].inf() * v[c]).sum());
+                let p = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                let w = (d[3] * d[3] + d[4] * d[4] + d[5] * d[5]).sqrt();
+                assert!(p <= pos, "|d| = {p} above {pos}");
+                assert!(2.0 * w.atan().to_degrees() <= ori, "angle above {ori}");
+            }
+        }
     }
 }

@@ -225,7 +225,8 @@ fn print_pose_upper(after: &PoseErrors) {
             "  upper bounds not proved: {}",
             at.map_or("no box of poses was bounded".to_string(), |x| format!(
                 "the reached pose could not be enclosed for commanded poses near {} (a singular \
-                 pose, or a geometry box too wide for the legs' directions)",
+                 pose, or errors so large that the legs' directions change across them: narrower \
+                 geometry boxes, from more measurements, or a smaller workspace may be bounded)",
                 pose_words(&x.map(|v| v.mid()))
             ))
         ),

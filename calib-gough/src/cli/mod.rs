@@ -81,8 +81,12 @@ enum Command {
     ///                  --before robot.toml --uncertainty uncertainty.toml --json accuracy.json
     ///
     /// The controller uses the robot file's values; the real robot has some geometry in its box
-    /// (value ± radius). The position and orientation errors of the platform are not certified
-    /// yet (see the README).
+    /// (value ± radius). The platform's position and orientation errors are bracketed too: a
+    /// lower bound attained by an instance whose reached pose is proved (interval Newton along
+    /// the path from the commanded pose), and an upper bound proved over the whole workspace
+    /// where the reached pose can be enclosed — where it cannot (a singular pose, or errors so
+    /// large that the legs' directions change across them), no upper bound is printed and the
+    /// poses are named.
     #[command(verbatim_doc_comment)]
     Accuracy(accuracy::Args),
     /// Choose the configurations to measure: K poses of the workspace that determine every leg
