@@ -682,6 +682,27 @@ fn accuracy_rejects_bad_workspace_files_and_writes_nothing() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("field `z`"));
     assert!(!dir.join("report.json").exists());
+    // A time budget that is not a positive number of seconds: named, nothing written.
+    std::fs::write(
+        &ws,
+        "x = [-1, 1]\ny = [-1, 1]\nz = [59, 61]\ntilt_deg = 1\n",
+    )
+    .unwrap();
+    let o = gough(&[
+        "accuracy",
+        "--robot",
+        dir.join("robot.toml").to_str().unwrap(),
+        "--workspace",
+        ws.to_str().unwrap(),
+        "--pose-seconds",
+        "0",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("--pose-seconds"), "{stderr}");
+    assert!(!json.exists());
 }
 
 #[test]

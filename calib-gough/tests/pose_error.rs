@@ -254,6 +254,7 @@ fn a_workspace_at_a_singular_pose_proves_no_instance() {
         &AccuracySettings {
             rel_tol: 0.04,
             max_boxes: 20_000,
+            ..AccuracySettings::default()
         },
         false,
     );

@@ -368,7 +368,8 @@ fn design(
 /// Brackets the leg-length errors of a robot file over a workspace, as `gough accuracy` does;
 /// returns the JSON of `gough accuracy --json`.
 #[pyfunction]
-#[pyo3(signature = (robot, workspace, before=None, uncertainty=None, tolerance=0.04, max_boxes=300_000))]
+#[pyo3(signature = (robot, workspace, before=None, uncertainty=None, tolerance=0.04, max_boxes=300_000, pose_seconds=30.0))]
+#[allow(clippy::too_many_arguments)]
 fn accuracy(
     py: Python<'_>,
     robot: PathBuf,
@@ -377,6 +378,7 @@ fn accuracy(
     uncertainty: Option<PathBuf>,
     tolerance: f64,
     max_boxes: usize,
+    pose_seconds: f64,
 ) -> PyResult<String> {
     use calib_gough::accuracy::{accuracy_report, AccuracySettings};
     let robot = read_robot(&robot).map_err(value_error)?;
@@ -395,9 +397,15 @@ fn accuracy(
             "tolerance: expected a number > 0, found {tolerance}"
         )));
     }
+    if !(pose_seconds > 0.0 && pose_seconds.is_finite()) {
+        return Err(value_error(format!(
+            "pose_seconds: expected a number of seconds > 0, found {pose_seconds}"
+        )));
+    }
     let settings = AccuracySettings {
         rel_tol: tolerance,
         max_boxes,
+        pose_seconds,
     };
     let report = py.detach(|| {
         accuracy_report(

@@ -84,3 +84,5 @@ def test_accuracy_matches_the_command_line(tmp_path):
     bad.write_text("x = [-4, 4]\ny = [-3, 5]\nz = [56, 63]\ntilt_deg = 190\n")
     with pytest.raises(ValueError, match=r"bad.toml, line 4, field `tilt_deg`"):
         certicalib.accuracy(robot, bad)
+    with pytest.raises(ValueError, match="pose_seconds"):
+        certicalib.accuracy(robot, ws, pose_seconds=0)

@@ -98,6 +98,9 @@ pub struct AccuracySettings {
     pub rel_tol: f64,
     /// Examine at most this many pose boxes per error (default 300 000).
     pub max_boxes: usize,
+    /// Stop the platform pose errors' upper bounds after about this many seconds per robot
+    /// (default 30; [`PoseBoundSettings::max_seconds`]): the bounds stay valid, only less tight.
+    pub pose_seconds: f64,
 }
 
 impl Default for AccuracySettings {
@@ -105,6 +108,7 @@ impl Default for AccuracySettings {
         AccuracySettings {
             rel_tol: 0.04,
             max_boxes: 300_000,
+            pose_seconds: PoseBoundSettings::default().max_seconds,
         }
     }
 }
@@ -158,7 +162,11 @@ pub fn accuracy_report(
         let pose = pose_errors(
             &AccuracyProblem::new(legs, workspace),
             eps,
-            &PoseBoundSettings::default(),
+            &PoseBoundSettings {
+                rel_tol: settings.rel_tol,
+                max_seconds: settings.pose_seconds,
+                ..PoseBoundSettings::default()
+            },
         );
         a.seconds += pose.seconds;
         a.pose = Some(pose);

@@ -31,9 +31,13 @@ pub struct Args {
     /// Stop each bracket at upper <= (1 + TOL) lower.
     #[arg(long, value_name = "TOL", default_value_t = 0.04)]
     tolerance: f64,
-    /// Examine at most this many pose boxes per bracket.
+    /// Examine at most this many pose boxes per leg-length bracket.
     #[arg(long, value_name = "N", default_value_t = AccuracySettings::default().max_boxes)]
     max_boxes: usize,
+    /// Stop refining the platform's position and orientation upper bounds after about this
+    /// many seconds per robot: they stay proved, only less tight (the output says so).
+    #[arg(long, value_name = "S", default_value_t = AccuracySettings::default().pose_seconds)]
+    pose_seconds: f64,
     /// Write the brackets, worst instances and improvement as JSON (schema version 1).
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
@@ -56,12 +60,20 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     if !(a.tolerance > 0.0 && a.tolerance.is_finite()) {
         return Err(format!("--tolerance: expected a number > 0, found {}", a.tolerance).into());
     }
+    if !(a.pose_seconds > 0.0 && a.pose_seconds.is_finite()) {
+        return Err(format!(
+            "--pose-seconds: expected a number of seconds > 0, found {}",
+            a.pose_seconds
+        )
+        .into());
+    }
     let settings = AccuracySettings {
         rel_tol: a.tolerance,
         max_boxes: a.max_boxes,
+        pose_seconds: a.pose_seconds,
     };
     let bar = indicatif::ProgressBar::new_spinner();
-    bar.set_message("bracketing the leg-length errors");
+    bar.set_message("bracketing the leg-length and platform pose errors");
     bar.enable_steady_tick(std::time::Duration::from_millis(120));
     let report = accuracy_report(
         &robot,

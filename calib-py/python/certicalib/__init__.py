@@ -385,7 +385,7 @@ def design(out: PathLike, *, robot: Optional[PathLike] = None,
 
 def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike] = None,
              uncertainty: Optional[PathLike] = None, tolerance: float = 0.04,
-             max_boxes: int = 300_000) -> Dict[str, Any]:
+             max_boxes: int = 300_000, pose_seconds: float = 30.0) -> Dict[str, Any]:
     r"""Bracket, per leg, how far the leg length the controller commands (from ``robot``'s values)
     can be from the length the real leg needs, over every pose of ``workspace`` (a
     ``workspace.toml``) and every geometry in ``robot``'s boxes — as ``gough accuracy`` does.
@@ -395,7 +395,9 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
     ``orientation`` of the platform (``lower``: attained by ``worst``, an instance whose reached
     pose is proved; ``upper``: proved over the whole workspace, or ``None`` where the reached pose
     could not be enclosed, ``upper_unproved_at`` then naming the box of poses), ``before``,
-    ``improvement``.
+    ``improvement``. ``tolerance`` stops every bracket at ``upper <= (1 + tolerance) lower``;
+    ``max_boxes`` bounds each leg-length bracket's boxes of poses, ``pose_seconds`` the time spent
+    per robot on the pose errors' upper bounds (they stay proved, only less tight).
 
     >>> import os, tempfile
     >>> d = tempfile.mkdtemp()
@@ -412,7 +414,8 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
     def opt(p: Optional[PathLike]) -> Optional[str]:
         return None if p is None else os.fspath(p)
     return json.loads(_native.accuracy(os.fspath(robot), os.fspath(workspace), opt(before),
-                                       opt(uncertainty), float(tolerance), int(max_boxes)))
+                                       opt(uncertainty), float(tolerance), int(max_boxes),
+                                       float(pose_seconds)))
 
 
 class ArmReport:

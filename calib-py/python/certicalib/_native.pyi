@@ -29,7 +29,7 @@ def simulate(
 def lsq(robot: _Path, measurements: _Path) -> str: ...
 def accuracy(
     robot: _Path, workspace: _Path, before: Optional[_Path] = ..., uncertainty: Optional[_Path] = ...,
-    tolerance: float = ..., max_boxes: int = ...,
+    tolerance: float = ..., max_boxes: int = ..., pose_seconds: float = ...,
 ) -> str: ...
 def design(
     out: _Path, robot: Optional[_Path] = ..., uncertainty: Optional[_Path] = ...,
