@@ -661,15 +661,21 @@ fn accuracy_rejects_bad_workspace_files_and_writes_nothing() {
     )
     .unwrap();
     let json = dir.join("accuracy.json");
-    let o = gough(&[
-        "accuracy",
-        "--robot",
-        dir.join("robot.toml").to_str().unwrap(),
-        "--workspace",
-        ws.to_str().unwrap(),
-        "--json",
-        json.to_str().unwrap(),
-    ]);
+    let robot = dir.join("robot.toml");
+    let accuracy = |extra: &[&str]| {
+        let mut args = vec![
+            "accuracy",
+            "--robot",
+            robot.to_str().unwrap(),
+            "--workspace",
+            ws.to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        gough(&args)
+    };
+    let o = accuracy(&[]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{stderr}");
     assert!(
@@ -688,17 +694,7 @@ fn accuracy_rejects_bad_workspace_files_and_writes_nothing() {
         "x = [-1, 1]\ny = [-1, 1]\nz = [59, 61]\ntilt_deg = 1\n",
     )
     .unwrap();
-    let o = gough(&[
-        "accuracy",
-        "--robot",
-        dir.join("robot.toml").to_str().unwrap(),
-        "--workspace",
-        ws.to_str().unwrap(),
-        "--pose-seconds",
-        "0",
-        "--json",
-        json.to_str().unwrap(),
-    ]);
+    let o = accuracy(&["--pose-seconds", "0"]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("--pose-seconds"), "{stderr}");
