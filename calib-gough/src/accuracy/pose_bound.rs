@@ -166,6 +166,10 @@ struct Chart {
     inputs: Vec<[Interval; 12]>,
     /// `M ≈ J⁻¹`, entries as thin intervals.
     m: [[Interval; 6]; 6],
+    /// The same `M`, as floats.
+    m_float: [[f64; 6]; 6],
+    /// Per leg, the centre of `inputs`.
+    centres: Vec<[f64; 12]>,
     /// `U_i`, rounded up.
     bound: [f64; 6],
 }
@@ -228,13 +232,20 @@ impl Chart {
             // A larger U is still a bound; a positive one keeps 0 inside D.
             *b = u.max(1e-12);
         }
-        let inputs = (0..6)
+        let inputs: Vec<[Interval; 12]> = (0..6)
             .map(|i| {
                 let t = problem.theta(i);
                 core::array::from_fn(|k| if k < 6 { x[k] } else { t[k - 6] })
             })
             .collect();
-        Some(Chart { inputs, m, bound })
+        let centres = inputs.iter().map(|m| m.map(|v| v.mid())).collect();
+        Some(Chart {
+            inputs,
+            m,
+            m_float: core::array::from_fn(|r| core::array::from_fn(|c| inv[(r, c)])),
+            centres,
+            bound,
+        })
     }
 
     /// An enclosure of `δ = M y` over the box `y`.
@@ -281,7 +292,7 @@ impl Chart {
         for pattern in 0..64u32 {
             let v: [f64; 6] = core::array::from_fn(|c| ends[c][(pattern >> c & 1) as usize]);
             let comp: [f64; 6] = core::array::from_fn(|r| {
-                let a = (0..6).map(|c| self.m[r][c].inf() * v[c]).sum::<f64>();
+                let a = (0..6).map(|c| self.m_float[r][c] * v[c]).sum::<f64>();
                 // |a + t| over t in the shift's interval, each end rounded up.
                 let lo = (Interval::point(a) + Interval::point(shift[r].inf())).mag();
                 let hi = (Interval::point(a) + Interval::point(shift[r].sup())).mag();
@@ -386,9 +397,7 @@ impl Chart {
         }
         // Without a floating-point solution or preconditioner, `Y₀` itself encloses them.
         let unrefined = Piece { y, split: None };
-        let centres: Vec<[f64; 12]> = self.inputs.iter().map(|m| m.map(|v| v.mid())).collect();
-        let mf: [[f64; 6]; 6] =
-            core::array::from_fn(|r| core::array::from_fn(|c| self.m[r][c].inf()));
+        let (centres, mf) = (&self.centres, &self.m_float);
         let to_delta = |y: &[f64; 6]| -> [f64; 6] {
             core::array::from_fn(|r| (0..6).map(|c| mf[r][c] * y[c]).sum())
         };
