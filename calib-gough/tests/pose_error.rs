@@ -432,3 +432,53 @@ fn a_small_workspace_is_bracketed_within_five_percent() {
         "brackets {ratio:?}"
     );
 }
+
+/// Before and after: the proved improvement of the platform's errors is the uncalibrated robot's
+/// lower bound over the calibrated one's upper bound, in the JSON, the text and the certificate.
+#[test]
+fn the_pose_improvement_is_before_lower_over_after_upper() {
+    let workspace = Workspace {
+        x: [-0.1, 0.1],
+        y: [-0.1, 0.1],
+        z: [59.9, 60.1],
+        tilt_deg: 0.2,
+        stroke: None,
+    };
+    let (after, before) = (robot(0.001), robot(0.01));
+    let report = accuracy_report(
+        &after,
+        Some(&before),
+        &workspace,
+        Some(0.001),
+        &AccuracySettings {
+            pose_seconds: 5.0,
+            ..AccuracySettings::default()
+        },
+        false,
+    );
+    let pose = |a: &calib_gough::accuracy::Accuracy| a.pose.clone().expect("computed");
+    let (a, b) = (
+        pose(&report.after),
+        pose(report.before.as_ref().expect("before")),
+    );
+    let upper = a.bounds.as_ref().expect("computed");
+    let factors = [
+        b.position.expect("an instance").position / upper.position.expect("proved"),
+        b.orientation.expect("an instance").orientation_deg
+            / upper.orientation_deg.expect("proved"),
+    ];
+    assert!(factors.iter().all(|&f| f > 1.0), "{factors:?}");
+    let json = report.json();
+    for (key, f) in ["position", "orientation"].into_iter().zip(factors) {
+        assert_eq!(json["pose_improvement"][key].as_f64(), Some(f), "{key}");
+    }
+    let section = report.section();
+    assert!(
+        section
+            .paragraphs
+            .iter()
+            .any(|p| p.contains(&format!("position error at least {:.1}-fold", factors[0]))),
+        "{:?}",
+        section.paragraphs
+    );
+}

@@ -255,6 +255,44 @@ pub fn improvement(before: &Bracket, after: &Bracket) -> f64 {
     }
 }
 
+/// "reduced the platform's worst position error at least …-fold and …" for the proved factors of
+/// [`pose_improvement`], or `None` when neither
+/// factor is proved.
+pub fn improvement_words([position, orientation]: [Option<f64>; 2]) -> Option<String> {
+    let parts: Vec<String> = [(position, "position"), (orientation, "orientation")]
+        .into_iter()
+        .filter_map(|(f, name)| f.map(|f| format!("worst {name} error at least {f:.1}-fold")))
+        .collect();
+    (!parts.is_empty()).then(|| {
+        format!(
+            "reduced the platform's {} (proved: the uncalibrated robot's lower bound over the \
+             calibrated one's upper bound)",
+            parts.join(" and ")
+        )
+    })
+}
+
+/// How much calibration improved the platform's position and orientation errors:
+/// `before`'s lower bound over `after`'s upper bound, each a proved factor (`None` where either
+/// is not proved).
+pub fn pose_improvement(before: &PoseErrors, after: &PoseErrors) -> [Option<f64>; 2] {
+    let upper = after.bounds.as_ref();
+    let factor = |lower: Option<f64>, upper: Option<f64>| match (lower, upper) {
+        (Some(l), Some(u)) if u > 0.0 => Some(l / u),
+        _ => None,
+    };
+    [
+        factor(
+            before.position.as_ref().map(|i| i.position),
+            upper.and_then(|b| b.position),
+        ),
+        factor(
+            before.orientation.as_ref().map(|i| i.orientation_deg),
+            upper.and_then(|b| b.orientation_deg),
+        ),
+    ]
+}
+
 fn bracket_json(leg: usize, b: &Bracket) -> serde_json::Value {
     let worst = b.worst.as_ref().map(|w| {
         let (p, axis, angle_deg) = axis_angle(&w.pose);
@@ -361,15 +399,24 @@ impl AccuracyReport {
             .map(|len| (Interval::point(worst) + Interval::point(len)).sup())
     }
 
+    /// [`pose_improvement`] of the report's robots, when both were assessed.
+    pub fn pose_improvement(&self) -> Option<[Option<f64>; 2]> {
+        let before = self.before.as_ref()?.pose.as_ref()?;
+        Some(pose_improvement(before, self.after.pose.as_ref()?))
+    }
+
     /// The JSON of `gough accuracy --json` (schema version 1; cm and degrees): `workspace`,
     /// `leg_length` (per leg `upper`, `lower`, `ratio`, `converged`, `boxes` and `worst`: the
     /// pose as `p`, `axis`, `angle_deg` and `rodrigues`, the true geometry `theta` in the order
-    /// of [`crate::PARAMETER_NAMES`], its `error`), `position` and `orientation` (`upper`: null,
-    /// not proved by this version; `lower`: attained by `worst`, whose reached pose is proved —
-    /// the commanded pose, `theta` per leg, `actuator` errors, `reached` as enclosures of the
-    /// move `d` and the rotation error's Rodrigues vector `w`; without an instance, `unproved_at`:
-    /// the commanded pose whose path could not be proved), `before` (the same for the
-    /// uncalibrated robot, or null), `improvement` (per leg, the proved factor) and `actuator`.
+    /// of [`crate::PARAMETER_NAMES`], its `error`), `position` and `orientation` (`upper`: proved
+    /// over the whole workspace, or null with `upper_unproved_at` naming the box of poses where
+    /// the reached pose could not be enclosed; `ratio`; `lower`: attained by `worst`, whose
+    /// reached pose is proved — the commanded pose, `theta` per leg, `actuator` errors, `reached`
+    /// as enclosures of the move `d` and the rotation error's Rodrigues vector `w`; without an
+    /// instance, `unproved_at`: the commanded pose whose path could not be proved), `before`
+    /// (the same for the uncalibrated robot, or null), `improvement` (per leg, the proved
+    /// factor), `pose_improvement` (`position` and `orientation`: the proved factors of
+    /// [`pose_improvement`], null where not proved; null without `before`) and `actuator`.
     pub fn json(&self) -> serde_json::Value {
         let w = &self.workspace;
         let (position, orientation) = pose_fields(&self.after);
@@ -396,6 +443,9 @@ impl AccuracyReport {
                     .zip(&self.after.leg_length)
                     .map(|(b, a)| improvement(b, a))
                     .collect::<Vec<_>>()
+            }),
+            "pose_improvement": self.pose_improvement().map(|[p, o]| {
+                serde_json::json!({ "position": p, "orientation": o })
             }),
             "actuator": self.actuator,
             "seconds": self.after.seconds + self.before.as_ref().map_or(0.0, |b| b.seconds),
@@ -459,13 +509,18 @@ impl AccuracyReport {
             ));
         }
         paragraphs.push(
-            "The platform's position and orientation errors below are lower bounds: each is \
-             attained by an explicit instance (a commanded pose of the workspace, a true \
-             geometry at a corner of the boxes, actuator errors within their bounds) whose \
-             reached pose is proved by interval Newton along the path from the commanded \
-             pose. Their upper bounds are not proved by this version."
+            "The platform's position and orientation errors below are bracketed: each lower \
+             bound is attained by an explicit instance (a commanded pose of the workspace, a \
+             true geometry at a corner of the boxes, actuator errors within their bounds) whose \
+             reached pose is proved by interval Newton along the path from the commanded pose; \
+             each upper bound is proved over the whole workspace (no path from a commanded pose \
+             can leave a region whose boundary every leg excludes), where the reached pose can \
+             be enclosed."
                 .to_string(),
         );
+        if let Some(words) = self.pose_improvement().and_then(improvement_words) {
+            paragraphs.push(format!("Calibration {words}."));
+        }
         let mut tables = vec![(
             "Leg-length error per leg: the truth lies between lower and upper.".to_string(),
             calib_pipeline::html::Table { header, rows },

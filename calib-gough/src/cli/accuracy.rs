@@ -1,8 +1,8 @@
 //! `gough accuracy`.
 
 use calib_gough::accuracy::{
-    accuracy_report, improvement, pose_words, Accuracy, AccuracyReport, AccuracySettings,
-    PoseErrorInstance, PoseErrors,
+    accuracy_report, improvement, improvement_words, pose_words, Accuracy, AccuracyReport,
+    AccuracySettings, PoseErrorInstance, PoseErrors,
 };
 use calib_gough::files::{read_robot, read_uncertainty};
 use calib_gough::report::write_atomically;
@@ -199,6 +199,9 @@ pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
             "\ncalibration reduced every leg's worst length error at least {factor:.1}-fold \
              (proved: before's lower bound over after's upper bound)"
         );
+        if let Some(words) = r.pose_improvement().and_then(improvement_words) {
+            println!("calibration {words}");
+        }
     }
     let seconds = r.after.seconds + r.before.as_ref().map_or(0.0, |b| b.seconds);
     println!(

@@ -395,7 +395,8 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
     ``orientation`` of the platform (``lower``: attained by ``worst``, an instance whose reached
     pose is proved; ``upper``: proved over the whole workspace, or ``None`` where the reached pose
     could not be enclosed, ``upper_unproved_at`` then naming the box of poses), ``before``,
-    ``improvement``. ``tolerance`` stops every bracket at ``upper <= (1 + tolerance) lower``;
+    ``improvement`` (per leg) and ``pose_improvement`` (``position``, ``orientation``: proved
+    factors, ``None`` where not proved). ``tolerance`` stops every bracket at ``upper <= (1 + tolerance) lower``;
     ``max_boxes`` bounds each leg-length bracket's boxes of poses, ``pose_seconds`` the time spent
     per robot on the pose errors' upper bounds (they stay proved, only less tight).
 
