@@ -526,10 +526,11 @@ impl Chart {
 
     /// Upper bounds of both errors over `D ∩ F ⊆ [-h, h]` (in `y`), refined towards `target`:
     /// a best-first branch and bound over boxes `p` of the leg changes `s ∈ [-U, U]` — the exact
-    /// shape of `F` in these coordinates — each bounded by [`Chart::vertex_value`] over its
+    /// shape of `F` in these coordinates — each bounded by [`Chart::piece_value`] of its
     /// [`Chart::piece`], splitting the box with the largest value (relative to `target`) until
-    /// each box left is within its target or `budget` boxes have been examined; the bound is
-    /// the largest value left.
+    /// each box left is within its target, `budget` boxes have been examined, or the largest
+    /// value stops falling ([`CONTENT_STALL`] per [`CONTENT_ROUND`] boxes: the box of poses is
+    /// then too wide); the bound is the largest value left.
     fn content_bound(&self, h: &[f64; 6], target: [f64; 2], budget: usize) -> ([f64; 2], usize) {
         let rho = self.remainder(h);
         if rho.iter().any(|v| v.is_nan()) {
