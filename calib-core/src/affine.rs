@@ -74,6 +74,27 @@ impl<const N: usize> Affine<N> {
         }
     }
 
+    /// The centre `c`.
+    pub fn centre(&self) -> f64 {
+        self.c
+    }
+
+    /// The coefficients `a_i` of the noise symbols.
+    pub fn coefficients(&self) -> &[f64; N] {
+        &self.a
+    }
+
+    /// The error radius `e` (everything the linear part does not hold).
+    pub fn error(&self) -> f64 {
+        self.e
+    }
+
+    /// Whether the form is exactly zero (a derivative that does not depend on its seed yet).
+    #[inline(always)]
+    fn is_zero(&self) -> bool {
+        self.c == 0.0 && self.e == 0.0 && self.a.iter().all(|v| *v == 0.0)
+    }
+
     /// `Σ |a_i| + e`, rounded up: the radius of the form.
     pub fn radius(&self) -> f64 {
         self.a.iter().fold(self.e, |s, v| add_up(s, v.abs()))
@@ -123,6 +144,13 @@ impl<const N: usize> Affine<N> {
 impl<const N: usize> Add for Affine<N> {
     type Output = Self;
     fn add(self, o: Self) -> Self {
+        // x + 0 = x exactly (a derivative not yet reached by its seed costs nothing).
+        if o.is_zero() {
+            return self;
+        }
+        if self.is_zero() {
+            return o;
+        }
         let c = self.c + o.c;
         let mut e = add_up(add_up(self.e, o.e), rounding(c));
         let mut a = [0.0; N];
@@ -158,6 +186,10 @@ impl<const N: usize> Mul for Affine<N> {
     type Output = Self;
     /// `c_x c_y + c_x L_y + c_y L_x` plus the remainder `|c_x| e_y + |c_y| e_x + r_x r_y`.
     fn mul(self, o: Self) -> Self {
+        // x · 0 = 0 exactly, even for an unbounded x (the interval convention).
+        if self.is_zero() || o.is_zero() {
+            return Affine::from_interval(Interval::ZERO);
+        }
         let c = self.c * o.c;
         let mut e = rounding(c);
         e = add_up(e, mul_up(self.c.abs(), o.e));
@@ -292,6 +324,17 @@ mod tests {
                 assert!(aff.wid() < 0.5 * iv.wid(), "affine {aff} vs interval {iv}");
             }
         }
+    }
+
+    #[test]
+    fn zero_forms_add_and_multiply_exactly() {
+        let x: Affine<2> = Affine::input(Interval::new(0.1, 0.3), 1) * Affine::cst(3.0);
+        let zero = Affine::from_interval(Interval::ZERO);
+        assert_eq!(x + zero, x);
+        assert_eq!(zero + x, x);
+        assert_eq!((x * zero).range(), Interval::ZERO);
+        assert_eq!((zero * x).radius(), 0.0);
+        assert!(!x.is_zero() && zero.is_zero());
     }
 
     #[test]

@@ -5,7 +5,8 @@ use core::fmt::Debug;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
 /// A number type a residual can be written over: `f64` (point evaluation), [`Interval`] (rigorous
-/// enclosures) and [`crate::Dual`] (forward-mode derivatives, for tests).
+/// enclosures), [`crate::Affine`] (affine forms), [`crate::Dual`] (forward-mode derivatives, for
+/// tests) and [`crate::Jet`] (derivatives in any of these).
 ///
 /// A residual is written once as `fn f<S: Scalar>(x: &[S; NX], m: &[S; NM]) -> S`; the
 /// `#[interval_model]` attribute derives every evaluator from that one body.
