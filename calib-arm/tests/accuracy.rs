@@ -63,7 +63,7 @@ fn the_upper_bound_holds_and_the_worst_instance_is_rechecked() {
             &problem,
             &ToolAccuracySettings {
                 rel_tol: 0.04,
-                max_boxes: 1500,
+                max_boxes: 600,
             },
         );
         assert!(
@@ -156,6 +156,22 @@ fn a_single_configuration_is_bracketed_tightly() {
         ranges_deg: [10.0, -80.0, 95.0, -100.0, 85.0, 30.0]
             .iter()
             .map(|q| [*q, *q])
+            .collect(),
+    };
+    let problem = ToolAccuracyProblem::new(&arm, &space, 0.001).expect("problem");
+    let b = certify_tool_accuracy(&problem, &ToolAccuracySettings::default());
+    assert!(b.converged && b.ratio() <= 1.05, "{b:?}");
+}
+
+#[test]
+fn a_cell_of_every_joint_is_bracketed_within_five_percent() {
+    // A ±3° cell of all six joints: the joint branch and bound with affine Jacobians and the
+    // direction searched per joint box converges within the default budget.
+    let arm = scaled(0.05);
+    let space = JointSpace {
+        ranges_deg: [10.0, -80.0, 95.0, -100.0, 85.0, 30.0]
+            .iter()
+            .map(|q| [*q - 3.0, *q + 3.0])
             .collect(),
     };
     let problem = ToolAccuracyProblem::new(&arm, &space, 0.001).expect("problem");
