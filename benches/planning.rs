@@ -4,10 +4,14 @@
 //! certificate's leg-length brackets (all six legs to 1.04, ± 0.01 cm and ± 0.1 cm boxes; issue
 //! target ≤ 30 s on 2 cores), its platform pose-error instances (search and proof of the reached
 //! pose, position and orientation) and both errors bracketed (instances and upper bounds) for a
-//! tightly calibrated robot (± 0.001 cm) on a small workspace (± 0.3 cm, 0.5°).
+//! tightly calibrated robot (± 0.001 cm) on a small workspace (± 0.3 cm, 0.5°); and the serial
+//! arm's tool-point accuracy on a ± 3° cell of all six joints (the built-in arm, 1/20 of its
+//! prior box, ± 0.001° joints), bracketed within 1.05.
 //!
 //! `cargo bench --bench planning`. One iteration is one whole design or one whole certificate.
 
+use calib_arm::accuracy::{certify_tool_accuracy, ToolAccuracyProblem, ToolAccuracySettings};
+use calib_arm::joint_space::JointSpace;
 use calib_gough::accuracy::{
     certify_accuracy, pose_error_instances, pose_errors, AccuracyProblem, AccuracySettings,
     PoseBoundSettings,
@@ -85,6 +89,31 @@ fn bench(c: &mut Criterion) {
             })
         },
     );
+    let mut arm = calib_arm::builtin_arm();
+    for j in &mut arm.joints {
+        j.radius = j.radius.map(|r| r * 0.05);
+    }
+    arm.base_radius = arm.base_radius.map(|r| r * 0.05);
+    arm.tool_radius = arm.tool_radius.map(|r| r * 0.05);
+    let cell = JointSpace {
+        ranges_deg: [10.0, -80.0, 95.0, -100.0, 85.0, 30.0]
+            .iter()
+            .map(|q| [*q - 3.0, *q + 3.0])
+            .collect(),
+    };
+    if let Ok(problem) = ToolAccuracyProblem::new(&arm, &cell, 0.001) {
+        g.bench_function(
+            "accuracy/arm tool point bracketed, ± 3° cell of six joints",
+            |b| {
+                b.iter(|| {
+                    black_box(certify_tool_accuracy(
+                        &problem,
+                        &ToolAccuracySettings::default(),
+                    ))
+                })
+            },
+        );
+    }
     g.finish();
 }
 
