@@ -305,8 +305,31 @@ impl<const N: usize> Scalar for Affine<N> {
     fn enclose(_nearest: f64, lo: f64, hi: f64) -> Self {
         Affine::from_interval(Interval::new(lo, hi))
     }
+    /// `x̂²` centred: with `x̂ = c + L + E` (`L` the linear part, `|E| <= e`, `r = Σ|a_i| + e`),
+    /// `x̂² = c² + 2cL + 2cE + (L + E)²` and `(L + E)² ∈ [0, r²]`: the centre moves by `r²/2` and
+    /// the error grows by `r²/2`, half of what the product `x̂ · x̂` (which cannot know both
+    /// factors are equal) adds.
     fn sqr(self) -> Self {
-        self * self
+        if self.is_zero() {
+            return self;
+        }
+        let r = self.radius();
+        let half = mul_up(mul_up(r, r), 0.5);
+        let cc = self.c * self.c;
+        let c = cc + half;
+        let mut e = add_up(add_up(rounding(cc), rounding(c)), half);
+        e = add_up(e, mul_up(mul_up(2.0, self.c.abs()), self.e));
+        let mut a = [0.0; N];
+        for i in 0..N {
+            a[i] = 2.0 * self.c * self.a[i];
+            if a[i] != 0.0 {
+                e = add_up(e, rounding(a[i]));
+            }
+        }
+        if !e.is_finite() || !c.is_finite() {
+            return Affine::from_interval(self.range().sqr());
+        }
+        Affine { c, a, e }
     }
     fn powi(self, n: i32) -> Self {
         self.through_interval(|x| x.powi(n))
@@ -464,6 +487,24 @@ mod tests {
         // A range holding 0 cannot be inverted: the form spans everything.
         let z: Affine<1> = Affine::input(Interval::new(-1.0, 1.0), 0);
         assert!(!z.recip().range().is_bounded());
+    }
+
+    /// A square encloses every value and is tighter than the product of the form with itself.
+    #[test]
+    fn squares_enclose_values_and_halve_the_product_remainder() {
+        for (lo, hi) in [(-1.0, 3.0), (2.0, 2.5), (-4.0, -3.0), (-1e-3, 1e-3)] {
+            let x: Affine<2> = Affine::input(Interval::new(lo, hi), 0)
+                + Affine::input(Interval::new(-0.1, 0.2), 1);
+            let (s, p) = (x.sqr(), x * x);
+            assert!(s.e < p.e, "[{lo}, {hi}]: {s:?} vs {p:?}");
+            for k in 0..=400 {
+                let e0 = -1.0 + (k % 21) as f64 / 10.0;
+                let e1 = -1.0 + (k / 21) as f64 / 10.0;
+                let xv = x.c + x.a[0] * e0 + x.a[1] * e1;
+                let v = s.c + s.a[0] * e0 + s.a[1] * e1;
+                assert!((v - xv * xv).abs() <= s.e, "[{lo}, {hi}] at ({e0}, {e1})");
+            }
+        }
     }
 
     #[test]
