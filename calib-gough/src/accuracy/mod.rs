@@ -17,6 +17,7 @@
 mod enclosure;
 mod model;
 mod pose_bound;
+mod pose_chart;
 mod pose_error;
 
 pub use enclosure::{AccuracyProblem, Instance, PoseBox, PoseVector};

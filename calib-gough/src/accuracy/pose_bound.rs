@@ -45,12 +45,20 @@
 //! values) keeps it so. Boxes near the worst corner are split until each is within its target
 //! ([`PoseBoundSettings::max_content_boxes`]).
 //!
+//! **First, in one step.** Each box of poses is first bounded by the chart that follows the pose
+//! ([`super::pose_chart`]): `δ = M(X) y` with `M(X)` the first-order inverse of the legs'
+//! Jacobian at each pose, where a region closes at once when the Jacobian changes little across
+//! the box and the move. Only a box whose one-step bound is within [`REFINE_WITHIN`] of its
+//! target goes through the pieces above (both bounds hold; the smaller is kept); farther above,
+//! splitting the box is cheaper.
+//!
 //! Over the workspace, a branch and bound splits the boxes of poses with the largest bound; a
 //! box whose region cannot be closed (the move not enclosed: near a singular pose, or errors so
 //! large that the legs' Jacobian changes across them) is split too, and when it is already small
 //! the bound is not proved and the box is named instead.
 
 use super::enclosure::{AccuracyProblem, PoseBox};
+use super::pose_chart::PoseChart;
 use calib_core::bisection::split_widest;
 use calib_core::maximum::Ranked;
 use calib_core::{interval_model, Affine, Interval, Model, Scalar};
@@ -110,12 +118,16 @@ const KRAWCZYK_STEPS: usize = 5;
 /// `p`'s) is the last.
 const KRAWCZYK_STALL: f64 = 0.1;
 
+/// A box of poses whose one-step bound ([`PoseChart`]) is above its target by at most this factor
+/// is refined by the pieces of the fixed chart too; farther above, splitting the box is cheaper.
+const REFINE_WITHIN: f64 = 1.1;
+
 /// When to stop [`pose_error_bounds`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PoseBoundSettings {
     /// Stop once each bound is within `1 + rel_tol` of its target (default 0.04).
     pub rel_tol: f64,
-    /// Boxes of poses examined at most (default 1500).
+    /// Boxes of poses examined at most (default 5000).
     pub max_pose_boxes: usize,
     /// Boxes of `D`'s faces examined at most per box of poses and region (default 300).
     pub max_face_boxes: usize,
@@ -135,7 +147,7 @@ impl Default for PoseBoundSettings {
     fn default() -> Self {
         PoseBoundSettings {
             rel_tol: 0.04,
-            max_pose_boxes: 1500,
+            max_pose_boxes: 5000,
             max_face_boxes: 300,
             max_content_boxes: 1000,
             finest_pose: 1.0 / 16.0,
@@ -162,6 +174,64 @@ pub struct PoseErrorBounds {
     pub converged: bool,
     /// Wall-clock seconds.
     pub seconds: f64,
+}
+
+/// The legs' Jacobian `J = ∇_δ G` at `δ = 0`, at the centre of the box of poses `x` and the
+/// nominal geometry (floating point: any matrix serves as a chart once its inverse is proved).
+pub(super) fn centre_jacobian(problem: &AccuracyProblem, x: &PoseBox) -> Matrix6<f64> {
+    let xc = x.map(|v| v.mid());
+    let mut j = Matrix6::zeros();
+    for i in 0..6 {
+        let n = problem.nominal(i);
+        let m: [f64; 12] = core::array::from_fn(|k| if k < 6 { xc[k] } else { n[k - 6] });
+        let row = ReachedChange.jacobian_x(&[0.0; 6], &m);
+        for k in 0..6 {
+            j[(i, k)] = row[k];
+        }
+    }
+    j
+}
+
+/// The floating-point inverse `M` of `j`, when `‖I - j M‖∞ < 1` proves it (hence `j`)
+/// nonsingular: `δ = M y` then maps a region `D` onto a neighbourhood of `δ = 0` and `D`'s
+/// boundary onto its boundary.
+pub(super) fn proved_inverse(j: &Matrix6<f64>) -> Option<Matrix6<f64>> {
+    let inv = j.try_inverse()?;
+    let residual_norm = (0..6)
+        .map(|r| {
+            (0..6)
+                .map(|c| {
+                    let p = (0..6).fold(Interval::point(0.0), |s, k| {
+                        s + Interval::point(j[(r, k)]) * Interval::point(inv[(k, c)])
+                    });
+                    (Interval::point(if r == c { 1.0 } else { 0.0 }) - p).mag()
+                })
+                .fold(Interval::point(0.0), |s, v| s + Interval::point(v))
+                .sup()
+        })
+        .fold(0.0, f64::max);
+    // NaN fails too.
+    (residual_norm.partial_cmp(&1.0) == Some(Ordering::Less)).then_some(inv)
+}
+
+/// `U_i = max |ΔL_i| + ε` over the box of poses `x`, rounded up: every leg's change along the
+/// path stays within `[-U_i, U_i]` (module documentation). `None` when one is not finite.
+pub(super) fn leg_change_bounds(
+    problem: &AccuracyProblem,
+    x: &PoseBox,
+    eps: f64,
+) -> Option<[f64; 6]> {
+    let eps = Interval::point(eps.max(0.0).next_up());
+    let mut bound = [0.0; 6];
+    for (i, b) in bound.iter_mut().enumerate() {
+        let u = (Interval::point(problem.leg_bounds(i, x).sup()) + eps).sup();
+        if !u.is_finite() {
+            return None;
+        }
+        // A larger U is still a bound; a positive one keeps 0 inside D.
+        *b = u.max(1e-12);
+    }
+    Some(bound)
 }
 
 /// The moves of one box of poses in the coordinates `y = J δ` (see the module documentation).
@@ -194,48 +264,10 @@ impl Chart {
         if problem.legs() != 6 {
             return None;
         }
-        let xc = x.map(|v| v.mid());
-        let mut j = Matrix6::zeros();
-        for i in 0..6 {
-            let n = problem.nominal(i);
-            let m: [f64; 12] = core::array::from_fn(|k| if k < 6 { xc[k] } else { n[k - 6] });
-            let row = ReachedChange.jacobian_x(&[0.0; 6], &m);
-            for k in 0..6 {
-                j[(i, k)] = row[k];
-            }
-        }
-        let inv = j.try_inverse()?;
+        let inv = proved_inverse(&centre_jacobian(problem, x))?;
         let m: [[Interval; 6]; 6] =
             core::array::from_fn(|r| core::array::from_fn(|c| Interval::point(inv[(r, c)])));
-        // ‖I - J M‖∞ < 1 proves J M, hence M, nonsingular: δ = M y maps D onto a neighbourhood
-        // of δ = 0 and D's boundary onto its boundary.
-        let residual_norm = (0..6)
-            .map(|r| {
-                (0..6)
-                    .map(|c| {
-                        let p = (0..6).fold(Interval::point(0.0), |s, k| {
-                            s + Interval::point(j[(r, k)]) * m[k][c]
-                        });
-                        (Interval::point(if r == c { 1.0 } else { 0.0 }) - p).mag()
-                    })
-                    .fold(Interval::point(0.0), |s, v| s + Interval::point(v))
-                    .sup()
-            })
-            .fold(0.0, f64::max);
-        // NaN fails too.
-        if residual_norm.partial_cmp(&1.0) != Some(Ordering::Less) {
-            return None;
-        }
-        let eps = Interval::point(eps.max(0.0).next_up());
-        let mut bound = [0.0; 6];
-        for (i, b) in bound.iter_mut().enumerate() {
-            let u = (Interval::point(problem.leg_bounds(i, x).sup()) + eps).sup();
-            if !u.is_finite() {
-                return None;
-            }
-            // A larger U is still a bound; a positive one keeps 0 inside D.
-            *b = u.max(1e-12);
-        }
+        let bound = leg_change_bounds(problem, x, eps)?;
         let inputs: Vec<[Interval; 12]> = (0..6)
             .map(|i| {
                 let t = problem.theta(i);
@@ -660,8 +692,19 @@ fn bound_pose_box(
     if !problem.may_be_feasible(x) {
         return (BoxBound::Empty, 0);
     }
+    // The chart that follows the pose bounds the box in one step where the Jacobian changes
+    // little; the pieces of the fixed chart below refine it where that is not enough.
+    let fast = PoseChart::new(problem, x, eps).and_then(|c| c.bound());
+    if let Some(bound) = fast.filter(|b| key(*b, target) <= 1.0 || key(*b, target) > REFINE_WITHIN)
+    {
+        return (BoxBound::Bound(bound), 0);
+    }
+    let either = |bound: [f64; 2]| match fast {
+        Some(f) => [bound[0].min(f[0]), bound[1].min(f[1])],
+        None => bound,
+    };
     let Some(chart) = Chart::new(problem, x, eps) else {
-        return (BoxBound::Unproved, 0);
+        return (fast.map_or(BoxBound::Unproved, BoxBound::Bound), 0);
     };
     let mut examined = 0;
     let mut closed = None;
@@ -682,9 +725,9 @@ fn bound_pose_box(
         Some(r) => {
             let h = chart.enclosing_box(&r);
             let (bound, n) = chart.content_bound(&h, target, settings.max_content_boxes);
-            (BoxBound::Bound(bound), examined + n)
+            (BoxBound::Bound(either(bound)), examined + n)
         }
-        None => (BoxBound::Unproved, examined),
+        None => (fast.map_or(BoxBound::Unproved, BoxBound::Bound), examined),
     }
 }
 
@@ -795,6 +838,7 @@ pub fn pose_error_bounds(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::accuracy::pose_chart::PoseChart;
     use crate::files::LegSpec;
     use crate::simulate::builtin_hexapod;
     use crate::workspace::Workspace;
@@ -1017,6 +1061,125 @@ mod tests {
             }
         }
         assert!(checked > 10_000, "only {checked} values checked");
+    }
+
+    /// The chart that follows the pose: at sampled poses its forms hold the exact `M(X) = M_c -
+    /// M_c (J(X) - J_c) M_c`, its remainder bounds `|G_i(X, M(X) y, θ*) - y_i|`, and its bound
+    /// holds every reached move (Newton along `t s`, `s` drawn from `[-U, U]`, mostly corners).
+    #[test]
+    fn the_pose_chart_holds_its_chart_remainder_and_reached_moves() {
+        let mut rng = StdRng::seed_from_u64(9);
+        let (mut checked, mut bounded) = (0, 0);
+        for _ in 0..60 {
+            let problem = problem(&mut rng);
+            let x = sub_box(&problem.domain(), 0.05, &mut rng);
+            let Some(chart) = PoseChart::new(&problem, &x, 0.0005) else {
+                continue;
+            };
+            let jc = centre_jacobian(&problem, &x);
+            let mc = proved_inverse(&jc).expect("the chart's inverse");
+            let f = rng.random_range(1.0..2.0);
+            let h = chart.bound.map(|u| f * u);
+            let rest = chart.remainder(&h);
+            let bound = chart.bound();
+            for _ in 0..100 {
+                let pose: [f64; 6] = core::array::from_fn(|k| point_in(&x[k], &mut rng));
+                let point = PoseBox::from(pose.map(Interval::point));
+                let mx = mc - mc * (centre_jacobian(&problem, &point) - jc) * mc;
+                for r in 0..6 {
+                    for c in 0..6 {
+                        let form = &chart.m[r][c];
+                        let lin = (0..6).fold(form.centre(), |s, k| {
+                            let e = if x[k].rad() > 0.0 {
+                                (pose[k] - x[k].mid()) / x[k].rad()
+                            } else {
+                                0.0
+                            };
+                            s + form.coefficients()[k] * e
+                        });
+                        let tol = 1e-9 * (1.0 + mx[(r, c)].abs());
+                        assert!(
+                            (mx[(r, c)] - lin).abs() <= form.error() + tol,
+                            "M({r}, {c})"
+                        );
+                    }
+                }
+                let thetas: Vec<[f64; 12]> = (0..6)
+                    .map(|i| {
+                        let t = problem.theta(i);
+                        core::array::from_fn(|k| {
+                            if k < 6 {
+                                pose[k]
+                            } else {
+                                point_in(&t[k - 6], &mut rng)
+                            }
+                        })
+                    })
+                    .collect();
+                let y: [f64; 6] =
+                    core::array::from_fn(|c| point_in(&Interval::new(-h[c], h[c]), &mut rng));
+                let d: [f64; 6] = core::array::from_fn(|r| (0..6).map(|c| mx[(r, c)] * y[c]).sum());
+                for i in 0..6 {
+                    let g = ReachedChange.residual(&d, &thetas[i]);
+                    assert!(
+                        (g - y[i]).abs() <= rest[i] + 1e-12,
+                        "leg {i}: |G - y| {} above {}",
+                        (g - y[i]).abs(),
+                        rest[i]
+                    );
+                    checked += 1;
+                }
+                let Some([pos, ori]) = bound else { continue };
+                // A reached move: leg changes s, Newton along t s from δ = 0.
+                let s: [f64; 6] = core::array::from_fn(|i| {
+                    chart.bound[i]
+                        * if rng.random_bool(0.5) { 1.0 } else { -1.0 }
+                        * if rng.random_bool(0.8) {
+                            1.0
+                        } else {
+                            rng.random_range(0.0..1.0)
+                        }
+                });
+                let mut delta = [0.0; 6];
+                let mut ok = true;
+                for step in 1..=10 {
+                    let t = step as f64 / 10.0;
+                    for _ in 0..20 {
+                        let mut a = Matrix6::zeros();
+                        let mut g = nalgebra::Vector6::zeros();
+                        for i in 0..6 {
+                            g[i] = ReachedChange.residual(&delta, &thetas[i]) - t * s[i];
+                            let row = ReachedChange.jacobian_x(&delta, &thetas[i]);
+                            for k in 0..6 {
+                                a[(i, k)] = row[k];
+                            }
+                        }
+                        let Some(step) = a.lu().solve(&g) else {
+                            ok = false;
+                            break;
+                        };
+                        for k in 0..6 {
+                            delta[k] -= step[k];
+                        }
+                    }
+                }
+                if !ok {
+                    continue;
+                }
+                let p = (delta[0].powi(2) + delta[1].powi(2) + delta[2].powi(2)).sqrt();
+                let w = (delta[3].powi(2) + delta[4].powi(2) + delta[5].powi(2)).sqrt();
+                assert!(p <= pos * (1.0 + 1e-9), "|d| = {p} above {pos}");
+                assert!(
+                    2.0 * w.atan().to_degrees() <= ori * (1.0 + 1e-9),
+                    "angle above {ori}"
+                );
+                bounded += 1;
+            }
+        }
+        assert!(
+            checked > 5000 && bounded > 500,
+            "{checked} remainders, {bounded} moves checked"
+        );
     }
 
     /// The vertex value bounds both errors at every point of its box.
