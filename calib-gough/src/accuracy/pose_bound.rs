@@ -234,6 +234,38 @@ pub(super) fn leg_change_bounds(
     Some(bound)
 }
 
+/// Per leg, the inputs `m = (X, a, b)` of [`reached_change`]: the pose `pose` and the leg's
+/// geometry box, each coordinate of which `geometry` turns into a `T`.
+pub(super) fn leg_inputs<T: Copy>(
+    problem: &AccuracyProblem,
+    pose: &[T; 6],
+    mut geometry: impl FnMut(Interval) -> T,
+) -> Vec<[T; 12]> {
+    (0..6)
+        .map(|i| {
+            let t = problem.theta(i);
+            core::array::from_fn(|k| if k < 6 { pose[k] } else { geometry(t[k - 6]) })
+        })
+        .collect()
+}
+
+/// `|d|²` and `|w|²` of a move `δ = (d, w)` whose components are bounded in magnitude by `comp`.
+pub(super) fn squared_norms(comp: &[f64; 6]) -> [f64; 2] {
+    let sq = |k: usize| comp[k] * comp[k] + comp[k + 1] * comp[k + 1] + comp[k + 2] * comp[k + 2];
+    [sq(0), sq(3)]
+}
+
+/// The position error `|d|` (cm) and the orientation error `2 atan |w|` (degrees) from upper
+/// bounds of `|d|²` and `|w|²`, rounded up: square roots by far more than their half-ulp error,
+/// atan above its libm value by far more than libm's error (a few ulps). A failed enclosure (NaN
+/// or infinite) bounds nothing.
+pub(super) fn errors_from_squares(squares: [f64; 2]) -> [f64; 2] {
+    let [d, w] = squares.map(|v| v.sqrt() * (1.0 + 1e-12));
+    let angle =
+        Interval::point(2.0 * w.atan() * (1.0 + 1e-12)) * Interval::point(180.0) / Interval::PI;
+    [d, angle.sup()].map(|v| if v.is_finite() { v } else { f64::INFINITY })
+}
+
 /// The moves of one box of poses in the coordinates `y = J δ` (see the module documentation).
 struct Chart {
     /// Per leg, `m = (X, a, b)` over the box of poses and the leg's geometry box.
@@ -268,12 +300,7 @@ impl Chart {
         let m: [[Interval; 6]; 6] =
             core::array::from_fn(|r| core::array::from_fn(|c| Interval::point(inv[(r, c)])));
         let bound = leg_change_bounds(problem, x, eps)?;
-        let inputs: Vec<[Interval; 12]> = (0..6)
-            .map(|i| {
-                let t = problem.theta(i);
-                core::array::from_fn(|k| if k < 6 { x[k] } else { t[k - 6] })
-            })
-            .collect();
+        let inputs = leg_inputs(problem, x, |t| t);
         let centres = inputs.iter().map(|m| m.map(|v| v.mid())).collect();
         Some(Chart {
             inputs,
@@ -364,18 +391,10 @@ impl Chart {
                 let hi = (Interval::point(a) + Interval::point(shift[r].sup())).mag();
                 lo.max(hi) + scale[r]
             });
-            let sq = |k: usize| {
-                comp[k] * comp[k] + comp[k + 1] * comp[k + 1] + comp[k + 2] * comp[k + 2]
-            };
-            best = [best[0].max(sq(0)), best[1].max(sq(3))];
+            let sq = squared_norms(&comp);
+            best = [best[0].max(sq[0]), best[1].max(sq[1])];
         }
-        // Square roots rounded up by far more than their half-ulp error.
-        let [d, w] = best.map(|v| v.sqrt() * (1.0 + 1e-12));
-        // atan above its libm value by far more than libm's error (a few ulps).
-        let angle =
-            Interval::point(2.0 * w.atan() * (1.0 + 1e-12)) * Interval::point(180.0) / Interval::PI;
-        // A failed enclosure (NaN) bounds nothing.
-        [d, angle.sup()].map(|v| if v.is_nan() { f64::INFINITY } else { v })
+        errors_from_squares(best)
     }
 
     /// Whether no move on the boundary of `D = M · [-r, r]` lies in `F`: each of the 12 faces
@@ -935,18 +954,7 @@ mod tests {
                 let piece = chart.piece(&p, &rho, &h);
                 for _ in 0..40 {
                     let pose: [f64; 6] = core::array::from_fn(|k| point_in(&x[k], &mut rng));
-                    let m: Vec<[f64; 12]> = (0..6)
-                        .map(|i| {
-                            let t = problem.theta(i);
-                            core::array::from_fn(|k| {
-                                if k < 6 {
-                                    pose[k]
-                                } else {
-                                    point_in(&t[k - 6], &mut rng)
-                                }
-                            })
-                        })
-                        .collect();
+                    let m = leg_inputs(&problem, &pose, |t| point_in(&t, &mut rng));
                     let s: [f64; 6] = core::array::from_fn(|i| point_in(&p[i], &mut rng));
                     let mut y = s;
                     let mut residual = f64::INFINITY;
@@ -1104,18 +1112,7 @@ mod tests {
                         );
                     }
                 }
-                let thetas: Vec<[f64; 12]> = (0..6)
-                    .map(|i| {
-                        let t = problem.theta(i);
-                        core::array::from_fn(|k| {
-                            if k < 6 {
-                                pose[k]
-                            } else {
-                                point_in(&t[k - 6], &mut rng)
-                            }
-                        })
-                    })
-                    .collect();
+                let thetas = leg_inputs(&problem, &pose, |t| point_in(&t, &mut rng));
                 let y: [f64; 6] =
                     core::array::from_fn(|c| point_in(&Interval::new(-h[c], h[c]), &mut rng));
                 let d: [f64; 6] = core::array::from_fn(|r| (0..6).map(|c| mx[(r, c)] * y[c]).sum());

@@ -29,7 +29,10 @@
 //! forms' error terms taken outward.
 
 use super::enclosure::{AccuracyProblem, PoseBox};
-use super::pose_bound::{centre_jacobian, leg_change_bounds, proved_inverse, reached_change};
+use super::pose_bound::{
+    centre_jacobian, errors_from_squares, leg_change_bounds, leg_inputs, proved_inverse,
+    reached_change, squared_norms,
+};
 use calib_core::{Affine, Interval, Jet};
 
 /// Affine forms over the box of poses (one noise symbol per coordinate).
@@ -110,18 +113,7 @@ impl PoseChart {
                 (0..6).fold(cst(mc[(r, c)]), |s, k| s - me[r][k] * cst(mc[(k, c)]))
             })
         });
-        let inputs = (0..6)
-            .map(|i| {
-                let t = problem.theta(i);
-                core::array::from_fn(|k| {
-                    if k < 6 {
-                        pose[k]
-                    } else {
-                        Form::from_interval(t[k - 6])
-                    }
-                })
-            })
-            .collect();
+        let inputs = leg_inputs(problem, &pose, Form::from_interval);
         Some(PoseChart { m, bound, inputs })
     }
 
@@ -193,16 +185,10 @@ impl PoseChart {
                     let v: f64 = (0..6).map(|c| m[r][c] * y[c]).sum();
                     add_up(v.abs(), slack[r])
                 });
-                let sq = |k: usize| {
-                    comp[k] * comp[k] + comp[k + 1] * comp[k + 1] + comp[k + 2] * comp[k + 2]
-                };
-                best = [best[0].max(sq(0)), best[1].max(sq(3))];
+                let sq = squared_norms(&comp);
+                best = [best[0].max(sq[0]), best[1].max(sq[1])];
             }
         }
-        // Square roots and atan above their floating-point values by far more than their error.
-        let [d, w] = best.map(|v| v.sqrt() * (1.0 + 1e-12));
-        let angle =
-            Interval::point(2.0 * w.atan() * (1.0 + 1e-12)) * Interval::point(180.0) / Interval::PI;
-        [d, angle.sup()].map(|v| if v.is_finite() { v } else { f64::INFINITY })
+        errors_from_squares(best)
     }
 }
