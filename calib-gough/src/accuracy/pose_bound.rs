@@ -48,9 +48,8 @@
 //! **First, in one step.** Each box of poses is first bounded by the chart that follows the pose
 //! ([`super::pose_chart`]): `δ = M(X) y` with `M(X)` the first-order inverse of the legs'
 //! Jacobian at each pose, where a region closes at once when the Jacobian changes little across
-//! the box and the move. Only a box whose one-step bound is within [`REFINE_WITHIN`] of its
-//! target goes through the pieces above (both bounds hold; the smaller is kept); farther above,
-//! splitting the box is cheaper.
+//! the box and the move, and whose bound tends to the truth as the box shrinks (its remainder is
+//! second order). Only a box where it cannot close goes through the faces and pieces above.
 //!
 //! Over the workspace, a branch and bound splits the boxes of poses with the largest bound; a
 //! box whose region cannot be closed (the move not enclosed: near a singular pose, or errors so
@@ -118,16 +117,12 @@ const KRAWCZYK_STEPS: usize = 5;
 /// `p`'s) is the last.
 const KRAWCZYK_STALL: f64 = 0.1;
 
-/// A box of poses whose one-step bound ([`PoseChart`]) is above its target by at most this factor
-/// is refined by the pieces of the fixed chart too; farther above, splitting the box is cheaper.
-const REFINE_WITHIN: f64 = 1.1;
-
 /// When to stop [`pose_error_bounds`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PoseBoundSettings {
     /// Stop once each bound is within `1 + rel_tol` of its target (default 0.04).
     pub rel_tol: f64,
-    /// Boxes of poses examined at most (default 5000).
+    /// Boxes of poses examined at most (default 20 000).
     pub max_pose_boxes: usize,
     /// Boxes of `D`'s faces examined at most per box of poses and region (default 300).
     pub max_face_boxes: usize,
@@ -147,7 +142,7 @@ impl Default for PoseBoundSettings {
     fn default() -> Self {
         PoseBoundSettings {
             rel_tol: 0.04,
-            max_pose_boxes: 5000,
+            max_pose_boxes: 20_000,
             max_face_boxes: 300,
             max_content_boxes: 1000,
             finest_pose: 1.0 / 16.0,
@@ -712,18 +707,12 @@ fn bound_pose_box(
         return (BoxBound::Empty, 0);
     }
     // The chart that follows the pose bounds the box in one step where the Jacobian changes
-    // little; the pieces of the fixed chart below refine it where that is not enough.
-    let fast = PoseChart::new(problem, x, eps).and_then(|c| c.bound());
-    if let Some(bound) = fast.filter(|b| key(*b, target) <= 1.0 || key(*b, target) > REFINE_WITHIN)
-    {
+    // little across it and the move; the fixed chart's faces and pieces are the fallback.
+    if let Some(bound) = PoseChart::new(problem, x, eps).and_then(|c| c.bound()) {
         return (BoxBound::Bound(bound), 0);
     }
-    let either = |bound: [f64; 2]| match fast {
-        Some(f) => [bound[0].min(f[0]), bound[1].min(f[1])],
-        None => bound,
-    };
     let Some(chart) = Chart::new(problem, x, eps) else {
-        return (fast.map_or(BoxBound::Unproved, BoxBound::Bound), 0);
+        return (BoxBound::Unproved, 0);
     };
     let mut examined = 0;
     let mut closed = None;
@@ -744,9 +733,9 @@ fn bound_pose_box(
         Some(r) => {
             let h = chart.enclosing_box(&r);
             let (bound, n) = chart.content_bound(&h, target, settings.max_content_boxes);
-            (BoxBound::Bound(either(bound)), examined + n)
+            (BoxBound::Bound(bound), examined + n)
         }
-        None => (fast.map_or(BoxBound::Unproved, BoxBound::Bound), examined),
+        None => (BoxBound::Unproved, examined),
     }
 }
 

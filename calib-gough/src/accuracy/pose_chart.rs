@@ -14,9 +14,10 @@
 //! whose boundary is the image of the box's faces.
 //!
 //! **The remainder.** `G_i(X, 0, θ*) = 0`, so by the mean value theorem along the segment from
-//! `0` to `δ = M(X) y`, `G_i - y_i = (∇_δ G_i(X, ξ, θ*) M(X) - e_i) · y` with `ξ` in a box of
-//! moves holding every `M(X) y`. Evaluated with the same noise symbols for the pose in
-//! `∇_δ G_i` and in `M(X)`, the first-order parts cancel (`J(X) M(X) = I + O(w²)`), and
+//! `0` to `δ = M(X) y`, `G_i - y_i = (∇_δ G_i(X, ξ, θ*) M(X) - e_i) · y` with `ξ = M(X) (τ y)`,
+//! `τ ∈ [0, 1]`. Evaluated with the same noise symbols for the pose in `∇_δ G_i` and in `M(X)`,
+//! and with noise symbols for `τ y` (so that `ξ` keeps the parallelepiped's shape: its box would
+//! triple the remainder), the first-order parts cancel (`J(X) M(X) = I + O(w²)`), and
 //! `|G_i - y_i| <= Σ_c |S_ic| h_c =: ρ_i` over `|y_c| <= h_c` is second order in the box's width
 //! and the move.
 //!
@@ -35,8 +36,9 @@ use super::pose_bound::{
 };
 use calib_core::{Affine, Interval, Jet};
 
-/// Affine forms over the box of poses (one noise symbol per coordinate).
-type Form = Affine<6>;
+/// Affine forms over the box of poses (noise symbols `0..6`) and, in the remainder, the box of
+/// moves (`6..12`).
+type Form = Affine<12>;
 
 /// The region half-widths tried, in units of `U` (the narrowest that closes is kept).
 const FACTORS: [f64; 5] = [1.05, 1.1, 1.25, 1.5, 2.0];
@@ -119,14 +121,14 @@ impl PoseChart {
 
     /// `ρ_i` over `|y_c| <= h_c` (module documentation); `+∞` where an enclosure failed.
     pub(super) fn remainder(&self, h: &[f64; 6]) -> [f64; 6] {
-        // A box of moves holding every M(X) y: Σ_c range(M_rc) [-h_c, h_c].
-        let moves: [Interval; 6] = core::array::from_fn(|r| {
-            (0..6).fold(Interval::ZERO, |s, c| {
-                s + self.m[r][c].range() * Interval::new(-h[c], h[c])
-            })
+        // The segment's points ξ = M(X) (τ y), τ y in the box [-h, h]: noise symbols 6..12
+        // for τ y, so that ξ keeps the parallelepiped's shape (its box would not).
+        let ty: [Form; 6] =
+            core::array::from_fn(|c| Form::input(Interval::new(-h[c], h[c]), 6 + c));
+        let zero = Form::from_interval(Interval::ZERO);
+        let delta: [Jet<Form, 6>; 6] = core::array::from_fn(|r| {
+            Jet::variable((0..6).fold(zero, |s, c| s + self.m[r][c] * ty[c]), r)
         });
-        let delta: [Jet<Form, 6>; 6] =
-            core::array::from_fn(|r| Jet::variable(Form::from_interval(moves[r]), r));
         core::array::from_fn(|i| {
             let inputs = self.inputs[i].map(Jet::constant);
             let grad = reached_change(&delta, &inputs).grad;
@@ -162,11 +164,11 @@ impl PoseChart {
         let slack: [f64; 6] = core::array::from_fn(|r| {
             (0..6).fold(0.0, |s, c| {
                 let f = &self.m[r][c];
-                let size = f
-                    .coefficients()
-                    .iter()
-                    .fold(f.centre().abs(), |a, v| a + v.abs());
-                add_up(s, mul_up(add_up(f.error(), size * ERROR_MARGIN), h[c]))
+                let a = f.coefficients();
+                let size = a.iter().fold(f.centre().abs(), |a, v| a + v.abs());
+                // Symbols other than the pose's (none in M(X), but kept outward if any).
+                let other = a[6..].iter().fold(f.error(), |s, v| add_up(s, v.abs()));
+                add_up(s, mul_up(add_up(other, size * ERROR_MARGIN), h[c]))
             })
         });
         let mut best = [0.0f64; 2];
