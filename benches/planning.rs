@@ -89,12 +89,7 @@ fn bench(c: &mut Criterion) {
             })
         },
     );
-    let mut arm = calib_arm::builtin_arm();
-    for j in &mut arm.joints {
-        j.radius = j.radius.map(|r| r * 0.05);
-    }
-    arm.base_radius = arm.base_radius.map(|r| r * 0.05);
-    arm.tool_radius = arm.tool_radius.map(|r| r * 0.05);
+    let arm = calib_arm::builtin_arm().with_radii_scaled(0.05);
     let cell = JointSpace {
         ranges_deg: [10.0, -80.0, 95.0, -100.0, 85.0, 30.0]
             .iter()

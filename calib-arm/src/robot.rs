@@ -31,6 +31,24 @@ pub struct Arm {
 }
 
 impl Arm {
+    /// The same arm with every prior half-width (joints, base, tool) multiplied by `factor`: a
+    /// tighter or looser prior box around the same nominal geometry.
+    ///
+    /// ```
+    /// let arm = calib_arm::builtin_arm();
+    /// let tight = arm.clone().with_radii_scaled(0.05);
+    /// assert_eq!(tight.nominal(), arm.nominal());
+    /// assert_eq!(tight.joints[0].radius[0], 0.05 * arm.joints[0].radius[0]);
+    /// ```
+    pub fn with_radii_scaled(mut self, factor: f64) -> Arm {
+        for j in &mut self.joints {
+            j.radius = j.radius.map(|r| r * factor);
+        }
+        self.base_radius = self.base_radius.map(|r| r * factor);
+        self.tool_radius = self.tool_radius.map(|r| r * factor);
+        self
+    }
+
     /// Every parameter's nominal value in model order (degrees and mm), see [`params::names`].
     pub fn nominal(&self) -> Vec<f64> {
         self.collect(|j| j.nominal, self.base, self.tool)

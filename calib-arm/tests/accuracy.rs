@@ -33,22 +33,11 @@ fn norm(e: [f64; 3]) -> f64 {
     (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt()
 }
 
-/// The built-in arm with every prior half-width scaled by `s`.
-fn scaled(s: f64) -> Arm {
-    let mut arm = builtin_arm();
-    for j in &mut arm.joints {
-        j.radius = j.radius.map(|r| r * s);
-    }
-    arm.base_radius = arm.base_radius.map(|r| r * s);
-    arm.tool_radius = arm.tool_radius.map(|r| r * s);
-    arm
-}
-
 #[test]
 fn the_upper_bound_holds_and_the_worst_instance_is_rechecked() {
     let mut rng = StdRng::seed_from_u64(11);
     for case in 0..5 {
-        let arm = scaled(rng.random_range(0.05..1.5));
+        let arm = builtin_arm().with_radii_scaled(rng.random_range(0.05..1.5));
         let ranges_deg: Vec<[f64; 2]> = (0..arm.joints.len())
             .map(|_| {
                 let c: f64 = rng.random_range(-150.0..150.0);
@@ -151,7 +140,7 @@ fn the_upper_bound_holds_and_the_worst_instance_is_rechecked() {
 #[test]
 fn a_single_configuration_is_bracketed_tightly() {
     // One configuration: only the direction is searched, so the bracket closes.
-    let arm = scaled(1.0);
+    let arm = builtin_arm();
     let space = JointSpace {
         ranges_deg: [10.0, -80.0, 95.0, -100.0, 85.0, 30.0]
             .iter()
@@ -167,7 +156,7 @@ fn a_single_configuration_is_bracketed_tightly() {
 fn a_cell_of_every_joint_is_bracketed_within_five_percent() {
     // A ±3° cell of all six joints: the joint branch and bound with affine Jacobians and the
     // direction searched per joint box converges within the default budget.
-    let arm = scaled(0.05);
+    let arm = builtin_arm().with_radii_scaled(0.05);
     let space = JointSpace {
         ranges_deg: [10.0, -80.0, 95.0, -100.0, 85.0, 30.0]
             .iter()

@@ -411,12 +411,7 @@ mod tests {
 
     /// The built-in arm with every prior half-width scaled by `s`, on ±170° joints.
     fn problem(s: f64) -> ToolAccuracyProblem {
-        let mut arm = crate::builtin_arm();
-        for j in &mut arm.joints {
-            j.radius = j.radius.map(|r| r * s);
-        }
-        arm.base_radius = arm.base_radius.map(|r| r * s);
-        arm.tool_radius = arm.tool_radius.map(|r| r * s);
+        let arm = crate::builtin_arm().with_radii_scaled(s);
         ToolAccuracyProblem::new(&arm, &JointSpace::simulator(6), 0.001).expect("problem")
     }
 
