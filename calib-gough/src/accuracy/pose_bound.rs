@@ -122,7 +122,7 @@ const KRAWCZYK_STALL: f64 = 0.1;
 pub struct PoseBoundSettings {
     /// Stop once each bound is within `1 + rel_tol` of its target (default 0.04).
     pub rel_tol: f64,
-    /// Boxes of poses examined at most (default 20 000).
+    /// Boxes of poses examined at most (default 40 000).
     pub max_pose_boxes: usize,
     /// Boxes of `D`'s faces examined at most per box of poses and region (default 300).
     pub max_face_boxes: usize,
@@ -142,7 +142,7 @@ impl Default for PoseBoundSettings {
     fn default() -> Self {
         PoseBoundSettings {
             rel_tol: 0.04,
-            max_pose_boxes: 20_000,
+            max_pose_boxes: 40_000,
             max_face_boxes: 300,
             max_content_boxes: 1000,
             finest_pose: 1.0 / 16.0,
