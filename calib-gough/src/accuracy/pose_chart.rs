@@ -144,14 +144,18 @@ impl PoseChart {
     /// box, every geometry and every actuator error, or `None` when no region closes.
     pub(super) fn bound(&self) -> Option<[f64; 2]> {
         let u = self.bound;
-        let closed = FACTORS.iter().find_map(|f| {
+        let (mut h, mut rest) = FACTORS.iter().find_map(|f| {
             let r = u.map(|v| f * v);
             let rest = self.remainder(&r);
-            (0..6).all(|i| add_up(u[i], rest[i]) < r[i]).then_some(r)
+            (0..6)
+                .all(|i| add_up(u[i], rest[i]) < r[i])
+                .then_some((r, rest))
         })?;
-        let mut h = closed;
-        for _ in 0..SHRINK_ROUNDS {
-            let rest = self.remainder(&h);
+        // The closing region's remainder starts the shrinking (each round's box holds D(X) ∩ F).
+        for round in 0..SHRINK_ROUNDS {
+            if round > 0 {
+                rest = self.remainder(&h);
+            }
             h = core::array::from_fn(|i| add_up(u[i], rest[i]).min(h[i]));
         }
         Some(self.vertex_value(&h))
