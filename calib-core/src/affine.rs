@@ -51,7 +51,7 @@ pub(crate) fn rounding(v: f64) -> f64 {
 /// `Σ <= s / (1 - γ_{n-1}) <= s (1 + n ε)` for `ε = 2u` and `n ε < 1/2`; the product is rounded
 /// up. `+∞` or NaN stays so.
 #[inline(always)]
-fn sum_up(s: f64, n: usize) -> f64 {
+pub(crate) fn sum_up(s: f64, n: usize) -> f64 {
     mul_up(s, 1.0 + n as f64 * f64::EPSILON)
 }
 
@@ -59,7 +59,7 @@ fn sum_up(s: f64, n: usize) -> f64 {
 /// have `Σ |v_k|` summed to `s` in floating point: `Σ rounding(v_k)` ([`rounding`]) with the
 /// sum bounded by [`sum_up`] — one bound for a whole loop, without a branch per term.
 #[inline(always)]
-fn roundings(s: f64, n: usize) -> f64 {
+pub(crate) fn roundings(s: f64, n: usize) -> f64 {
     add_up(
         mul_up(sum_up(s, n), f64::EPSILON),
         n as f64 * f64::from_bits(1),

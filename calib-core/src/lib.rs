@@ -54,6 +54,7 @@ pub mod lp;
 pub mod maximum;
 mod model;
 pub mod outliers;
+pub mod quadratic;
 mod scalar;
 mod settings;
 
@@ -69,5 +70,6 @@ pub use interval::Interval;
 pub use jet::Jet;
 pub use maximum::{maximize, Maximum, MaximumSettings, Objective};
 pub use model::{Evaluation, LinearEnclosure, Model, VectorModel};
+pub use quadratic::Quadratic;
 pub use scalar::Scalar;
 pub use settings::{Relaxation, Settings};
