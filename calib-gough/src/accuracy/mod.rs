@@ -16,6 +16,7 @@
 //! the workspace).
 mod enclosure;
 mod model;
+mod move_paving;
 mod pose_bound;
 mod pose_chart;
 mod pose_error;

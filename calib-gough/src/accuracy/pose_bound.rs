@@ -51,12 +51,18 @@
 //! the box and the move, and whose bound tends to the truth as the box shrinks (its remainder is
 //! second order). Only a box where it cannot close goes through the faces and pieces above.
 //!
+//! **Last, without a chart.** Where neither closes and the moves reach beyond 1% of the
+//! platform's distance from the base (centimetres, where the legs' directions turn across the
+//! move), the moves themselves are paved with second-order Taylor models
+//! ([`super::move_paving`]).
+//!
 //! Over the workspace, a branch and bound splits the boxes of poses with the largest bound; a
 //! box whose region cannot be closed (the move not enclosed: near a singular pose, or errors so
 //! large that the legs' Jacobian changes across them) is split too, and when it is already small
 //! the bound is not proved and the box is named instead.
 
 use super::enclosure::{AccuracyProblem, PoseBox};
+use super::move_paving::MovePaving;
 use super::pose_chart::PoseChart;
 use calib_core::bisection::split_widest;
 use calib_core::maximum::Ranked;
@@ -117,6 +123,10 @@ const KRAWCZYK_STEPS: usize = 5;
 /// `p`'s) is the last.
 const KRAWCZYK_STALL: f64 = 0.1;
 
+/// Boxes of moves per second of [`PoseBoundSettings::max_seconds`] (about what two cores
+/// examine in the paving of the moves).
+const MOVE_BOXES_PER_SECOND: f64 = 4000.0;
+
 /// When to stop [`pose_error_bounds`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PoseBoundSettings {
@@ -129,12 +139,16 @@ pub struct PoseBoundSettings {
     /// Boxes of leg changes examined at most per box of poses, to bound the errors over
     /// `D ∩ F` (default 1000).
     pub max_content_boxes: usize,
+    /// Boxes of moves examined at most per box of poses by the paving of the moves (second-order
+    /// Taylor models, where neither chart closes and the moves are large; default 2000).
+    pub max_move_boxes: usize,
     /// A box of poses whose region cannot be closed and which is narrower than this fraction of
     /// the workspace in every coordinate ends the search unproved (default 1/16).
     pub finest_pose: f64,
     /// Stop after about this many seconds (default 30: a safety net behind `max_pose_boxes`,
     /// which keeps results reproducible; the bounds stay valid, or the box of
-    /// poses not yet bounded is named).
+    /// poses not yet bounded is named). Each second also allows 4,000 boxes of moves, counted
+    /// (a reproducible budget for the paving of the moves).
     pub max_seconds: f64,
 }
 
@@ -145,6 +159,7 @@ impl Default for PoseBoundSettings {
             max_pose_boxes: 40_000,
             max_face_boxes: 300,
             max_content_boxes: 1000,
+            max_move_boxes: 2000,
             finest_pose: 1.0 / 16.0,
             max_seconds: 30.0,
         }
@@ -671,7 +686,7 @@ impl Chart {
 }
 
 /// `max_k value_k / target_k` (a target of `+∞` asks nothing).
-fn key(value: [f64; 2], target: [f64; 2]) -> f64 {
+pub(super) fn key(value: [f64; 2], target: [f64; 2]) -> f64 {
     (0..2)
         .map(|k| {
             if target[k].is_finite() {
@@ -735,7 +750,17 @@ fn bound_pose_box(
             let (bound, n) = chart.content_bound(&h, target, settings.max_content_boxes);
             (BoxBound::Bound(bound), examined + n)
         }
-        None => (BoxBound::Unproved, examined),
+        None => {
+            // The last resort: the paving of the moves (second-order models, no chart).
+            let Some(paving) = MovePaving::new(problem, x, eps) else {
+                return (BoxBound::Unproved, examined);
+            };
+            let (bound, n) = paving.bound(target, settings.max_move_boxes);
+            (
+                bound.map_or(BoxBound::Unproved, BoxBound::Bound),
+                examined + n,
+            )
+        }
     }
 }
 
@@ -781,7 +806,11 @@ pub fn pose_error_bounds(
     move_boxes += n;
     let batch = 2 * rayon::current_num_threads().max(1);
     let mut unproved_at = None;
+    // The seconds also set a budget of boxes of moves, counted, so that a search the paving of
+    // the moves keeps busy ends at the same place on every run of a machine.
+    let move_budget = settings.max_seconds * MOVE_BOXES_PER_SECOND;
     while pose_boxes < settings.max_pose_boxes
+        && (move_boxes as f64) < move_budget
         && start.elapsed().as_secs_f64() < settings.max_seconds
     {
         let mut children = Vec::new();

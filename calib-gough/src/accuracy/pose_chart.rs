@@ -68,7 +68,7 @@ fn add_up(a: f64, b: f64) -> f64 {
 }
 
 /// `a · b` rounded up, for `a, b >= 0` (`+∞` when either is not finite).
-fn mul_up(a: f64, b: f64) -> f64 {
+pub(super) fn mul_up(a: f64, b: f64) -> f64 {
     if a.is_finite() && b.is_finite() {
         (Interval::point(a) * Interval::point(b)).sup()
     } else {

@@ -1,0 +1,422 @@
+//! Bounding the reached move by a paving of the moves themselves, with second-order Taylor
+//! models: for errors too large for a chart.
+//!
+//! The charts of [`super::pose_chart`] and [`super::pose_bound`] close a region in the leg
+//! changes `y ≈ J δ`, leg by leg: each leg's nonlinear remainder `|G_i - y_i|` must stay below
+//! the region's margin. Where the legs are nearly vertical (the hexapod of `sample21`), a
+//! sideways move `d` lengthens every leg by about `|d|² / 2L`: for the centimetre moves that a
+//! few millimetres of leg error cause there, that is 40% of `U_i` per leg, and no region in the
+//! leg changes closes. The same term is harmless in the moves: the inverse Jacobian maps the
+//! same lengthening of all six legs to a vertical move, which the legs fix tightly.
+//!
+//! **The test.** Every move `δ` the platform can reach from a pose of the box satisfies
+//! `G(X, δ, θ*) = s*` with `s* ∈ S = [-U, U]` ([`super::pose_bound`]); with the geometry's share
+//! `γ = G(X, δ, θ*) - G(X, δ, θ̂) ∈ Γ` (a mean-value form over the boxes), it is a fixed point of
+//! `T(δ, s) = δ - M (G(X, δ, θ̂) - s)`, `s = s* - γ ∈ S - Γ`, for any matrix `M`. Over
+//! a box `Y` of moves, the values of `T` — evaluated as [`calib_core::Quadratic`] models, noise
+//! symbols `0..6` for the move and `6..12` for the pose, so that the quadratic terms common to
+//! all legs cancel in `M G` exactly — enclose every such move in `Y`, for every pose of the box,
+//! geometry and actuator error: `Y ∩ T(Y, S')` with `S' = (S - Γ) ∩ G(Y; θ̂)` (empty: no reached
+//! move in `Y`; `M` the inverse of the nominal Jacobian at `Y`'s centre, so that `T`'s
+//! dependence on `δ` is of second order).
+//!
+//! **The region argument.** A best-first branch and bound paves a box `B` around `δ = 0`: a box
+//! is dropped when it holds no move of `F`, kept (and bounded) when its enclosure stays inside
+//! `B`, and split first when the enclosure still reaches `B`'s boundary. Once no kept box
+//! reaches it, no move on `∂B` lies in `F` for any pose, geometry or actuator error, so the path
+//! from the commanded pose never leaves `B` (see [`super::pose_bound`]), and the reached move lies
+//! in one of the kept boxes' enclosures.
+//!
+//! **The bound of a box.** The smaller of the enclosure's farthest corner and, since a fixed
+//! point is `δ = A + M s` with `A = δ - M G` (its range over `Y`) and `s ∈ S'`, the largest
+//! `|d|` and `|w|` over the 64 × 64 vertices of `S'` and of the pose's noise symbols (`A`'s
+//! linear terms in them), the rest of `A`'s range added outward: the vertices
+//! follow the skew of `M`, which the box's corner cannot, and what is left is second order.
+//! (Each is a bound on its own; mixing them component by component would not be.) Boxes are
+//! split by their bound relative to the target until the largest is within it.
+
+use super::enclosure::{AccuracyProblem, PoseBox};
+use super::pose_bound::{errors_from_squares, leg_change_bounds, leg_inputs, reached_change};
+use super::pose_bound::{key, ReachedChange};
+use super::pose_chart::mul_up;
+use calib_core::bisection::split_widest;
+use calib_core::maximum::Ranked;
+use calib_core::{Interval, Model, Quadratic};
+use nalgebra::Matrix6;
+use std::collections::BinaryHeap;
+
+/// Second-order models over the box of moves (noise symbols `0..6`) and of poses (`6..12`).
+type Form = Quadratic<12>;
+
+/// The smallest reach of the moves, relative to the platform's distance from the base, for
+/// which a box of poses is paved (see [`MovePaving::new`]).
+const LARGE_MOVE: f64 = 0.01;
+/// Contraction rounds per box of moves.
+const ROUNDS: usize = 4;
+/// A round that narrows the box by less than this (summed relative widths) is the last.
+const STALL: f64 = 0.3;
+/// `∂B` must be excluded within `1 / CLOSING_SHARE` of the budget of boxes of moves.
+const CLOSING_SHARE: usize = 2;
+/// `B`'s half-widths in units of the linear estimate `Σ_c |M_rc| U_c` of each coordinate's
+/// reach (the farthest first: a wider `B` is easier to close on and costs only the boxes that
+/// hold no move).
+const OUTER: f64 = 2.0;
+/// The smallest half-width of `B` in position (cm) and in the Rodrigues vector: coordinates the
+/// linear estimate says barely move still get room for their second-order moves.
+const OUTER_MIN: [f64; 2] = [0.5, 0.01];
+/// A box still reaching `∂B` and narrower than this fraction of `B` (in every coordinate) ends
+/// the search unproved.
+const FINEST: f64 = 1.0 / 4096.0;
+
+/// One box of poses: the models of its inputs and what the contraction needs.
+pub(super) struct MovePaving {
+    /// `U_i`.
+    bound: [f64; 6],
+    /// Per leg, the inputs of [`reached_change`]: the pose as models, the nominal geometry.
+    inputs: Vec<[Form; 12]>,
+    /// Per leg, the pose's box and the geometry's box, and the nominal geometry.
+    boxes: Vec<[Interval; 12]>,
+    nominal: Vec<[f64; 6]>,
+    /// Per leg, the pose's centre and the nominal geometry (for the chart matrices `M`).
+    centre: Vec<[f64; 12]>,
+    /// The box `B`.
+    outer: [Interval; 6],
+}
+
+/// A box of moves with what its enclosure proves.
+#[derive(Clone, Copy, Debug)]
+struct Piece {
+    /// The enclosure of the reached moves in the box.
+    moves: [Interval; 6],
+    /// Upper bounds of the position (cm) and orientation (degrees) errors over them.
+    value: [f64; 2],
+    /// Whether the enclosure reaches `∂B`.
+    touches: bool,
+}
+
+impl MovePaving {
+    /// The paving of the box of poses `x` with actuator errors `± eps`; `None` when the legs'
+    /// bounds or the nominal Jacobian fail.
+    pub(super) fn new(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> Option<MovePaving> {
+        if problem.legs() != 6 {
+            return None;
+        }
+        let bound = leg_change_bounds(problem, x, eps)?;
+        let pose: [Form; 6] = core::array::from_fn(|k| Form::input(x[k], 6 + k));
+        let nominal: Vec<[f64; 6]> = (0..6)
+            .map(|i| core::array::from_fn(|k| problem.nominal(i)[k]))
+            .collect();
+        let inputs = (0..6)
+            .map(|i| {
+                core::array::from_fn(|k| {
+                    if k < 6 {
+                        pose[k]
+                    } else {
+                        Form::from_interval(Interval::point(nominal[i][k - 6]))
+                    }
+                })
+            })
+            .collect();
+        let boxes = leg_inputs(problem, x, |v| v);
+        let xc = x.map(|v| v.mid());
+        let centre: Vec<[f64; 12]> = (0..6)
+            .map(|i| {
+                let n = problem.nominal(i);
+                core::array::from_fn(|k| if k < 6 { xc[k] } else { n[k - 6] })
+            })
+            .collect();
+        let m = chart(&centre, &[0.0; 6])?;
+        let reach: [f64; 6] =
+            core::array::from_fn(|r| (0..6).map(|c| m[(r, c)].abs() * bound[c]).sum());
+        // Only moves that turn the legs (a reach beyond LARGE_MOVE of the platform's distance
+        // from the base attachments) are paved: smaller ones are the charts' (splitting the box
+        // of poses is far cheaper there); moves beyond a quarter of that distance (near a
+        // singular pose) cannot be enclosed by second-order models.
+        let scale = (0..6)
+            .map(|i| {
+                let a = &problem.nominal(i)[..3];
+                ((xc[0] - a[0]).powi(2) + (xc[1] - a[1]).powi(2) + (xc[2] - a[2]).powi(2)).sqrt()
+            })
+            .fold(f64::INFINITY, f64::min);
+        let position_reach = reach[..3].iter().fold(0.0f64, |a, v| a.max(*v));
+        if !(position_reach >= LARGE_MOVE * scale && position_reach <= 0.25 * scale) {
+            return None;
+        }
+        let outer = core::array::from_fn(|r| {
+            let h = (OUTER * reach[r]).max(OUTER_MIN[r / 3]);
+            Interval::new(-h, h)
+        });
+        Some(MovePaving {
+            bound,
+            inputs,
+            boxes,
+            nominal,
+            centre,
+            outer,
+        })
+    }
+
+    /// `Γ_i ∋ G_i(X, δ, θ*) - G_i(X, δ, θ̂)` over the box of poses, the moves `y` and the
+    /// geometry's box: `∇_θ G_i · (Θ_i - θ̂_i)`, the gradient enclosed over all three (mean
+    /// value; `l` does not enter `G`).
+    fn geometry_spread(&self, i: usize, y: &[Interval; 6]) -> Interval {
+        let m = &self.boxes[i];
+        let grad = ReachedChange.jacobian_m_interval(y, m);
+        (0..6).fold(Interval::ZERO, |acc, j| {
+            acc + grad[6 + j] * (m[6 + j] - Interval::point(self.nominal[i][j]))
+        })
+    }
+
+    /// Whether `y` reaches `∂B`.
+    fn touches(&self, y: &[Interval; 6]) -> bool {
+        (0..6).any(|k| y[k].inf() <= self.outer[k].inf() || y[k].sup() >= self.outer[k].sup())
+    }
+
+    /// The enclosure of the reached moves in `y` and its bounds, or `None` when `y` holds none.
+    fn piece(&self, y: &[Interval; 6]) -> Option<Piece> {
+        let mut y = *y;
+        let mut value = [f64::INFINITY; 2];
+        for _ in 0..ROUNDS {
+            let Some(m) = chart(&self.centre, &y.map(|v| v.mid())) else {
+                break;
+            };
+            let delta: [Form; 6] = core::array::from_fn(|k| Form::input(y[k], k));
+            let g: Vec<Form> = self
+                .inputs
+                .iter()
+                .map(|inputs| reached_change(&delta, inputs))
+                .collect();
+            // S' = (S - Γ) ∩ G(Y; θ̂): a leg that cannot reach its bound leaves no move in the
+            // box.
+            let mut s = [Interval::ZERO; 6];
+            for i in 0..6 {
+                let spread = self.geometry_spread(i, &y);
+                s[i] = g[i]
+                    .range()
+                    .intersection(Interval::new(-self.bound[i], self.bound[i]) - spread);
+                if s[i].is_empty() {
+                    return None;
+                }
+            }
+            let cst = |v: f64| Form::from_interval(Interval::point(v));
+            let forms: [Form; 6] = core::array::from_fn(|r| {
+                (0..6).fold(delta[r], |acc, c| acc - cst(m[(r, c)]) * g[c])
+            });
+            let a = forms.map(|f| f.range());
+            let mut narrowed = 0.0;
+            for r in 0..6 {
+                let t = (0..6).fold(a[r], |acc, c| acc + Interval::point(m[(r, c)]) * s[c]);
+                let cut = y[r].intersection(t);
+                if cut.is_empty() {
+                    return None;
+                }
+                narrowed += 1.0 - cut.wid() / y[r].wid().max(f64::MIN_POSITIVE);
+                y[r] = cut;
+            }
+            let at_vertices = vertex_value(&m, &forms, &s);
+            value = [value[0].min(at_vertices[0]), value[1].min(at_vertices[1])];
+            if narrowed < STALL {
+                break;
+            }
+        }
+        let corner = errors_from_squares(squares(&y.map(Interval::mag)));
+        Some(Piece {
+            moves: y,
+            value: [value[0].min(corner[0]), value[1].min(corner[1])],
+            touches: self.touches(&y),
+        })
+    }
+
+    /// Upper bounds of the position (cm) and orientation (degrees) errors over the box of
+    /// poses, refined until within `target` or `max_boxes` boxes of moves are examined; `None`
+    /// when `∂B` could not be excluded. Also returns the boxes examined.
+    pub(super) fn bound(&self, target: [f64; 2], max_boxes: usize) -> (Option<[f64; 2]>, usize) {
+        let rank = |p: Piece| Ranked {
+            key: if p.touches {
+                f64::INFINITY
+            } else {
+                key(p.value, target)
+            },
+            item: p,
+        };
+        let mut heap = BinaryHeap::new();
+        heap.extend(self.piece(&self.outer).map(rank));
+        let mut examined = 1;
+        while examined < max_boxes {
+            let Some(top) = heap.pop() else { break };
+            if top.key <= 1.0 {
+                heap.push(top);
+                break;
+            }
+            // `∂B` not yet excluded after half the budget: the box of poses is too wide
+            // for its second-order models (the caller splits it).
+            if top.item.touches && examined * CLOSING_SHARE >= max_boxes {
+                return (None, examined);
+            }
+            let y = top.item.moves;
+            let fine = (0..6).all(|c| y[c].wid() <= FINEST * self.outer[c].wid());
+            let Some((l, r)) = split_widest(&y, &self.outer).filter(|_| !fine) else {
+                heap.push(top);
+                break;
+            };
+            examined += 2;
+            heap.extend([l, r].iter().filter_map(|b| self.piece(b)).map(rank));
+        }
+        if heap.iter().any(|q| q.item.touches) {
+            return (None, examined);
+        }
+        let bound = heap.iter().fold([0.0f64; 2], |acc, q| {
+            [acc[0].max(q.item.value[0]), acc[1].max(q.item.value[1])]
+        });
+        (Some(bound), examined)
+    }
+}
+
+/// The inverse of the nominal legs' Jacobian at the move `delta` (floating point: any matrix
+/// serves in `T`).
+fn chart(centre: &[[f64; 12]], delta: &[f64; 6]) -> Option<Matrix6<f64>> {
+    Matrix6::from_fn(|i, k| ReachedChange.jacobian_x(delta, &centre[i])[k]).try_inverse()
+}
+
+/// `|d|²` and `|w|²` rounded up, from bounds of the components' magnitudes (`+∞` when one is
+/// not finite).
+fn squares(comp: &[f64; 6]) -> [f64; 2] {
+    if !comp.iter().all(|v| v.is_finite()) {
+        return [f64::INFINITY; 2];
+    }
+    let sq = |k: usize| {
+        (k..k + 3)
+            .fold(Interval::ZERO, |s, j| s + Interval::point(comp[j]).sqr())
+            .sup()
+    };
+    [sq(0), sq(3)]
+}
+
+/// The largest errors of `δ = A + M s` over the box of moves, the box of poses and `s ∈ s`
+/// (module documentation). `A = P ε_pose + R`, with `P` its linear terms in the pose's noise
+/// symbols and `R` the rest (its range): `|d|²` and `|w|²` are convex in `(ε_pose, R, s)`, so
+/// their largest values are at one of the 64 × 64 vertices of `ε_pose` and `s`, each component's
+/// largest magnitude over `R` being `|mid R + P ε + M s| + rad R`. The sums are in floating point
+/// with a margin far above their rounding errors (thirteen terms, each within the bound `S_r`).
+fn vertex_value(m: &Matrix6<f64>, a: &[Form; 6], s: &[Interval; 6]) -> [f64; 2] {
+    let rest: [Interval; 6] = core::array::from_fn(|r| a[r].linear_removed(6..12).range());
+    if !rest.iter().chain(s).all(|v| v.is_bounded()) {
+        return [f64::INFINITY; 2];
+    }
+    let pose: [[f64; 6]; 6] =
+        core::array::from_fn(|r| core::array::from_fn(|k| a[r].linear()[6 + k]));
+    let margin: [f64; 6] = core::array::from_fn(|r| {
+        let size = (0..6).fold(rest[r].mid().abs(), |acc, k| {
+            acc + pose[r][k].abs() + m[(r, k)].abs() * s[k].mag()
+        });
+        mul_up(size, 1e-13)
+    });
+    let moves: Vec<[f64; 6]> = (0..64u32)
+        .map(|vertex| {
+            core::array::from_fn(|r| {
+                (0..6)
+                    .map(|c| {
+                        m[(r, c)]
+                            * if vertex >> c & 1 == 1 {
+                                s[c].sup()
+                            } else {
+                                s[c].inf()
+                            }
+                    })
+                    .sum()
+            })
+        })
+        .collect();
+    let mut best = [0.0f64; 2];
+    for signs in 0..64u32 {
+        let shift: [f64; 6] = core::array::from_fn(|r| {
+            (0..6).fold(rest[r].mid(), |acc, k| {
+                acc + if signs >> k & 1 == 1 {
+                    pose[r][k]
+                } else {
+                    -pose[r][k]
+                }
+            })
+        });
+        for ms in &moves {
+            let comp: [f64; 6] =
+                core::array::from_fn(|r| (shift[r] + ms[r]).abs() + rest[r].rad() + margin[r]);
+            let sq = |k: usize| {
+                comp[k] * comp[k] + comp[k + 1] * comp[k + 1] + comp[k + 2] * comp[k + 2]
+            };
+            best = [best[0].max(sq(0)), best[1].max(sq(3))];
+        }
+    }
+    // Three squares summed: within 5 units in the last place.
+    errors_from_squares(best.map(|v| mul_up(v, 1.0 + 1e-14)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::files::LegSpec;
+    use crate::simulate::builtin_hexapod;
+    use crate::workspace::Workspace;
+    use rand::rngs::StdRng;
+    use rand::{Rng, SeedableRng};
+
+    /// The geometry's share `Γ_i` encloses `G_i(X, δ, θ*) - G_i(X, δ, θ̂)` at random poses of the
+    /// box, moves of `y` and geometries of the box (mostly at their ends).
+    #[test]
+    fn the_geometry_share_encloses_point_differences() {
+        let mut rng = StdRng::seed_from_u64(3);
+        let spec: Vec<LegSpec> = builtin_hexapod()
+            .into_iter()
+            .map(|nominal| LegSpec {
+                nominal,
+                radius: [0.02, 0.02, 0.1, 0.01, 0.01, 0.05, 0.1],
+            })
+            .collect();
+        let workspace = Workspace {
+            x: [-0.5, 0.5],
+            y: [-0.5, 0.5],
+            z: [59.5, 60.5],
+            tilt_deg: 1.0,
+            stroke: None,
+        };
+        let problem = AccuracyProblem::new(&spec, &workspace);
+        let x = problem.domain();
+        let paving = MovePaving::new(&problem, &x, 0.0005).expect("centimetre moves are paved");
+        let pick = |v: Interval, rng: &mut StdRng| {
+            if rng.random_bool(0.5) {
+                if rng.random_bool(0.5) {
+                    v.inf()
+                } else {
+                    v.sup()
+                }
+            } else {
+                rng.random_range(v.inf()..=v.sup())
+            }
+        };
+        for _ in 0..200 {
+            let y: [Interval; 6] = core::array::from_fn(|k| {
+                let o = paving.outer[k];
+                let (a, b) = (pick(o, &mut rng), pick(o, &mut rng));
+                Interval::new(a.min(b), a.max(b))
+            });
+            for i in 0..6 {
+                let spread = paving.geometry_spread(i, &y);
+                let m = &paving.boxes[i];
+                let delta: [f64; 6] = core::array::from_fn(|k| pick(y[k], &mut rng));
+                let pose: [f64; 6] = core::array::from_fn(|k| pick(m[k], &mut rng));
+                let at = |theta: [f64; 6]| -> Interval {
+                    let input: [Interval; 12] = core::array::from_fn(|k| {
+                        Interval::point(if k < 6 { pose[k] } else { theta[k - 6] })
+                    });
+                    ReachedChange.residual_interval(&delta.map(Interval::point), &input)
+                };
+                let theta: [f64; 6] = core::array::from_fn(|j| pick(m[6 + j], &mut rng));
+                let diff = at(theta) - at(paving.nominal[i]);
+                assert!(
+                    !diff.intersection(spread).is_empty(),
+                    "leg {i}: {diff} outside {spread}"
+                );
+            }
+        }
+    }
+}
