@@ -181,11 +181,7 @@ impl MovePaving {
                 break;
             };
             let delta: [Form; 6] = core::array::from_fn(|k| Form::input(y[k], k));
-            let g: Vec<Form> = self
-                .inputs
-                .iter()
-                .map(|inputs| reached_change(&delta, inputs))
-                .collect();
+            let g: [Form; 6] = core::array::from_fn(|i| reached_change(&delta, &self.inputs[i]));
             // S' = (S - Γ) ∩ G(Y; θ̂): a leg that cannot reach its bound leaves no move in the
             // box.
             let mut s = [Interval::ZERO; 6];
