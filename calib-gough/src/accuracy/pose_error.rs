@@ -79,6 +79,8 @@ const STARTS: usize = 400;
 const CLIMBED: usize = 4;
 /// Vertex patterns followed with the exact forward kinematics.
 const EXACT: usize = 4;
+/// Steps of `t` when a candidate's move is followed in floating point.
+const CONTINUATION: usize = 4;
 
 /// The inputs `m = (X, a, b)` of [`ReachedChange`] (`l` cancels in a leg's change).
 fn inputs<T: Copy>(x: &[T; 6], theta: &[T; 7]) -> [T; 12] {
@@ -173,6 +175,21 @@ fn pattern_instance(
         .unzip()
 }
 
+/// The error of `kind` of a sign pattern at `x`, from the floating-point forward kinematics (0
+/// where Newton fails): the score of [`search`]'s second climb.
+fn exact_size(
+    problem: &AccuracyProblem,
+    x: &PoseVector,
+    pattern: u32,
+    eps: f64,
+    kind: PoseErrorKind,
+) -> f64 {
+    let (theta, actuator) = pattern_instance(problem, x, pattern, eps);
+    Homotopy::new(problem, x, &theta, &actuator)
+        .approximate_move()
+        .map_or(0.0, |d| FirstOrder::size(kind, &d))
+}
+
 /// The homotopy of an instance: `H_i(δ, t) = G_i(δ) - t s_i` with `G_i(δ) = L_i(X + δ; θ*_i) -
 /// L_i(X; θ*_i)` ([`ReachedChange`], without cancellation) and
 /// `s_i ∋ L_i(X; θ̂_i) + e_i - L_i(X; θ*_i) = e_i - ΔL_i(X, θ*)`: the same path as
@@ -183,7 +200,38 @@ struct Homotopy<'a> {
     shift: Vec<Interval>,
 }
 
-impl Homotopy<'_> {
+impl<'a> Homotopy<'a> {
+    /// The homotopy of the instance `(x, θ*, e)`.
+    fn new(
+        problem: &AccuracyProblem,
+        x: &PoseVector,
+        theta: &'a [[Interval; 7]],
+        actuator: &[f64],
+    ) -> Homotopy<'a> {
+        let xi = x.map(Interval::point);
+        let shift = (0..problem.legs())
+            .map(|i| {
+                let nominal = problem.nominal(i).map(Interval::point);
+                Interval::point(actuator[i])
+                    - LegLengthError.residual_interval(&theta[i], &error_inputs(&xi, &nominal))
+            })
+            .collect();
+        Homotopy {
+            x: xi,
+            theta,
+            shift,
+        }
+    }
+
+    /// The move at `t = 1` in floating point, followed from `δ = 0` in `CONTINUATION` steps of
+    /// `t` (a candidate's error for the search; `None` where Newton fails).
+    fn approximate_move(&self) -> Option<Vector6<f64>> {
+        (1..=CONTINUATION).try_fold(Vector6::zeros(), |d, k| {
+            self.solve(k as f64 / CONTINUATION as f64, &d)
+                .map(|(d, _)| d)
+        })
+    }
+
     fn residual(&self, d: &[Interval; 6], t: Interval) -> Vec<Interval> {
         (0..6)
             .map(|i| {
@@ -345,19 +393,7 @@ pub fn prove_instance(
     theta: Vec<[Interval; 7]>,
     actuator: Vec<f64>,
 ) -> Option<PoseErrorInstance> {
-    let xi = x.map(Interval::point);
-    let shift = (0..problem.legs())
-        .map(|i| {
-            let nominal = problem.nominal(i).map(Interval::point);
-            Interval::point(actuator[i])
-                - LegLengthError.residual_interval(&theta[i], &error_inputs(&xi, &nominal))
-        })
-        .collect();
-    let homotopy = Homotopy {
-        x: xi,
-        theta: &theta,
-        shift,
-    };
+    let homotopy = Homotopy::new(problem, x, &theta, &actuator);
     let (reached, segments) = homotopy.follow()?;
     let norm = |v: &[Interval]| (v[0].sqr() + v[1].sqr() + v[2].sqr()).sqrt().inf();
     let w = norm(&reached[3..]);
@@ -416,16 +452,34 @@ fn search(
         PoseErrorKind::Position => i.position,
         PoseErrorKind::Orientation => i.orientation_deg,
     };
+    let patterns = |x: &PoseVector| -> Vec<u32> {
+        FirstOrder::at(problem, x, eps).map_or(Vec::new(), |f| {
+            f.ranked(kind)
+                .into_iter()
+                .take(EXACT)
+                .map(|p| p.0)
+                .collect()
+        })
+    };
     let mut best: Option<PoseErrorInstance> = None;
     for (x, _) in climbed.iter().take(2) {
-        let Some(first) = FirstOrder::at(problem, x, eps) else {
+        // Where the moves are large the first-order error misleads: the pattern whose
+        // floating-point error is largest is climbed again on that error.
+        let exact = |y: &PoseVector, pattern: u32| exact_size(problem, y, pattern, eps, kind);
+        let Some(top) = patterns(x)
+            .into_iter()
+            .max_by(|&a, &b| exact(x, a).total_cmp(&exact(x, b)))
+        else {
             continue;
         };
-        for (pattern, _) in first.ranked(kind).into_iter().take(EXACT) {
-            let (theta, actuator) = pattern_instance(problem, x, pattern, eps);
-            if let Some(i) = prove_instance(problem, x, theta, actuator) {
-                if best.as_ref().is_none_or(|b| value(&i) > value(b)) {
-                    best = Some(i);
+        let y = problem.climb(x, |y| exact(y, top));
+        for pose in [x, &y] {
+            for pattern in patterns(pose) {
+                let (theta, actuator) = pattern_instance(problem, pose, pattern, eps);
+                if let Some(i) = prove_instance(problem, pose, theta, actuator) {
+                    if best.as_ref().is_none_or(|b| value(&i) > value(b)) {
+                        best = Some(i);
+                    }
                 }
             }
         }
