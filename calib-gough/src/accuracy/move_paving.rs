@@ -92,12 +92,32 @@ struct Piece {
     value: [f64; 2],
     /// Whether the enclosure reaches `∂B`.
     touches: bool,
+    /// Whether `moves` and `value` were computed for a larger box of poses (the box's parent:
+    /// valid, but not yet narrowed to this box).
+    inherited: bool,
+}
+
+/// What the paving of a box of poses proved, which holds for each of its sub-boxes: every move
+/// reached from a pose of the box lies in one of the kept pieces' enclosures, and none reaches the
+/// boundary of `B`.
+#[derive(Clone, Debug)]
+pub(super) struct Paved {
+    /// The box `B`.
+    outer: [Interval; 6],
+    /// The kept pieces, `inherited` for the sub-boxes.
+    pieces: Vec<Piece>,
 }
 
 impl MovePaving {
     /// The paving of the box of poses `x` with actuator errors `± eps`; `None` when the legs'
-    /// bounds or the nominal Jacobian fail.
-    pub(super) fn new(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> Option<MovePaving> {
+    /// bounds or the nominal Jacobian fail. `parent`: what the paving of a box of poses
+    /// containing `x` proved (its `B` is kept, and its pieces are the start).
+    pub(super) fn new(
+        problem: &AccuracyProblem,
+        x: &PoseBox,
+        eps: f64,
+        parent: Option<&Paved>,
+    ) -> Option<MovePaving> {
         if problem.legs() != 6 {
             return None;
         }
@@ -142,10 +162,15 @@ impl MovePaving {
         if !(position_reach >= LARGE_MOVE * scale && position_reach <= 0.25 * scale) {
             return None;
         }
-        let outer = core::array::from_fn(|r| {
-            let h = (OUTER * reach[r]).max(OUTER_MIN[r / 3]);
-            Interval::new(-h, h)
-        });
+        let outer = parent.map_or_else(
+            || {
+                core::array::from_fn(|r| {
+                    let h = (OUTER * reach[r]).max(OUTER_MIN[r / 3]);
+                    Interval::new(-h, h)
+                })
+            },
+            |p| p.outer,
+        );
         Some(MovePaving {
             bound,
             inputs,
@@ -220,13 +245,25 @@ impl MovePaving {
             moves: y,
             value: [value[0].min(corner[0]), value[1].min(corner[1])],
             touches: self.touches(&y),
+            inherited: false,
         })
     }
 
     /// Upper bounds of the position (cm) and orientation (degrees) errors over the box of
     /// poses, refined until within `target` or `max_boxes` boxes of moves are examined; `None`
-    /// when `∂B` could not be excluded. Also returns the boxes examined.
-    pub(super) fn bound(&self, target: [f64; 2], max_boxes: usize) -> (Option<[f64; 2]>, usize) {
+    /// when `∂B` could not be excluded. Also returns the boxes examined, and what the paving
+    /// proved for the box's sub-boxes.
+    ///
+    /// With `parent` (a paving of a box of poses containing this one, whose `B` this paving
+    /// shares), no closing is needed: the parent's pieces hold every reached move and none
+    /// reaches `∂B`. They start the search with their parent's values (bounds for this box too),
+    /// and each is narrowed to this box's poses only when it comes first.
+    pub(super) fn bound(
+        &self,
+        target: [f64; 2],
+        max_boxes: usize,
+        parent: Option<&Paved>,
+    ) -> (Option<[f64; 2]>, usize, Option<Paved>) {
         let rank = |p: Piece| Ranked {
             key: if p.touches {
                 f64::INFINITY
@@ -236,20 +273,36 @@ impl MovePaving {
             item: p,
         };
         let mut heap = BinaryHeap::new();
-        heap.extend(self.piece(&self.outer).map(rank));
-        let mut examined = 1;
+        let mut examined = 0;
+        match parent {
+            Some(p) => heap.extend(p.pieces.iter().map(|q| {
+                rank(Piece {
+                    inherited: true,
+                    ..*q
+                })
+            })),
+            None => {
+                heap.extend(self.piece(&self.outer).map(rank));
+                examined += 1;
+            }
+        }
         while examined < max_boxes {
             let Some(top) = heap.pop() else { break };
             if top.key <= 1.0 {
                 heap.push(top);
                 break;
             }
+            let y = top.item.moves;
+            if top.item.inherited {
+                examined += 1;
+                heap.extend(self.piece(&y).map(rank));
+                continue;
+            }
             // `∂B` not yet excluded after half the budget: the box of poses is too wide
             // for its second-order models (the caller splits it).
             if top.item.touches && examined * CLOSING_SHARE >= max_boxes {
-                return (None, examined);
+                return (None, examined, None);
             }
-            let y = top.item.moves;
             let fine = (0..6).all(|c| y[c].wid() <= FINEST * self.outer[c].wid());
             let Some((l, r)) = split_widest(&y, &self.outer).filter(|_| !fine) else {
                 heap.push(top);
@@ -259,12 +312,16 @@ impl MovePaving {
             heap.extend([l, r].iter().filter_map(|b| self.piece(b)).map(rank));
         }
         if heap.iter().any(|q| q.item.touches) {
-            return (None, examined);
+            return (None, examined, None);
         }
         let bound = heap.iter().fold([0.0f64; 2], |acc, q| {
             [acc[0].max(q.item.value[0]), acc[1].max(q.item.value[1])]
         });
-        (Some(bound), examined)
+        let paved = Paved {
+            outer: self.outer,
+            pieces: heap.into_iter().map(|q| q.item).collect(),
+        };
+        (Some(bound), examined, Some(paved))
     }
 }
 
@@ -350,17 +407,18 @@ fn vertex_value(m: &Matrix6<f64>, a: &[Form; 6], s: &[Interval; 6]) -> [f64; 2] 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::accuracy::enclosure::PoseVector;
+    use crate::accuracy::{prove_instance, worst_instance, PoseErrorInstance, PoseErrorKind};
     use crate::files::LegSpec;
     use crate::simulate::builtin_hexapod;
     use crate::workspace::Workspace;
     use rand::rngs::StdRng;
     use rand::{Rng, SeedableRng};
 
-    /// The geometry's share `Γ_i` encloses `G_i(X, δ, θ*) - G_i(X, δ, θ̂)` at random poses of the
-    /// box, moves of `y` and geometries of the box (mostly at their ends).
-    #[test]
-    fn the_geometry_share_encloses_point_differences() {
-        let mut rng = StdRng::seed_from_u64(3);
+    /// The centimetre-error problem of these tests: the built-in hexapod with calibrated-like
+    /// radii (`a_z` and `l` at ± 0.1 cm), `x, y` in `[-0.5, hi]` cm, `z` within ± 0.5 cm of 60
+    /// and 1° of tilt.
+    fn centimetre_problem(hi: f64) -> AccuracyProblem {
         let spec: Vec<LegSpec> = builtin_hexapod()
             .into_iter()
             .map(|nominal| LegSpec {
@@ -369,15 +427,84 @@ mod tests {
             })
             .collect();
         let workspace = Workspace {
-            x: [-0.5, 0.5],
-            y: [-0.5, 0.5],
+            x: [-0.5, hi],
+            y: [-0.5, hi],
             z: [59.5, 60.5],
             tilt_deg: 1.0,
             stroke: None,
         };
-        let problem = AccuracyProblem::new(&spec, &workspace);
+        AccuracyProblem::new(&spec, &workspace)
+    }
+
+    /// A sub-box of poses that starts from its parent's pieces (without closing `∂B` again)
+    /// keeps the reached move of every instance in one of its pieces, and bounds its errors:
+    /// the worst instances found in the sub-box, and proved instances at random poses,
+    /// geometries at the vertices that make each leg's change extreme and actuator errors at
+    /// `± ε`.
+    #[test]
+    fn a_sub_box_bounds_its_instances_from_its_parents_pieces() {
+        let mut rng = StdRng::seed_from_u64(5);
+        let eps = 0.0005;
+        let problem = centimetre_problem(0.5);
         let x = problem.domain();
-        let paving = MovePaving::new(&problem, &x, 0.0005).expect("centimetre moves are paved");
+        // A quarter of the box in position, the whole tilt.
+        let quarter = centimetre_problem(0.0);
+        let sub = quarter.domain();
+        assert!((0..6).all(|k| sub[k].is_subset_of(x[k])));
+        let mut found: Vec<PoseErrorInstance> =
+            [PoseErrorKind::Position, PoseErrorKind::Orientation]
+                .into_iter()
+                .map(|kind| worst_instance(&quarter, kind, eps, 1).expect("a worst instance"))
+                .collect();
+        let target = [found[0].position, found[1].orientation_deg];
+        let parent = MovePaving::new(&problem, &x, eps, None).expect("paved");
+        let (_, _, paved) = parent.bound(target, 2000, None);
+        let paved = paved.expect("the parent's paving closes");
+        let child = MovePaving::new(&quarter, &sub, eps, Some(&paved)).expect("paved");
+        let (bound, _, kept) = child.bound(target, 1000, Some(&paved));
+        let (bound, kept) = bound
+            .zip(kept)
+            .expect("the parent's proof holds for the sub-box");
+        while found.len() < 14 {
+            let pose: PoseVector =
+                core::array::from_fn(|k| rng.random_range(sub[k].inf()..=sub[k].sup()));
+            if !quarter.proved_feasible(&pose) {
+                continue;
+            }
+            let pattern: u32 = rng.random_range(0..64);
+            let (theta, actuator) = (0..6)
+                .map(|i| {
+                    let high = pattern >> i & 1 == 1;
+                    let e = if high { eps } else { -eps };
+                    (quarter.vertex(i, &pose, !high), e)
+                })
+                .unzip();
+            found.extend(prove_instance(&quarter, &pose, theta, actuator));
+        }
+        for i in &found {
+            let held = kept
+                .pieces
+                .iter()
+                .any(|q| (0..6).all(|k| q.moves[k].contains(i.reached[k].mid())));
+            assert!(held, "reached move {:?} in no piece", i.reached);
+            assert!(
+                i.position <= bound[0] && i.orientation_deg <= bound[1],
+                "instance {} cm {}° above the sub-box's bounds {bound:?}",
+                i.position,
+                i.orientation_deg
+            );
+        }
+    }
+
+    /// The geometry's share `Γ_i` encloses `G_i(X, δ, θ*) - G_i(X, δ, θ̂)` at random poses of the
+    /// box, moves of `y` and geometries of the box (mostly at their ends).
+    #[test]
+    fn the_geometry_share_encloses_point_differences() {
+        let mut rng = StdRng::seed_from_u64(3);
+        let problem = centimetre_problem(0.5);
+        let x = problem.domain();
+        let paving =
+            MovePaving::new(&problem, &x, 0.0005, None).expect("centimetre moves are paved");
         let pick = |v: Interval, rng: &mut StdRng| {
             if rng.random_bool(0.5) {
                 if rng.random_bool(0.5) {

@@ -62,7 +62,7 @@
 //! the bound is not proved and the box is named instead.
 
 use super::enclosure::{AccuracyProblem, PoseBox};
-use super::move_paving::MovePaving;
+use super::move_paving::{MovePaving, Paved};
 use super::pose_chart::PoseChart;
 use calib_core::bisection::split_widest;
 use calib_core::maximum::Ranked;
@@ -71,6 +71,7 @@ use nalgebra::Matrix6;
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
+use std::sync::Arc;
 
 /// The change of a leg's length when the platform moves from `X = (p, q)` by `δ = (d, w)` to
 /// `(p + d, R(w) R(q))`: `|v + u| - |v|` with `v = p + R(q) b - a` and
@@ -709,25 +710,35 @@ enum BoxBound {
     Unproved,
 }
 
-/// The bounds over one box of poses, refined towards `target` (and the boxes of moves
-/// examined).
+/// The bounds over one box of poses, refined towards `target`, the boxes of moves examined, and
+/// what a paving of the moves proved for the box's sub-boxes. `parent`: that of a box of poses
+/// containing `x`, whose paving then continues (the charts failed there, and would here).
 fn bound_pose_box(
     problem: &AccuracyProblem,
     x: &PoseBox,
     eps: f64,
     target: [f64; 2],
     settings: &PoseBoundSettings,
-) -> (BoxBound, usize) {
+    parent: Option<&Paved>,
+) -> (BoxBound, usize, Option<Paved>) {
     if !problem.may_be_feasible(x) {
-        return (BoxBound::Empty, 0);
+        return (BoxBound::Empty, 0, None);
+    }
+    let pave = |paving: MovePaving, parent: Option<&Paved>, examined: usize| {
+        let (bound, n, paved) = paving.bound(target, settings.max_move_boxes, parent);
+        let outcome = bound.map_or(BoxBound::Unproved, BoxBound::Bound);
+        (outcome, examined + n, paved)
+    };
+    if let Some(paving) = parent.and_then(|p| MovePaving::new(problem, x, eps, Some(p))) {
+        return pave(paving, parent, 0);
     }
     // The chart that follows the pose bounds the box in one step where the Jacobian changes
     // little across it and the move; the fixed chart's faces and pieces are the fallback.
     if let Some(bound) = PoseChart::new(problem, x, eps).and_then(|c| c.bound()) {
-        return (BoxBound::Bound(bound), 0);
+        return (BoxBound::Bound(bound), 0, None);
     }
     let Some(chart) = Chart::new(problem, x, eps) else {
-        return (BoxBound::Unproved, 0);
+        return (BoxBound::Unproved, 0, None);
     };
     let mut examined = 0;
     let mut closed = None;
@@ -748,19 +759,13 @@ fn bound_pose_box(
         Some(r) => {
             let h = chart.enclosing_box(&r);
             let (bound, n) = chart.content_bound(&h, target, settings.max_content_boxes);
-            (BoxBound::Bound(bound), examined + n)
+            (BoxBound::Bound(bound), examined + n, None)
         }
-        None => {
-            // The last resort: the paving of the moves (second-order models, no chart).
-            let Some(paving) = MovePaving::new(problem, x, eps) else {
-                return (BoxBound::Unproved, examined);
-            };
-            let (bound, n) = paving.bound(target, settings.max_move_boxes);
-            (
-                bound.map_or(BoxBound::Unproved, BoxBound::Bound),
-                examined + n,
-            )
-        }
+        // The last resort: the paving of the moves (second-order models, no chart).
+        None => match MovePaving::new(problem, x, eps, None) {
+            Some(paving) => pave(paving, None, examined),
+            None => (BoxBound::Unproved, examined, None),
+        },
     }
 }
 
@@ -783,25 +788,31 @@ pub fn pose_error_bounds(
         }
     });
     let domain = problem.domain();
-    let evaluate = |x: [Interval; 6]| {
-        let (b, n) = bound_pose_box(problem, &x, eps, target, settings);
-        (x, b, n)
+    let evaluate = |(x, parent): ([Interval; 6], Option<Arc<Paved>>)| {
+        let (b, n, paved) = bound_pose_box(problem, &x, eps, target, settings, parent.as_deref());
+        (x, b, n, paved)
     };
-    let mut heap: BinaryHeap<Ranked<([Interval; 6], BoxBound)>> = BinaryHeap::new();
+    type Queued = ([Interval; 6], BoxBound, Option<Arc<Paved>>);
+    let mut heap: BinaryHeap<Ranked<Queued>> = BinaryHeap::new();
     let (mut pose_boxes, mut move_boxes) = (0, 0);
-    let enqueue = |heap: &mut BinaryHeap<_>, x: [Interval; 6], b: BoxBound| match b {
+    // A paving's pieces are kept only for boxes still to be split.
+    let enqueue = |heap: &mut BinaryHeap<_>, x, b, paved: Option<Paved>| match b {
         BoxBound::Empty => {}
-        BoxBound::Bound(v) => heap.push(Ranked {
-            key: key(v, target),
-            item: (x, b),
-        }),
+        BoxBound::Bound(v) => {
+            let key = key(v, target);
+            let paved = paved.filter(|_| key > 1.0).map(Arc::new);
+            heap.push(Ranked {
+                key,
+                item: (x, b, paved),
+            })
+        }
         BoxBound::Unproved => heap.push(Ranked {
             key: f64::INFINITY,
-            item: (x, b),
+            item: (x, b, None),
         }),
     };
-    let (x, b, n) = evaluate(domain);
-    enqueue(&mut heap, x, b);
+    let (x, b, n, paved) = evaluate((domain, None));
+    enqueue(&mut heap, x, b, paved);
     pose_boxes += 1;
     move_boxes += n;
     let batch = 2 * rayon::current_num_threads().max(1);
@@ -820,11 +831,11 @@ pub fn pose_error_bounds(
                 heap.push(top);
                 break;
             }
-            let x = top.item.0;
+            let (x, paved) = (top.item.0, top.item.2.clone());
             let fine = (0..6).all(|c| x[c].wid() <= settings.finest_pose * domain[c].wid());
             match split_widest(&x, &domain) {
                 Some((l, r)) if !(fine && top.item.1 == BoxBound::Unproved) => {
-                    children.extend([l, r]);
+                    children.extend([(l, paved.clone()), (r, paved)]);
                 }
                 _ => {
                     if top.item.1 == BoxBound::Unproved {
@@ -841,8 +852,8 @@ pub fn pose_error_bounds(
             break;
         }
         let results: Vec<_> = children.into_par_iter().map(evaluate).collect();
-        for (x, b, n) in results {
-            enqueue(&mut heap, x, b);
+        for (x, b, n, paved) in results {
+            enqueue(&mut heap, x, b, paved);
             pose_boxes += 1;
             move_boxes += n;
         }
