@@ -45,6 +45,9 @@ pub struct Quadratic<const N: usize> {
     /// `q[k][j]` for `k <= j`; the entries below the diagonal stay 0.
     q: [[f64; N]; N],
     e: f64,
+    /// At least the model's degree: 0 when `l` and `q` are 0, 1 when `q` is (the operations
+    /// skip the terms that are known to be 0).
+    degree: u8,
 }
 
 impl<const N: usize> Quadratic<N> {
@@ -57,6 +60,7 @@ impl<const N: usize> Quadratic<N> {
         }
         out.c = x.mid();
         out.l[k] = x.rad();
+        out.degree = 1;
         out
     }
 
@@ -72,6 +76,7 @@ impl<const N: usize> Quadratic<N> {
             l: [0.0; N],
             q: [[0.0; N]; N],
             e,
+            degree: 0,
         }
     }
 
@@ -105,22 +110,29 @@ impl<const N: usize> Quadratic<N> {
         self.e
     }
 
-    /// Whether the model is exactly zero.
+    /// Whether the model is the constant 0 (a shortcut: a model whose terms all vanish without
+    /// its degree saying so goes through the general operations, with the same result).
     fn is_zero(&self) -> bool {
-        self.c == 0.0
-            && self.e == 0.0
-            && self.l.iter().all(|v| *v == 0.0)
-            && self.q.iter().all(|r| r.iter().all(|v| *v == 0.0))
+        self.degree == 0 && self.c == 0.0 && self.e == 0.0
     }
 
     /// `Σ |l_k|`, rounded up.
     fn linear_mag(&self) -> f64 {
+        if self.degree == 0 {
+            return 0.0;
+        }
         sum_up(self.l.iter().map(|v| v.abs()).sum(), N)
     }
 
     /// `Σ_{k <= j} |q_kj|`, rounded up.
     fn quadratic_mag(&self) -> f64 {
-        let s: f64 = self.q.iter().flatten().map(|v| v.abs()).sum();
+        if self.degree < 2 {
+            return 0.0;
+        }
+        let mut s = 0.0;
+        for (k, row) in self.q.iter().enumerate() {
+            s += row[k..].iter().map(|v| v.abs()).sum::<f64>();
+        }
         sum_up(s, N * N)
     }
 
@@ -145,7 +157,7 @@ impl<const N: usize> Quadratic<N> {
         if !self.c.is_finite() {
             return Interval::ENTIRE;
         }
-        for k in 0..N {
+        for k in (0..N).filter(|_| self.degree == 2) {
             let d = self.q[k][k];
             if d > 0.0 {
                 centre += Interval::new(0.0, d);
@@ -169,13 +181,30 @@ impl<const N: usize> Quadratic<N> {
     /// `α x̂` with `α` a double.
     fn scale(self, alpha: f64) -> Self {
         let c = alpha * self.c;
-        let l = self.l.map(|v| alpha * v);
-        let q = self.q.map(|r| r.map(|v| alpha * v));
-        let sum = c.abs()
-            + l.iter().map(|v| v.abs()).sum::<f64>()
-            + q.iter().flatten().map(|v| v.abs()).sum::<f64>();
-        let e = add_up(mul_up(alpha.abs(), self.e), roundings(sum, 1 + N + N * N));
-        Quadratic { c, l, q, e }
+        let mut out = Quadratic::from_interval(Interval::ZERO);
+        let mut sum = c.abs();
+        if self.degree >= 1 {
+            out.l = self.l.map(|v| alpha * v);
+            sum += out.l.iter().map(|v| v.abs()).sum::<f64>();
+        }
+        if self.degree == 2 {
+            out.q = self.q.map(|r| r.map(|v| alpha * v));
+            sum += out.q.iter().flatten().map(|v| v.abs()).sum::<f64>();
+        }
+        out.c = c;
+        out.e = add_up(mul_up(alpha.abs(), self.e), roundings(sum, 1 + N + N * N));
+        out.degree = self.degree;
+        out
+    }
+
+    /// `x̂ ŷ` with `ŷ = c_y + e_y ε*` of degree 0: `c_y x̂` plus `e_y` times `x̂`'s magnitude.
+    fn times_constant(self, y: Self) -> Self {
+        let mut out = self.scale(y.c);
+        out.e = add_up(out.e, mul_up(y.e, self.mag()));
+        if !out.e.is_finite() || !out.c.is_finite() {
+            return Quadratic::from_interval(self.range() * y.range());
+        }
+        out
     }
 
     /// `f(x̂)` expanded to second order about the centre `c` (module documentation): `f0 ∋
@@ -236,34 +265,38 @@ impl<const N: usize> Add for Quadratic<N> {
         if self.is_zero() {
             return o;
         }
+        let degree = self.degree.max(o.degree);
         let c = self.c + o.c;
         let mut sum = c.abs();
         let mut l = [0.0; N];
-        for k in 0..N {
+        for k in (0..N).filter(|_| degree >= 1) {
             l[k] = self.l[k] + o.l[k];
             sum += l[k].abs();
         }
         let mut q = [[0.0; N]; N];
-        for k in 0..N {
+        for k in (0..N).filter(|_| degree == 2) {
             for j in k..N {
                 q[k][j] = self.q[k][j] + o.q[k][j];
                 sum += q[k][j].abs();
             }
         }
         let e = add_up(add_up(self.e, o.e), roundings(sum, 1 + N + N * N));
-        Quadratic { c, l, q, e }
+        Quadratic { c, l, q, e, degree }
     }
 }
 
 impl<const N: usize> Neg for Quadratic<N> {
     type Output = Self;
     fn neg(self) -> Self {
-        Quadratic {
-            c: -self.c,
-            l: self.l.map(|v| -v),
-            q: self.q.map(|r| r.map(|v| -v)),
-            e: self.e,
+        let mut out = self;
+        out.c = -self.c;
+        if self.degree >= 1 {
+            out.l = self.l.map(|v| -v);
         }
+        if self.degree == 2 {
+            out.q = self.q.map(|r| r.map(|v| -v));
+        }
+        out
     }
 }
 
@@ -281,6 +314,12 @@ impl<const N: usize> Mul for Quadratic<N> {
     fn mul(self, o: Self) -> Self {
         if self.is_zero() || o.is_zero() {
             return Quadratic::from_interval(Interval::ZERO);
+        }
+        if o.degree == 0 {
+            return self.times_constant(o);
+        }
+        if self.degree == 0 {
+            return o.times_constant(self);
         }
         let c = self.c * o.c;
         // Every rounded result's magnitude, and how many there are.
@@ -328,7 +367,13 @@ impl<const N: usize> Mul for Quadratic<N> {
         if !e.is_finite() || !c.is_finite() {
             return Quadratic::from_interval(self.range() * o.range());
         }
-        Quadratic { c, l, q, e }
+        Quadratic {
+            c,
+            l,
+            q,
+            e,
+            degree: 2,
+        }
     }
 }
 
@@ -400,6 +445,36 @@ mod tests {
             }
         }
         v + Interval::new(-x.e, x.e)
+    }
+
+    /// A product with a model of degree 0 that is an interval (a decimal literal's enclosure, a
+    /// parameter's box) holds every product of a value of the other model at a point of its noise
+    /// symbols and a value of the interval, whichever side the interval is on.
+    #[test]
+    fn products_with_an_uncertain_constant_hold_every_value() {
+        let mut rng = StdRng::seed_from_u64(9);
+        for _ in 0..200 {
+            let b: [Interval; 3] = core::array::from_fn(|_| {
+                let c = rng.random_range(-3.0..3.0);
+                Interval::new(c - 0.5, c + 0.5)
+            });
+            let x = leg(core::array::from_fn(|k| Quadratic::<3>::input(b[k], k)));
+            let lo = rng.random_range(-2.0..2.0);
+            let y = Interval::new(lo, lo + rng.random_range(0.0..1.0));
+            let cy = Quadratic::<3>::from_interval(y);
+            for product in [x * cy, cy * x] {
+                for _ in 0..20 {
+                    let eps: [f64; 3] = core::array::from_fn(|_| rng.random_range(-1.0..=1.0));
+                    let (vx, vp) = (at(&x, &eps), at(&product, &eps));
+                    for (u, t) in [vx.inf(), vx.sup()].into_iter().zip([y.inf(), y.sup()]) {
+                        for t in [t, y.inf() + y.sup() - t] {
+                            let exact = Interval::point(u) * Interval::point(t);
+                            assert!(exact.is_subset_of(vp), "{u} * {t} = {exact} outside {vp}");
+                        }
+                    }
+                }
+            }
+        }
     }
 
     /// At random points of random boxes (ends and interior), the exact value — enclosed by
