@@ -81,6 +81,8 @@ pub(super) struct MovePaving {
     centre: Vec<[f64; 12]>,
     /// The box `B`.
     outer: [Interval; 6],
+    /// The box of poses.
+    poses: PoseBox,
 }
 
 /// A box of moves with what its enclosure proves.
@@ -102,6 +104,8 @@ struct Piece {
 /// boundary of `B`.
 #[derive(Clone, Debug)]
 pub(super) struct Paved {
+    /// The box of poses paved.
+    poses: PoseBox,
     /// The box `B`.
     outer: [Interval; 6],
     /// The kept pieces, `inherited` for the sub-boxes.
@@ -110,8 +114,8 @@ pub(super) struct Paved {
 
 impl MovePaving {
     /// The paving of the box of poses `x` with actuator errors `± eps`; `None` when the legs'
-    /// bounds or the nominal Jacobian fail. `parent`: what the paving of a box of poses
-    /// containing `x` proved (its `B` is kept, and its pieces are the start).
+    /// bounds or the nominal Jacobian fail. `parent`: what the paving of `x` or of a box of poses
+    /// containing it proved (its `B` is kept, and its pieces are the start).
     pub(super) fn new(
         problem: &AccuracyProblem,
         x: &PoseBox,
@@ -178,6 +182,7 @@ impl MovePaving {
             nominal,
             centre,
             outer,
+            poses: *x,
         })
     }
 
@@ -254,10 +259,11 @@ impl MovePaving {
     /// when `∂B` could not be excluded. Also returns the boxes examined, and what the paving
     /// proved for the box's sub-boxes.
     ///
-    /// With `parent` (a paving of a box of poses containing this one, whose `B` this paving
-    /// shares), no closing is needed: the parent's pieces hold every reached move and none
-    /// reaches `∂B`. They start the search with their parent's values (bounds for this box too),
-    /// and each is narrowed to this box's poses only when it comes first.
+    /// With `parent` (a paving of this box of poses or of one containing it, whose `B` this
+    /// paving shares), no closing is needed: the parent's pieces hold every reached move and
+    /// none reaches `∂B`. They start the search: this box's own pieces as they are (the paving
+    /// continues), a larger box's with their values there (bounds for this box too), each
+    /// narrowed to this box's poses only when it comes first.
     pub(super) fn bound(
         &self,
         target: [f64; 2],
@@ -275,12 +281,10 @@ impl MovePaving {
         let mut heap = BinaryHeap::new();
         let mut examined = 0;
         match parent {
-            Some(p) => heap.extend(p.pieces.iter().map(|q| {
-                rank(Piece {
-                    inherited: true,
-                    ..*q
-                })
-            })),
+            Some(p) => {
+                let inherited = p.poses != self.poses;
+                heap.extend(p.pieces.iter().map(|q| rank(Piece { inherited, ..*q })));
+            }
             None => {
                 heap.extend(self.piece(&self.outer).map(rank));
                 examined += 1;
@@ -318,6 +322,7 @@ impl MovePaving {
             [acc[0].max(q.item.value[0]), acc[1].max(q.item.value[1])]
         });
         let paved = Paved {
+            poses: self.poses,
             outer: self.outer,
             pieces: heap.into_iter().map(|q| q.item).collect(),
         };
@@ -436,8 +441,9 @@ mod tests {
         AccuracyProblem::new(&spec, &workspace)
     }
 
-    /// A sub-box of poses that starts from its parent's pieces (without closing `∂B` again)
-    /// keeps the reached move of every instance in one of its pieces, and bounds its errors:
+    /// A sub-box of poses that starts from its parent's pieces (without closing `∂B` again), and
+    /// then continues from its own, keeps the reached move of every instance in one of its
+    /// pieces, and bounds its errors:
     /// the worst instances found in the sub-box, and proved instances at random poses,
     /// geometries at the vertices that make each leg's change extreme and actuator errors at
     /// `± ε`.
@@ -481,18 +487,23 @@ mod tests {
                 .unzip();
             found.extend(prove_instance(&quarter, &pose, theta, actuator));
         }
-        for i in &found {
-            let held = kept
-                .pieces
-                .iter()
-                .any(|q| (0..6).all(|k| q.moves[k].contains(i.reached[k].mid())));
-            assert!(held, "reached move {:?} in no piece", i.reached);
-            assert!(
-                i.position <= bound[0] && i.orientation_deg <= bound[1],
-                "instance {} cm {}° above the sub-box's bounds {bound:?}",
-                i.position,
-                i.orientation_deg
-            );
+        // The sub-box's paving continued from its own pieces (a refinement) holds them too.
+        let (again, _, more) = child.bound(target, 1000, Some(&kept));
+        let (again, more) = again.zip(more).expect("the sub-box's own proof holds");
+        for (bound, kept) in [(bound, kept), (again, more)] {
+            for i in &found {
+                let held = kept
+                    .pieces
+                    .iter()
+                    .any(|q| (0..6).all(|k| q.moves[k].contains(i.reached[k].mid())));
+                assert!(held, "reached move {:?} in no piece", i.reached);
+                assert!(
+                    i.position <= bound[0] && i.orientation_deg <= bound[1],
+                    "instance {} cm {}° above the sub-box's bounds {bound:?}",
+                    i.position,
+                    i.orientation_deg
+                );
+            }
         }
     }
 

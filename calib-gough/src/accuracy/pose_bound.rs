@@ -124,9 +124,17 @@ const KRAWCZYK_STEPS: usize = 5;
 /// `p`'s) is the last.
 const KRAWCZYK_STALL: f64 = 0.1;
 
+/// A box of poses whose paving of the moves lowered its key by at least this fraction in its
+/// last evaluation is refined (its paving continued with twice the boxes of moves) rather than
+/// split: where the moves' pieces are still coarse, halving the poses only repeats them.
+const REFINE_GAIN: f64 = 0.01;
+/// Refinements at most per box of poses (the last with `2^REFINE_ROUNDS` times
+/// [`PoseBoundSettings::max_move_boxes`]).
+const REFINE_ROUNDS: usize = 6;
+
 /// Boxes of moves per second of [`PoseBoundSettings::max_seconds`] (about what two cores
 /// examine in the paving of the moves).
-const MOVE_BOXES_PER_SECOND: f64 = 4000.0;
+const MOVE_BOXES_PER_SECOND: f64 = 6000.0;
 
 /// When to stop [`pose_error_bounds`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -141,14 +149,16 @@ pub struct PoseBoundSettings {
     /// `D ∩ F` (default 1000).
     pub max_content_boxes: usize,
     /// Boxes of moves examined at most per box of poses by the paving of the moves (second-order
-    /// Taylor models, where neither chart closes and the moves are large; default 2000).
+    /// Taylor models, where neither chart closes and the moves are large; default 2000) in its
+    /// first evaluation; a paving that keeps gaining is continued with twice as many, up to six
+    /// times, before its box of poses is split.
     pub max_move_boxes: usize,
     /// A box of poses whose region cannot be closed and which is narrower than this fraction of
     /// the workspace in every coordinate ends the search unproved (default 1/16).
     pub finest_pose: f64,
     /// Stop after about this many seconds (default 30: a safety net behind `max_pose_boxes`,
     /// which keeps results reproducible; the bounds stay valid, or the box of
-    /// poses not yet bounded is named). Each second also allows 4,000 boxes of moves, counted
+    /// poses not yet bounded is named). Each second also allows 6,000 boxes of moves, counted
     /// (a reproducible budget for the paving of the moves).
     pub max_seconds: f64,
 }
@@ -711,13 +721,15 @@ enum BoxBound {
 }
 
 /// The bounds over one box of poses, refined towards `target`, the boxes of moves examined, and
-/// what a paving of the moves proved for the box's sub-boxes. `parent`: that of a box of poses
-/// containing `x`, whose paving then continues (the charts failed there, and would here).
+/// what a paving of the moves proved for the box and its sub-boxes. `budget`: boxes of moves for
+/// the paving; `parent`: that of `x` or of a box of poses containing it, whose paving then
+/// continues (the charts failed there, and would here).
 fn bound_pose_box(
     problem: &AccuracyProblem,
     x: &PoseBox,
     eps: f64,
     target: [f64; 2],
+    budget: usize,
     settings: &PoseBoundSettings,
     parent: Option<&Paved>,
 ) -> (BoxBound, usize, Option<Paved>) {
@@ -725,7 +737,7 @@ fn bound_pose_box(
         return (BoxBound::Empty, 0, None);
     }
     let pave = |paving: MovePaving, parent: Option<&Paved>, examined: usize| {
-        let (bound, n, paved) = paving.bound(target, settings.max_move_boxes, parent);
+        let (bound, n, paved) = paving.bound(target, budget, parent);
         let outcome = bound.map_or(BoxBound::Unproved, BoxBound::Bound);
         (outcome, examined + n, paved)
     };
@@ -769,6 +781,27 @@ fn bound_pose_box(
     }
 }
 
+/// A box of poses in the queue of [`pose_error_bounds`].
+struct Queued {
+    x: PoseBox,
+    bound: BoxBound,
+    /// Its paving of the moves, kept while the box may be refined or split.
+    paved: Option<Arc<Paved>>,
+    /// The relative fall of its key in its last evaluation (from its parent's key, or from its
+    /// own before a refinement).
+    gain: f64,
+    /// Refinements of its paving so far.
+    round: usize,
+}
+
+/// A box of poses to evaluate: the paving it starts from (its own or its parent's), the key
+/// before, and the round (0: a new box).
+type Task = (PoseBox, Option<Arc<Paved>>, f64, usize);
+
+/// An evaluated [`Task`]: the box, its bounds, the boxes of moves examined, its paving, and the
+/// task's key before and round.
+type Evaluated = (PoseBox, BoxBound, usize, Option<Paved>, f64, usize);
+
 /// Upper bounds of the platform's position and orientation errors over `problem`'s workspace,
 /// with actuator errors within `± eps` (see the module documentation). `lower` are the errors
 /// already attained (the instances' lower bounds, 0 when none): the search refines until each
@@ -788,33 +821,54 @@ pub fn pose_error_bounds(
         }
     });
     let domain = problem.domain();
-    let evaluate = |(x, parent): ([Interval; 6], Option<Arc<Paved>>)| {
-        let (b, n, paved) = bound_pose_box(problem, &x, eps, target, settings, parent.as_deref());
-        (x, b, n, paved)
+    // A task: a box of poses, the paving it starts from, its key before and its round.
+    let evaluate = |(x, parent, before, round): Task| {
+        let budget = settings.max_move_boxes << round;
+        let (b, n, paved) = bound_pose_box(
+            problem,
+            &x,
+            eps,
+            target,
+            budget,
+            settings,
+            parent.as_deref(),
+        );
+        (x, b, n, paved, before, round)
     };
-    type Queued = ([Interval; 6], BoxBound, Option<Arc<Paved>>);
     let mut heap: BinaryHeap<Ranked<Queued>> = BinaryHeap::new();
     let (mut pose_boxes, mut move_boxes) = (0, 0);
-    // A paving's pieces are kept only for boxes still to be split.
-    let enqueue = |heap: &mut BinaryHeap<_>, x, b, paved: Option<Paved>| match b {
+    // A paving's pieces are kept only for boxes still to be refined or split.
+    let enqueue = |heap: &mut BinaryHeap<_>, (x, b, _, paved, before, round): Evaluated| match b {
         BoxBound::Empty => {}
         BoxBound::Bound(v) => {
             let key = key(v, target);
             let paved = paved.filter(|_| key > 1.0).map(Arc::new);
             heap.push(Ranked {
                 key,
-                item: (x, b, paved),
+                item: Queued {
+                    x,
+                    bound: b,
+                    paved,
+                    gain: 1.0 - key / before,
+                    round,
+                },
             })
         }
         BoxBound::Unproved => heap.push(Ranked {
             key: f64::INFINITY,
-            item: (x, b, None),
+            item: Queued {
+                x,
+                bound: b,
+                paved: None,
+                gain: 0.0,
+                round,
+            },
         }),
     };
-    let (x, b, n, paved) = evaluate((domain, None));
-    enqueue(&mut heap, x, b, paved);
+    let first = evaluate((domain, None, f64::INFINITY, 0));
     pose_boxes += 1;
-    move_boxes += n;
+    move_boxes += first.2;
+    enqueue(&mut heap, first);
     let batch = 2 * rayon::current_num_threads().max(1);
     let mut unproved_at = None;
     // The seconds also set a budget of boxes of moves, counted, so that a search the paving of
@@ -824,22 +878,29 @@ pub fn pose_error_bounds(
         && (move_boxes as f64) < move_budget
         && start.elapsed().as_secs_f64() < settings.max_seconds
     {
-        let mut children = Vec::new();
-        while children.len() < batch {
+        let mut tasks: Vec<Task> = Vec::new();
+        while tasks.len() < batch {
             let Some(top) = heap.pop() else { break };
             if top.key <= 1.0 {
                 heap.push(top);
                 break;
             }
-            let (x, paved) = (top.item.0, top.item.2.clone());
-            let fine = (0..6).all(|c| x[c].wid() <= settings.finest_pose * domain[c].wid());
-            match split_widest(&x, &domain) {
-                Some((l, r)) if !(fine && top.item.1 == BoxBound::Unproved) => {
-                    children.extend([(l, paved.clone()), (r, paved)]);
+            let q = &top.item;
+            // A paving still gaining continues on its own box (twice the boxes of moves);
+            // else the box of poses is split and its halves start from its pieces.
+            if q.paved.is_some() && q.gain >= REFINE_GAIN && q.round < REFINE_ROUNDS {
+                tasks.push((q.x, q.paved.clone(), top.key, q.round + 1));
+                continue;
+            }
+            let fine = (0..6).all(|c| q.x[c].wid() <= settings.finest_pose * domain[c].wid());
+            match split_widest(&q.x, &domain) {
+                Some((l, r)) if !(fine && q.bound == BoxBound::Unproved) => {
+                    tasks.push((l, q.paved.clone(), top.key, 0));
+                    tasks.push((r, q.paved.clone(), top.key, 0));
                 }
                 _ => {
-                    if top.item.1 == BoxBound::Unproved {
-                        unproved_at = Some(x);
+                    if q.bound == BoxBound::Unproved {
+                        unproved_at = Some(q.x);
                     }
                     heap.push(top);
                     break;
@@ -848,26 +909,29 @@ pub fn pose_error_bounds(
         }
         // Once a box is named unproved no bound is claimed, so the boxes popped in this batch
         // need not be evaluated.
-        if children.is_empty() || unproved_at.is_some() {
+        if tasks.is_empty() || unproved_at.is_some() {
             break;
         }
-        let results: Vec<_> = children.into_par_iter().map(evaluate).collect();
-        for (x, b, n, paved) in results {
-            enqueue(&mut heap, x, b, paved);
-            pose_boxes += 1;
-            move_boxes += n;
+        let results: Vec<Evaluated> = tasks.into_par_iter().map(evaluate).collect();
+        for r in results {
+            // A box refined is not a new box.
+            if r.5 == 0 {
+                pose_boxes += 1;
+            }
+            move_boxes += r.2;
+            enqueue(&mut heap, r);
         }
     }
     if unproved_at.is_none() {
         unproved_at = heap
             .iter()
-            .find(|q| q.item.1 == BoxBound::Unproved)
-            .map(|q| q.item.0);
+            .find(|q| q.item.bound == BoxBound::Unproved)
+            .map(|q| q.item.x);
     }
     let converged = unproved_at.is_none() && heap.peek().is_none_or(|q| q.key <= 1.0);
     let mut worst = [0.0f64; 2];
     for q in &heap {
-        if let BoxBound::Bound(v) = q.item.1 {
+        if let BoxBound::Bound(v) = q.item.bound {
             worst = [worst[0].max(v[0]), worst[1].max(v[1])];
         }
     }
