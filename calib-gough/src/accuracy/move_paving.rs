@@ -43,6 +43,7 @@ use calib_core::bisection::split_widest;
 use calib_core::maximum::Ranked;
 use calib_core::{Interval, Model, Quadratic};
 use nalgebra::Matrix6;
+use rayon::prelude::*;
 use std::collections::BinaryHeap;
 
 /// Second-order models over the box of moves (noise symbols `0..6`) and of poses (`6..12`).
@@ -64,6 +65,8 @@ const OUTER: f64 = 2.0;
 /// The smallest half-width of `B` in position (cm) and in the Rodrigues vector: coordinates the
 /// linear estimate says barely move still get room for their second-order moves.
 const OUTER_MIN: [f64; 2] = [0.5, 0.01];
+/// Boxes of moves pieced in parallel per round of [`MovePaving::bound`].
+const BATCH: usize = 16;
 /// A box still reaching `∂B` and narrower than this fraction of `B` (in every coordinate) ends
 /// the search unproved.
 const FINEST: f64 = 1.0 / 4096.0;
@@ -290,30 +293,42 @@ impl MovePaving {
                 examined += 1;
             }
         }
-        while examined < max_boxes {
-            let Some(top) = heap.pop() else { break };
-            if top.key <= 1.0 {
-                heap.push(top);
+        // Rounds of up to BATCH boxes, the first ones of the queue, pieced in parallel (the
+        // pieces join the queue in a fixed order: the same result on every run).
+        let mut done = false;
+        while examined < max_boxes && !done {
+            let mut work: Vec<[Interval; 6]> = Vec::with_capacity(BATCH);
+            while work.len() + 2 <= BATCH && examined + work.len() < max_boxes {
+                let Some(top) = heap.pop() else { break };
+                if top.key <= 1.0 {
+                    heap.push(top);
+                    done = true;
+                    break;
+                }
+                let y = top.item.moves;
+                if top.item.inherited {
+                    work.push(y);
+                    continue;
+                }
+                // `∂B` not yet excluded after half the budget: the box of poses is too wide
+                // for its second-order models (the caller splits it).
+                if top.item.touches && (examined + work.len()) * CLOSING_SHARE >= max_boxes {
+                    return (None, examined + work.len(), None);
+                }
+                let fine = (0..6).all(|c| y[c].wid() <= FINEST * self.outer[c].wid());
+                let Some((l, r)) = split_widest(&y, &self.outer).filter(|_| !fine) else {
+                    heap.push(top);
+                    done = true;
+                    break;
+                };
+                work.extend([l, r]);
+            }
+            if work.is_empty() {
                 break;
             }
-            let y = top.item.moves;
-            if top.item.inherited {
-                examined += 1;
-                heap.extend(self.piece(&y).map(rank));
-                continue;
-            }
-            // `∂B` not yet excluded after half the budget: the box of poses is too wide
-            // for its second-order models (the caller splits it).
-            if top.item.touches && examined * CLOSING_SHARE >= max_boxes {
-                return (None, examined, None);
-            }
-            let fine = (0..6).all(|c| y[c].wid() <= FINEST * self.outer[c].wid());
-            let Some((l, r)) = split_widest(&y, &self.outer).filter(|_| !fine) else {
-                heap.push(top);
-                break;
-            };
-            examined += 2;
-            heap.extend([l, r].iter().filter_map(|b| self.piece(b)).map(rank));
+            examined += work.len();
+            let pieces: Vec<Option<Piece>> = work.par_iter().map(|b| self.piece(b)).collect();
+            heap.extend(pieces.into_iter().flatten().map(rank));
         }
         if heap.iter().any(|q| q.item.touches) {
             return (None, examined, None);
