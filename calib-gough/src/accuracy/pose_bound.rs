@@ -134,7 +134,7 @@ const REFINE_ROUNDS: usize = 6;
 
 /// Boxes of moves per second of [`PoseBoundSettings::max_seconds`] (about what two cores
 /// examine in the paving of the moves).
-const MOVE_BOXES_PER_SECOND: f64 = 6000.0;
+const MOVE_BOXES_PER_SECOND: f64 = 5000.0;
 
 /// When to stop [`pose_error_bounds`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -158,7 +158,7 @@ pub struct PoseBoundSettings {
     pub finest_pose: f64,
     /// Stop after about this many seconds (default 30: a safety net behind `max_pose_boxes`,
     /// which keeps results reproducible; the bounds stay valid, or the box of
-    /// poses not yet bounded is named). Each second also allows 6,000 boxes of moves, counted
+    /// poses not yet bounded is named). Each second also allows 5,000 boxes of moves, counted
     /// (a reproducible budget for the paving of the moves).
     pub max_seconds: f64,
 }
