@@ -435,6 +435,15 @@ mod tests {
         (v - w) / (v.sqrt() + w.sqrt()) + a * b * c / (S::cst(2.0) + c.sqr())
     }
 
+    /// A random box: centres in `[-3, 3]`, half-widths from `radius`.
+    fn random_box(rng: &mut StdRng, radius: impl Fn(&mut StdRng) -> f64) -> [Interval; 3] {
+        core::array::from_fn(|_| {
+            let c = rng.random_range(-3.0..3.0);
+            let r = radius(rng);
+            Interval::new(c - r, c + r)
+        })
+    }
+
     /// The model's polynomial at the noise values `eps`, in interval arithmetic, widened by `e`.
     fn at<const N: usize>(x: &Quadratic<N>, eps: &[f64; N]) -> Interval {
         let mut v = Interval::point(x.c);
@@ -454,10 +463,7 @@ mod tests {
     fn products_with_an_uncertain_constant_hold_every_value() {
         let mut rng = StdRng::seed_from_u64(9);
         for _ in 0..200 {
-            let b: [Interval; 3] = core::array::from_fn(|_| {
-                let c = rng.random_range(-3.0..3.0);
-                Interval::new(c - 0.5, c + 0.5)
-            });
+            let b = random_box(&mut rng, |_| 0.5);
             let x = leg(core::array::from_fn(|k| Quadratic::<3>::input(b[k], k)));
             let lo = rng.random_range(-2.0..2.0);
             let y = Interval::new(lo, lo + rng.random_range(0.0..1.0));
@@ -466,8 +472,8 @@ mod tests {
                 for _ in 0..20 {
                     let eps: [f64; 3] = core::array::from_fn(|_| rng.random_range(-1.0..=1.0));
                     let (vx, vp) = (at(&x, &eps), at(&product, &eps));
-                    for (u, t) in [vx.inf(), vx.sup()].into_iter().zip([y.inf(), y.sup()]) {
-                        for t in [t, y.inf() + y.sup() - t] {
+                    for u in [vx.inf(), vx.sup()] {
+                        for t in [y.inf(), y.sup()] {
                             let exact = Interval::point(u) * Interval::point(t);
                             assert!(exact.is_subset_of(vp), "{u} * {t} = {exact} outside {vp}");
                         }
@@ -484,11 +490,7 @@ mod tests {
     fn quadratic_models_enclose_point_values() {
         let mut rng = StdRng::seed_from_u64(5);
         for _ in 0..200 {
-            let b: [Interval; 3] = core::array::from_fn(|_| {
-                let c = rng.random_range(-3.0..3.0);
-                let r = 10f64.powf(rng.random_range(-6.0..0.5));
-                Interval::new(c - r, c + r)
-            });
+            let b = random_box(&mut rng, |rng| 10f64.powf(rng.random_range(-6.0..0.5)));
             let model = leg(core::array::from_fn(|k| Quadratic::<3>::input(b[k], k)));
             let range = model.range();
             for _ in 0..50 {

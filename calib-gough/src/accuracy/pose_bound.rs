@@ -821,9 +821,10 @@ pub fn pose_error_bounds(
         }
     });
     let domain = problem.domain();
-    // A task: a box of poses, the paving it starts from, its key before and its round.
-    let evaluate = |(x, parent, before, round): Task| {
-        let budget = settings.max_move_boxes << round;
+    // A task: a box of poses, the paving it starts from, its key before and its round; `share`:
+    // the most boxes of moves it may examine.
+    let evaluate = |(x, parent, before, round): Task, share: usize| {
+        let budget = (settings.max_move_boxes << round).min(share);
         let (b, n, paved) = bound_pose_box(
             problem,
             &x,
@@ -865,7 +866,7 @@ pub fn pose_error_bounds(
             },
         }),
     };
-    let first = evaluate((domain, None, f64::INFINITY, 0));
+    let first = evaluate((domain, None, f64::INFINITY, 0), settings.max_move_boxes);
     pose_boxes += 1;
     move_boxes += first.2;
     enqueue(&mut heap, first);
@@ -912,7 +913,15 @@ pub fn pose_error_bounds(
         if tasks.is_empty() || unproved_at.is_some() {
             break;
         }
-        let results: Vec<Evaluated> = tasks.into_par_iter().map(evaluate).collect();
+        // A refinement keeps within an equal share of what is left of the counted budget (at
+        // least a first evaluation's), so that the search ends near `max_seconds`.
+        let left = (move_budget - move_boxes as f64).max(0.0) / tasks.len() as f64;
+        let share = if left.is_finite() {
+            (left as usize).max(settings.max_move_boxes)
+        } else {
+            usize::MAX
+        };
+        let results: Vec<Evaluated> = tasks.into_par_iter().map(|t| evaluate(t, share)).collect();
         for r in results {
             // A box refined is not a new box.
             if r.5 == 0 {
