@@ -102,16 +102,16 @@ struct Piece {
     inherited: bool,
 }
 
-/// What the paving of a box of poses proved, which holds for each of its sub-boxes: every move
-/// reached from a pose of the box lies in one of the kept pieces' enclosures, and none reaches the
-/// boundary of `B`.
+/// What the paving of a box of poses proved, which holds for each of its sub-boxes: every move of
+/// `B` that a pose of the box can reach lies in one of the pieces' enclosures. Once no piece
+/// reaches the boundary of `B` (the paving is closed), every reached move does.
 #[derive(Clone, Debug)]
 pub(super) struct Paved {
     /// The box of poses paved.
     poses: PoseBox,
     /// The box `B`.
     outer: [Interval; 6],
-    /// The kept pieces, `inherited` for the sub-boxes.
+    /// The pieces, `inherited` for the sub-boxes.
     pieces: Vec<Piece>,
 }
 
@@ -260,13 +260,14 @@ impl MovePaving {
     /// Upper bounds of the position (cm) and orientation (degrees) errors over the box of
     /// poses, refined until within `target` or `max_boxes` boxes of moves are examined; `None`
     /// when `∂B` could not be excluded. Also returns the boxes examined, and what the paving
-    /// proved for the box's sub-boxes.
+    /// proved for the box and its sub-boxes (also when it did not close).
     ///
     /// With `parent` (a paving of this box of poses or of one containing it, whose `B` this
-    /// paving shares), no closing is needed: the parent's pieces hold every reached move and
-    /// none reaches `∂B`. They start the search: this box's own pieces as they are (the paving
-    /// continues), a larger box's with their values there (bounds for this box too), each
-    /// narrowed to this box's poses only when it comes first.
+    /// paving shares), the parent's pieces hold every move of `B` reached from this box: they
+    /// start the search, this box's own pieces as they are (the paving continues), a larger
+    /// box's with their values there (bounds for this box too), each narrowed to this box's
+    /// poses only when it comes first. A closed parent needs no closing; an open one's pieces
+    /// still reaching `∂B` come first, as in a paving from scratch.
     pub(super) fn bound(
         &self,
         target: [f64; 2],
@@ -297,6 +298,12 @@ impl MovePaving {
         // pieces join the queue in a fixed order: the same result on every run).
         let mut done = false;
         while examined < max_boxes && !done {
+            // `∂B` not yet excluded after half the budget: the box of poses is too wide for its
+            // second-order models (the caller splits it; its halves start from these pieces).
+            if heap.peek().is_some_and(|t| t.item.touches) && examined * CLOSING_SHARE >= max_boxes
+            {
+                break;
+            }
             let mut work: Vec<[Interval; 6]> = Vec::with_capacity(BATCH);
             while work.len() + 2 <= BATCH && examined + work.len() < max_boxes {
                 let Some(top) = heap.pop() else { break };
@@ -309,11 +316,6 @@ impl MovePaving {
                 if top.item.inherited {
                     work.push(y);
                     continue;
-                }
-                // `∂B` not yet excluded after half the budget: the box of poses is too wide
-                // for its second-order models (the caller splits it).
-                if top.item.touches && (examined + work.len()) * CLOSING_SHARE >= max_boxes {
-                    return (None, examined + work.len(), None);
                 }
                 let fine = (0..6).all(|c| y[c].wid() <= FINEST * self.outer[c].wid());
                 let Some((l, r)) = split_widest(&y, &self.outer).filter(|_| !fine) else {
@@ -330,9 +332,6 @@ impl MovePaving {
             let pieces: Vec<Option<Piece>> = work.par_iter().map(|b| self.piece(b)).collect();
             heap.extend(pieces.into_iter().flatten().map(rank));
         }
-        if heap.iter().any(|q| q.item.touches) {
-            return (None, examined, None);
-        }
         let bound = heap.iter().fold([0.0f64; 2], |acc, q| {
             [acc[0].max(q.item.value[0]), acc[1].max(q.item.value[1])]
         });
@@ -341,7 +340,8 @@ impl MovePaving {
             outer: self.outer,
             pieces: heap.into_iter().map(|q| q.item).collect(),
         };
-        (Some(bound), examined, Some(paved))
+        let closed = !paved.pieces.iter().any(|q| q.touches);
+        (closed.then_some(bound), examined, Some(paved))
     }
 }
 
@@ -456,14 +456,12 @@ mod tests {
         AccuracyProblem::new(&spec, &workspace)
     }
 
-    /// A sub-box of poses that starts from its parent's pieces (without closing `∂B` again), and
-    /// then continues from its own, keeps the reached move of every instance in one of its
-    /// pieces, and bounds its errors:
-    /// the worst instances found in the sub-box, and proved instances at random poses,
-    /// geometries at the vertices that make each leg's change extreme and actuator errors at
-    /// `± ε`.
-    #[test]
-    fn a_sub_box_bounds_its_instances_from_its_parents_pieces() {
+    /// A sub-box of poses that starts from its parent's pieces, and then continues from its own,
+    /// keeps the reached move of every instance in one of its pieces, and bounds its errors: the
+    /// worst instances found in the sub-box, and proved instances at random poses, geometries at
+    /// the vertices that make each leg's change extreme and actuator errors at `± ε`. The
+    /// parent's paving examines `parent_budget` boxes of moves; returns whether it closed.
+    fn sub_box_holds_its_instances(parent_budget: usize) -> bool {
         let mut rng = StdRng::seed_from_u64(5);
         let eps = 0.0005;
         let problem = centimetre_problem(0.5);
@@ -479,13 +477,11 @@ mod tests {
                 .collect();
         let target = [found[0].position, found[1].orientation_deg];
         let parent = MovePaving::new(&problem, &x, eps, None).expect("paved");
-        let (_, _, paved) = parent.bound(target, 2000, None);
-        let paved = paved.expect("the parent's paving closes");
+        let (closed, _, paved) = parent.bound(target, parent_budget, None);
+        let paved = paved.expect("pieces of the parent's paving");
         let child = MovePaving::new(&quarter, &sub, eps, Some(&paved)).expect("paved");
-        let (bound, _, kept) = child.bound(target, 1000, Some(&paved));
-        let (bound, kept) = bound
-            .zip(kept)
-            .expect("the parent's proof holds for the sub-box");
+        let (bound, _, kept) = child.bound(target, 2000, Some(&paved));
+        let (bound, kept) = bound.zip(kept).expect("the sub-box's paving closes");
         while found.len() < 14 {
             let pose: PoseVector =
                 core::array::from_fn(|k| rng.random_range(sub[k].inf()..=sub[k].sup()));
@@ -520,6 +516,26 @@ mod tests {
                 );
             }
         }
+        closed.is_some()
+    }
+
+    /// A sub-box continues from a closed parent's pieces without closing `∂B` again.
+    #[test]
+    fn a_sub_box_bounds_its_instances_from_its_parents_pieces() {
+        assert!(
+            sub_box_holds_its_instances(2000),
+            "the parent's paving closes"
+        );
+    }
+
+    /// A sub-box continues the closing of a parent whose paving ran out of boxes (its pieces
+    /// still reaching `∂B` come first).
+    #[test]
+    fn a_sub_box_continues_its_parents_open_closing() {
+        assert!(
+            !sub_box_holds_its_instances(40),
+            "the parent's paving stays open"
+        );
     }
 
     /// The geometry's share `Γ_i` encloses `G_i(X, δ, θ*) - G_i(X, δ, θ̂)` at random poses of the

@@ -838,7 +838,8 @@ pub fn pose_error_bounds(
     };
     let mut heap: BinaryHeap<Ranked<Queued>> = BinaryHeap::new();
     let (mut pose_boxes, mut move_boxes) = (0, 0);
-    // A paving's pieces are kept only for boxes still to be refined or split.
+    // A paving's pieces are kept only for boxes still to be refined or split (an unproved box's
+    // too: its halves continue its closing).
     let enqueue = |heap: &mut BinaryHeap<_>, (x, b, _, paved, before, round): Evaluated| match b {
         BoxBound::Empty => {}
         BoxBound::Bound(v) => {
@@ -860,7 +861,7 @@ pub fn pose_error_bounds(
             item: Queued {
                 x,
                 bound: b,
-                paved: None,
+                paved: paved.map(Arc::new),
                 gain: 0.0,
                 round,
             },
