@@ -563,6 +563,8 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
             ws.to_str().unwrap(),
             "--report",
             html.to_str().unwrap(),
+            "--pose-seconds",
+            "5",
         ],
     );
     let stdout = String::from_utf8_lossy(&out.stdout);
@@ -610,6 +612,10 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
         json.to_str().unwrap(),
         "--report",
         dir.join("accuracy.html").to_str().unwrap(),
+        // The pose-error bounds' budget (per robot): their output, not their tightness, is
+        // checked here.
+        "--pose-seconds",
+        "5",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let page = std::fs::read_to_string(dir.join("accuracy.html")).unwrap();
@@ -699,6 +705,15 @@ fn accuracy_rejects_bad_workspace_files_and_writes_nothing() {
     assert_eq!(o.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("--pose-seconds"), "{stderr}");
     assert!(!json.exists());
+    // The same for certify --workspace, before any work.
+    let out = certify(
+        &dir,
+        &["--workspace", ws.to_str().unwrap(), "--pose-seconds", "inf"],
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("--pose-seconds"), "{stderr}");
+    assert!(!dir.join("report.json").exists());
 }
 
 #[test]

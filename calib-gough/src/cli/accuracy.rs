@@ -47,6 +47,18 @@ pub struct Args {
     report: Option<PathBuf>,
 }
 
+/// `--pose-seconds` (of `accuracy` and `certify`), refused unless a finite number of seconds
+/// above 0.
+pub fn checked_pose_seconds(seconds: f64) -> Result<f64, String> {
+    if seconds > 0.0 && seconds.is_finite() {
+        Ok(seconds)
+    } else {
+        Err(format!(
+            "--pose-seconds: expected a number of seconds > 0, found {seconds}"
+        ))
+    }
+}
+
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let robot = read_robot(&a.robot)?;
     let workspace = read_workspace(&a.workspace)?;
@@ -60,17 +72,10 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     if !(a.tolerance > 0.0 && a.tolerance.is_finite()) {
         return Err(format!("--tolerance: expected a number > 0, found {}", a.tolerance).into());
     }
-    if !(a.pose_seconds > 0.0 && a.pose_seconds.is_finite()) {
-        return Err(format!(
-            "--pose-seconds: expected a number of seconds > 0, found {}",
-            a.pose_seconds
-        )
-        .into());
-    }
     let settings = AccuracySettings {
         rel_tol: a.tolerance,
         max_boxes: a.max_boxes,
-        pose_seconds: a.pose_seconds,
+        pose_seconds: checked_pose_seconds(a.pose_seconds)?,
     };
     let bar = indicatif::ProgressBar::new_spinner();
     bar.set_message("bracketing the leg-length and platform pose errors");

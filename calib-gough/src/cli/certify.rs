@@ -77,6 +77,10 @@ pub struct Args {
     /// uncalibrated (robot.toml), as in `gough accuracy`; printed and on the certificate.
     #[arg(long, value_name = "FILE")]
     workspace: Option<PathBuf>,
+    /// With --workspace: stop refining the platform's position and orientation upper bounds
+    /// after about this many seconds per robot, as in `gough accuracy`.
+    #[arg(long, value_name = "S", default_value_t = AccuracySettings::default().pose_seconds)]
+    pose_seconds: f64,
     /// Write one SVG per leg into this folder: x0, x1, x2, the outer and the inner box in the
     /// projections (ax, ay), (bx, by) and (az, l).
     #[arg(long, value_name = "DIR")]
@@ -93,6 +97,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let u = parse_uncertainty(&a.uncertainty, &u_text)?;
     check_uncertainty(&a.uncertainty, &u, data.rodrigues)?;
     let workspace = a.workspace.as_deref().map(read_workspace).transpose()?;
+    let pose_seconds = super::accuracy::checked_pose_seconds(a.pose_seconds)?;
     let options = CertifyOptions {
         legs: a.legs.clone(),
         fast: a.fast,
@@ -186,7 +191,10 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                 Some(&robot),
                 w,
                 Some(u.len),
-                &AccuracySettings::default(),
+                &AccuracySettings {
+                    pose_seconds,
+                    ..AccuracySettings::default()
+                },
                 a.report.is_some(),
             );
             println!();
