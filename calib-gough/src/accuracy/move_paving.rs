@@ -25,7 +25,9 @@
 //! `B`, and split first when the enclosure still reaches `B`'s boundary. Once no kept box
 //! reaches it, no move on `∂B` lies in `F` for any pose, geometry or actuator error, so the path
 //! from the commanded pose never leaves `B` (see [`super::pose_bound`]), and the reached move lies
-//! in one of the kept boxes' enclosures.
+//! in one of the kept boxes' enclosures. Boxes are dropped only when no pose of the box of poses
+//! reaches a move in them, so the pieces (closed or not) hold for every sub-box of poses, which
+//! starts from them ([`Paved`]) instead of paving `B` again.
 //!
 //! **The bound of a box.** The smaller of the enclosure's farthest corner and, since a fixed
 //! point is `δ = A + M s` with `A = δ - M G` (its range over `Y`) and `s ∈ S'`, the largest

@@ -54,7 +54,9 @@
 //! **Last, without a chart.** Where neither closes and the moves reach beyond 1% of the
 //! platform's distance from the base (centimetres, where the legs' directions turn across the
 //! move), the moves themselves are paved with second-order Taylor models
-//! ([`super::move_paving`]).
+//! ([`super::move_paving`]). Such a paving's pieces hold for every sub-box of its box of poses:
+//! a box whose paving still gains is refined (the paving continued) before it is split, and its
+//! halves start from its pieces, also when its closing ran out of budget.
 //!
 //! Over the workspace, a branch and bound splits the boxes of poses with the largest bound; a
 //! box whose region cannot be closed (the move not enclosed: near a singular pose, or errors so
