@@ -649,10 +649,20 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
     }
     assert!(page.contains("Platform pose error"));
     assert!(String::from_utf8_lossy(&o.stdout).contains("platform pose error"));
-    // No upper bound claimed: the page and the text say where it could not be proved.
+    // No upper bound claimed: the page and the text say where and why it was not proved (the
+    // budget of 5 s ending first here, with the share of the workspace settled).
     if j["position"]["upper"].is_null() {
-        assert!(page.contains("could not be enclosed for commanded poses near"));
-        assert!(String::from_utf8_lossy(&o.stdout).contains("upper bounds not proved"));
+        let why = &j["position"]["upper_unproved"];
+        let settled = why["settled_share"].as_f64().unwrap();
+        assert!((0.0..1.0).contains(&settled), "{why}");
+        let reason = if why["finest"].as_bool().unwrap() {
+            "could not be enclosed for commanded poses near"
+        } else {
+            "the budget ended with"
+        };
+        assert!(page.contains(reason), "{reason}");
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(text.contains("upper bounds not proved") && text.contains(reason));
     }
 }
 

@@ -9,8 +9,9 @@ mod support;
 
 use calib_core::{Interval, Model};
 use calib_gough::accuracy::{
-    accuracy_report, axis_angle, pose_error_instances, pose_errors, AccuracyProblem,
-    AccuracySettings, PoseBoundSettings, PoseErrorInstance, ReachedChange,
+    accuracy_report, axis_angle, pose_error_bounds, pose_error_instances, pose_errors,
+    unproved_words, AccuracyProblem, AccuracySettings, PoseBoundSettings, PoseErrorBounds,
+    PoseErrorInstance, ReachedChange,
 };
 use calib_gough::files::LegSpec;
 use calib_gough::geometry::{leg_reading, Leg, Pose};
@@ -271,6 +272,9 @@ fn a_workspace_at_a_singular_pose_proves_no_instance() {
     let bounds = pose.bounds.as_ref().expect("computed");
     assert!(bounds.position.is_none() && bounds.orientation_deg.is_none());
     let at = bounds.unproved_at.expect("named");
+    // Even the finest box of poses: a larger budget would not help, and the output says so.
+    assert!(bounds.unprovable && bounds.settled_share < 1.0);
+    assert_eq!(json["position"]["upper_unproved"]["finest"], true);
     assert!(at[0].inf() <= 1e-9 && at[0].sup() >= -1e-9 && at[2].inf() < 61.0);
     assert!(json["orientation"]["upper"].is_null());
     assert!(json["orientation"]["worst"].is_null());
@@ -526,4 +530,92 @@ fn the_paving_of_the_moves_bounds_centimetre_errors() {
     let mut rng = StdRng::seed_from_u64(8);
     let (sp, so) = sampled(&spec, &workspace, eps, &mut rng);
     assert!(sp <= p && so <= o, "sampled {sp} {so} above bounds {p} {o}");
+    assert_eq!(
+        bounds.settled_share, 1.0,
+        "proved: the whole workspace settled"
+    );
+    assert!(unproved_words(&bounds, workspace.tilt_deg).is_none());
+}
+
+/// A search whose budget ends before its boxes of poses close claims no bound and says so: not
+/// at the finest box, how much of the workspace it settled, where it stopped (within the
+/// workspace's rotations).
+#[test]
+fn a_budget_that_ends_first_is_told_apart_from_an_unprovable_box() {
+    let spec: Vec<LegSpec> = builtin_hexapod()
+        .into_iter()
+        .map(|nominal| LegSpec {
+            nominal,
+            radius: [0.02, 0.02, 0.1, 0.01, 0.01, 0.05, 0.1],
+        })
+        .collect();
+    let workspace = Workspace {
+        x: [-1.0, 1.0],
+        y: [-1.0, 1.0],
+        z: [59.0, 61.0],
+        tilt_deg: 2.0,
+        stroke: None,
+    };
+    let settings = PoseBoundSettings {
+        max_pose_boxes: 3,
+        max_seconds: f64::INFINITY,
+        ..PoseBoundSettings::default()
+    };
+    let problem = AccuracyProblem::new(&spec, &workspace);
+    let bounds = pose_error_bounds(&problem, 0.0005, [0.0; 2], &settings);
+    assert!(bounds.position.is_none() && bounds.orientation_deg.is_none());
+    assert!(bounds.unproved_at.is_some() && !bounds.unprovable);
+    assert!(
+        (0.0..1.0).contains(&bounds.settled_share),
+        "settled {}",
+        bounds.settled_share
+    );
+    let words = unproved_words(&bounds, workspace.tilt_deg).expect("not proved");
+    assert!(words.contains("the budget ended"), "{words}");
+    let angle: f64 = words
+        .split("rotated ")
+        .nth(1)
+        .and_then(|t| t.split('°').next())
+        .and_then(|a| a.parse().ok())
+        .expect("a rotation named");
+    assert!(angle <= 2.0 + 1e-9, "{words}");
+}
+
+/// The words name the stopping box by its centre with the rotation brought within the tilt, the
+/// share settled, and which of the two reasons holds.
+#[test]
+fn the_unproved_words_name_a_pose_of_the_workspace_and_the_reason() {
+    let q = (1.5f64.to_radians() / 2.0).tan();
+    let mut bounds = PoseErrorBounds {
+        position: None,
+        orientation_deg: None,
+        // A box about a 3° rotation, in a workspace tilted at most 2°.
+        unproved_at: Some([
+            Interval::new(0.0, 1.0),
+            Interval::new(-1.0, 0.0),
+            Interval::new(60.0, 61.0),
+            Interval::new(q, 3.0 * q),
+            Interval::ZERO,
+            Interval::ZERO,
+        ]),
+        unprovable: false,
+        settled_share: 0.25,
+        pose_boxes: 7,
+        move_boxes: 70,
+        converged: false,
+        seconds: 1.0,
+    };
+    let words = unproved_words(&bounds, 2.0).expect("not proved");
+    assert!(words.contains("budget ended with 25.00%"), "{words}");
+    assert!(
+        words.contains("p = (0.500, -0.500, 60.500) cm rotated 2.000° about (1.000, 0.000, 0.000)"),
+        "{words}"
+    );
+    bounds.unprovable = true;
+    let words = unproved_words(&bounds, 5.0).expect("not proved");
+    assert!(words.contains("even in the finest box"), "{words}");
+    assert!(words.contains("rotated 2.999°"), "{words}");
+    bounds.position = Some(1.0);
+    bounds.orientation_deg = Some(1.0);
+    assert!(unproved_words(&bounds, 5.0).is_none());
 }

@@ -77,6 +77,9 @@ def test_accuracy_matches_the_command_line(tmp_path):
         upper, lower = mine[key]["upper"], mine[key]["lower"]
         assert lower > 0 and (upper is None or upper >= lower)
         assert upper is not None or mine[key]["upper_unproved_at"] is not None
+        if upper is None:
+            why = mine[key]["upper_unproved"]
+            assert isinstance(why["finest"], bool) and 0 <= why["settled_share"] < 1
     assert mine["actuator"] == cli["actuator"] == 0.0005
     for leg in mine["leg_length"]:
         assert 0 < leg["lower"] <= leg["upper"] <= 1.05 * leg["lower"]

@@ -230,6 +230,50 @@ pub fn pose_words(x: &PoseVector) -> String {
     )
 }
 
+/// Why no upper bound of the platform's pose errors is claimed, in words (`None` when they are
+/// proved): a box of poses of the finest size whose reached pose could not be enclosed, or a
+/// budget that ended first, with the share of the workspace settled so far. The box is named by
+/// its centre, its rotation brought within the workspace's `tilt_deg`.
+pub fn unproved_words(b: &PoseErrorBounds, tilt_deg: f64) -> Option<String> {
+    if b.position.is_some() && b.orientation_deg.is_some() {
+        return None;
+    }
+    let Some(x) = b.unproved_at else {
+        return Some("no box of poses was bounded".to_string());
+    };
+    let mut centre = x.map(|v| v.mid());
+    let q = (centre[3].powi(2) + centre[4].powi(2) + centre[5].powi(2)).sqrt();
+    let most = (tilt_deg.to_radians() / 2.0).tan();
+    if q > most {
+        for c in &mut centre[3..] {
+            *c *= most / q;
+        }
+    }
+    let near = pose_words(&centre);
+    Some(if b.unprovable {
+        format!(
+            "the reached pose could not be enclosed for commanded poses near {near}, even in the \
+             finest box of poses (a singular pose, or errors so large that the legs' directions \
+             change across them): narrower geometry boxes, from more measurements, or a smaller \
+             workspace may be bounded"
+        )
+    } else {
+        let share = 100.0 * b.settled_share;
+        let settled = if share > 0.0 && share < 0.01 {
+            "under 0.01%".to_string()
+        } else {
+            format!("{share:.2}%")
+        };
+        format!(
+            "the budget ended with {settled} of the workspace settled (by volume of its box of \
+             poses; {} boxes of poses, {} boxes of moves), the reached pose not yet enclosed \
+             for commanded poses near {near}: a larger budget (`--pose-seconds`), narrower \
+             geometry boxes (from more measurements) or a smaller workspace may prove it",
+            b.pose_boxes, b.move_boxes
+        )
+    })
+}
+
 /// The leg-length brackets of a robot file after calibration and, when given, of the robot
 /// before it (the design nominal with its prior box): what `gough accuracy` reports.
 #[derive(Clone, Debug, PartialEq)]
@@ -316,7 +360,9 @@ fn bracket_json(leg: usize, b: &Bracket) -> serde_json::Value {
 }
 
 /// The JSON of a pose error: `upper` (null when not proved; then `upper_unproved_at` names the
-/// box of poses where the reached pose could not be enclosed), `lower` and `worst` (the commanded
+/// box of poses where the reached pose could not be enclosed, and `upper_unproved` says why:
+/// `finest`, true when that box is of the finest size, false when the budget ended first, and
+/// `settled_share`, the share of the workspace settled), `lower` and `worst` (the commanded
 /// pose, the true geometry per leg, the actuator errors, the reached pose).
 fn pose_json(
     i: Option<&PoseErrorInstance>,
@@ -352,6 +398,9 @@ fn pose_json(
         let range = |v: &[Interval]| v.iter().map(|c| [c.inf(), c.sup()]).collect::<Vec<_>>();
         serde_json::json!({ "p": range(&x[..3]), "rodrigues": range(&x[3..]) })
     });
+    let settled = bounds
+        .filter(|_| upper.is_none())
+        .map(|b| serde_json::json!({ "finest": b.unprovable, "settled_share": b.settled_share }));
     serde_json::json!({
         "upper": upper,
         "lower": lower,
@@ -359,6 +408,7 @@ fn pose_json(
         "worst": worst,
         "unproved_at": unproved,
         "upper_unproved_at": upper_unproved,
+        "upper_unproved": settled,
     })
 }
 
@@ -412,7 +462,9 @@ impl AccuracyReport {
     /// pose as `p`, `axis`, `angle_deg` and `rodrigues`, the true geometry `theta` in the order
     /// of [`crate::PARAMETER_NAMES`], its `error`), `position` and `orientation` (`upper`: proved
     /// over the whole workspace, or null with `upper_unproved_at` naming the box of poses where
-    /// the reached pose could not be enclosed; `ratio`; `lower`: attained by `worst`, whose
+    /// the reached pose could not be enclosed and `upper_unproved` saying why: `finest` — that
+    /// box is of the finest size, else the budget ended first — and `settled_share`, the share
+    /// of the workspace settled; `ratio`; `lower`: attained by `worst`, whose
     /// reached pose is proved — the commanded pose, `theta` per leg, `actuator` errors, `reached`
     /// as enclosures of the move `d` and the rotation error's Rodrigues vector `w`; without an
     /// instance, `unproved_at`: the commanded pose whose path could not be proved), `before`
@@ -612,18 +664,13 @@ impl AccuracyReport {
             row
         })
         .to_vec();
-        let unproved =
-            pose.bounds
-                .as_ref()
-                .and_then(|b| b.unproved_at)
-                .map_or(String::new(), |x| {
-                    format!(
-                        " After calibration the reached pose could not be enclosed for commanded \
-                     poses near {} (a singular pose, or errors so large that the legs' \
-                     directions change across them): no upper bound is claimed.",
-                        pose_words(&x.map(|v| v.mid()))
-                    )
-                });
+        let unproved = pose
+            .bounds
+            .as_ref()
+            .and_then(|b| unproved_words(b, self.workspace.tilt_deg))
+            .map_or(String::new(), |why| {
+                format!(" After calibration no upper bound is claimed: {why}.")
+            });
         (
             format!(
                 "Platform pose error: upper bounds proved over the whole workspace (where the \

@@ -188,6 +188,14 @@ pub struct PoseErrorBounds {
     pub orientation_deg: Option<f64>,
     /// When not proved: a box of poses where the reached pose could not be enclosed.
     pub unproved_at: Option<PoseBox>,
+    /// Whether `unproved_at` is a box of the finest size ([`PoseBoundSettings::finest_pose`])
+    /// whose reached pose could not be enclosed, so that a larger budget would not prove the
+    /// bounds (else the budget ended first).
+    pub unprovable: bool,
+    /// The share of the workspace's box of poses (by volume, in the position and the
+    /// Rodrigues vector) settled: in boxes of poses whose errors were bounded or that hold no
+    /// pose of the workspace. 1 when the bounds are proved; below it, how far the search got.
+    pub settled_share: f64,
     /// Boxes of poses examined.
     pub pose_boxes: usize,
     /// Boxes of moves examined over all boxes of poses: pieces of the regions' faces, and boxes
@@ -804,6 +812,21 @@ type Task = (PoseBox, Option<Arc<Paved>>, f64, usize);
 /// task's key before and round.
 type Evaluated = (PoseBox, BoxBound, usize, Option<Paved>, f64, usize);
 
+/// The share of `domain`'s volume in `x` (a coordinate where `domain` is a point counts as
+/// whole): what the search has settled, for the report.
+fn share_of(x: &PoseBox, domain: &PoseBox) -> f64 {
+    (0..6)
+        .map(|k| {
+            let w = domain[k].wid();
+            if w > 0.0 {
+                x[k].wid() / w
+            } else {
+                1.0
+            }
+        })
+        .product()
+}
+
 /// Upper bounds of the platform's position and orientation errors over `problem`'s workspace,
 /// with actuator errors within `± eps` (see the module documentation). `lower` are the errors
 /// already attained (the instances' lower bounds, 0 when none): the search refines until each
@@ -872,9 +895,14 @@ pub fn pose_error_bounds(
     let first = evaluate((domain, None, f64::INFINITY, 0), settings.max_move_boxes);
     pose_boxes += 1;
     move_boxes += first.2;
+    let mut empty_share = 0.0;
+    if first.1 == BoxBound::Empty {
+        empty_share += share_of(&first.0, &domain);
+    }
     enqueue(&mut heap, first);
     let batch = 2 * rayon::current_num_threads().max(1);
     let mut unproved_at = None;
+    let mut unprovable = false;
     // The seconds also set a budget of boxes of moves, counted, so that a search the paving of
     // the moves keeps busy ends at the same place on every run of a machine.
     let move_budget = settings.max_seconds * MOVE_BOXES_PER_SECOND;
@@ -905,6 +933,7 @@ pub fn pose_error_bounds(
                 _ => {
                     if q.bound == BoxBound::Unproved {
                         unproved_at = Some(q.x);
+                        unprovable = true;
                     }
                     heap.push(top);
                     break;
@@ -931,6 +960,9 @@ pub fn pose_error_bounds(
                 pose_boxes += 1;
             }
             move_boxes += r.2;
+            if r.1 == BoxBound::Empty {
+                empty_share += share_of(&r.0, &domain);
+            }
             enqueue(&mut heap, r);
         }
     }
@@ -948,10 +980,21 @@ pub fn pose_error_bounds(
         }
     }
     let proved = unproved_at.is_none();
+    let bounded_share: f64 = heap
+        .iter()
+        .filter(|q| matches!(q.item.bound, BoxBound::Bound(_)))
+        .map(|q| share_of(&q.item.x, &domain))
+        .sum();
     PoseErrorBounds {
         position: proved.then_some(worst[0]),
         orientation_deg: proved.then_some(worst[1]),
         unproved_at,
+        unprovable,
+        settled_share: if proved {
+            1.0
+        } else {
+            (bounded_share + empty_share).min(1.0)
+        },
         pose_boxes,
         move_boxes,
         converged,
@@ -1285,6 +1328,26 @@ mod tests {
     }
 
     /// The vertex value bounds both errors at every point of its box.
+    /// The halves of a box hold its share of the workspace between them; a coordinate in which
+    /// the workspace is a point counts whole.
+    #[test]
+    fn halves_share_their_parents_volume() {
+        let domain: PoseBox = [
+            Interval::new(-1.0, 1.0),
+            Interval::new(0.0, 4.0),
+            Interval::new(59.0, 61.0),
+            Interval::new(-0.1, 0.1),
+            Interval::new(-0.1, 0.1),
+            Interval::ZERO,
+        ];
+        assert_eq!(share_of(&domain, &domain), 1.0);
+        let (l, r) = split_widest(&domain, &domain).expect("splits");
+        assert_eq!(share_of(&l, &domain) + share_of(&r, &domain), 1.0);
+        let (ll, lr) = split_widest(&l, &domain).expect("splits");
+        assert_eq!(share_of(&ll, &domain), 0.25);
+        assert_eq!(share_of(&lr, &domain), 0.25);
+    }
+
     #[test]
     fn the_vertex_value_bounds_the_errors_inside_its_box() {
         let mut rng = StdRng::seed_from_u64(6);

@@ -1,8 +1,8 @@
 //! `gough accuracy`.
 
 use calib_gough::accuracy::{
-    accuracy_report, improvement, improvement_words, pose_words, Accuracy, AccuracyReport,
-    AccuracySettings, PoseErrorInstance, PoseErrors,
+    accuracy_report, improvement, improvement_words, pose_words, unproved_words, Accuracy,
+    AccuracyReport, AccuracySettings, PoseErrorInstance, PoseErrors,
 };
 use calib_gough::files::{read_robot, read_uncertainty};
 use calib_gough::report::write_atomically;
@@ -216,12 +216,12 @@ pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
 }
 
 /// The upper bounds of the platform's pose errors, or where they could not be proved.
-fn print_pose_upper(after: &PoseErrors) {
+fn print_pose_upper(after: &PoseErrors, tilt_deg: f64) {
     let Some(b) = &after.bounds else {
         return;
     };
-    match (b.position, b.orientation_deg, b.unproved_at) {
-        (Some(p), Some(o), _) => {
+    match (b.position, b.orientation_deg) {
+        (Some(p), Some(o)) => {
             let ratio = |u: f64, l: Option<f64>| {
                 l.map_or(String::new(), |l| {
                     format!(" (bracket {:.2})", calib_core::maximum::bracket_ratio(u, l))
@@ -241,14 +241,9 @@ fn print_pose_upper(after: &PoseErrors) {
                 }
             );
         }
-        (_, _, at) => println!(
+        _ => println!(
             "  upper bounds not proved: {}",
-            at.map_or("no box of poses was bounded".to_string(), |x| format!(
-                "the reached pose could not be enclosed for commanded poses near {} (a singular \
-                 pose, or errors so large that the legs' directions change across them: narrower \
-                 geometry boxes, from more measurements, or a smaller workspace may be bounded)",
-                pose_words(&x.map(|v| v.mid()))
-            ))
+            unproved_words(b, tilt_deg).unwrap_or_default()
         ),
     }
 }
@@ -263,7 +258,7 @@ fn print_pose_errors(r: &AccuracyReport) {
          commanded pose can leave a region whose boundary every leg excludes), at least (an \
          instance whose reached pose is proved by interval Newton along its path)"
     );
-    print_pose_upper(after);
+    print_pose_upper(after, r.workspace.tilt_deg);
     let before = r.before.as_ref().and_then(|b| b.pose.as_ref());
     for (name, unit, value, at, unproved) in [
         (

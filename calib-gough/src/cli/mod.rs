@@ -85,8 +85,9 @@ enum Command {
     /// lower bound attained by an instance whose reached pose is proved (interval Newton along
     /// the path from the commanded pose), and an upper bound proved over the whole workspace
     /// where the reached pose can be enclosed — where it cannot (a singular pose, or errors so
-    /// large that the legs' directions change across them), no upper bound is printed and the
-    /// poses are named.
+    /// large that the legs' directions change across them), or when --pose-seconds ends first,
+    /// no upper bound is printed: the output names the poses, says which of the two happened
+    /// and how much of the workspace was settled.
     #[command(verbatim_doc_comment)]
     Accuracy(accuracy::Args),
     /// Choose the configurations to measure: K poses of the workspace that determine every leg

@@ -394,7 +394,9 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
     dict: ``leg_length`` (per leg ``upper``, ``lower``, ``ratio``, ``worst``), ``position`` and
     ``orientation`` of the platform (``lower``: attained by ``worst``, an instance whose reached
     pose is proved; ``upper``: proved over the whole workspace, or ``None`` where the reached pose
-    could not be enclosed, ``upper_unproved_at`` then naming the box of poses), ``before``,
+    could not be enclosed, ``upper_unproved_at`` then naming the box of poses and
+    ``upper_unproved`` saying why: ``finest`` — even the finest box of poses — or the budget
+    ended first, with ``settled_share`` of the workspace settled), ``before``,
     ``improvement`` (per leg) and ``pose_improvement`` (``position``, ``orientation``: proved
     factors, ``None`` where not proved). ``tolerance`` stops every bracket at ``upper <= (1 + tolerance) lower``;
     ``max_boxes`` bounds each leg-length bracket's boxes of poses, ``pose_seconds`` the time spent
