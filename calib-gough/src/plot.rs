@@ -645,7 +645,9 @@ pub fn log_series(
 }
 
 /// A heat map per slab (side by side): each cell coloured by its value on one scale from pale
-/// (the smallest value of all cells) to dark red (the largest), the scale's ends in the legend;
+/// (0) to dark red (the largest value of all cells), the scale's ends and the smallest value in
+/// the legend — from 0, so that cells whose bounds differ by a few percent look alike (a scale
+/// from the smallest value would paint 0.0404 and 0.0406 as far apart as 0 and the largest);
 /// cells without a value (0: no pose of the workspace) white.
 pub fn heat_maps(
     slabs: &[crate::accuracy::MapSlab],
@@ -662,22 +664,27 @@ pub fn heat_maps(
     let min = values.iter().copied().fold(max, f64::min);
     const LOW: Colour = (0xfd, 0xe0, 0xc0);
     const HIGH: Colour = (0x99, 0x11, 0x11);
+    let shade = |v: f64| -> Colour {
+        let t = (v / max).clamp(0.0, 1.0);
+        let mix = |a: u8, b: u8| (a as f64 + (b as f64 - a as f64) * t).round() as u8;
+        (mix(LOW.0, HIGH.0), mix(LOW.1, HIGH.1), mix(LOW.2, HIGH.2))
+    };
     let colour = |v: f64| -> RGBColor {
         if v.is_nan() || v <= 0.0 {
             return WHITE;
         }
-        let t = if max > min {
-            ((v - min) / (max - min)).clamp(0.0, 1.0)
-        } else {
-            1.0
-        };
-        let mix = |a: u8, b: u8| (a as f64 + (b as f64 - a as f64) * t).round() as u8;
-        RGBColor(mix(LOW.0, HIGH.0), mix(LOW.1, HIGH.1), mix(LOW.2, HIGH.2))
+        let (r, g, b) = shade(v);
+        RGBColor(r, g, b)
     };
     let entries = [
         Entry {
-            label: format!("{min:.4} {unit}"),
+            label: format!("0 {unit}"),
             colour: LOW,
+            kind: Swatch::Shaded,
+        },
+        Entry {
+            label: format!("{min:.4} {unit} (smallest bound)"),
+            colour: shade(min),
             kind: Swatch::Shaded,
         },
         Entry {
@@ -866,5 +873,37 @@ mod tests {
         let (lo, hi) = axis_range([52.3, 52.3]);
         assert!(lo < 52.3 && 52.3 < hi);
         assert_eq!(axis_range([f64::NAN]), (0.0, 1.0));
+    }
+
+    /// Cells are coloured from 0, not from the smallest value: two nearly equal bounds look
+    /// nearly alike, a cell without a pose is white, the largest is dark red, and the legend
+    /// names 0, the smallest and the largest bound.
+    #[test]
+    fn heat_maps_colour_from_zero() {
+        let slab = crate::accuracy::MapSlab {
+            z: [59.0, 61.0],
+            x_edges: vec![0.0, 1.0, 2.0],
+            y_edges: vec![0.0, 1.0, 2.0],
+            upper: vec![vec![0.0, 0.0404], vec![0.0406, 0.0203]],
+        };
+        let svg = heat_maps(std::slice::from_ref(&slab), "a map", "cm").expect("drawn");
+        let doc = well_formed(&svg);
+        let fills: Vec<String> = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("rect"))
+            .filter_map(|n| n.attribute("fill").map(|f| f.to_ascii_lowercase()))
+            .collect();
+        // The largest: dark red; 0.0404 within a shade of it; half of it halfway from pale.
+        assert!(fills.contains(&"#991111".to_string()), "{fills:?}");
+        assert!(fills.contains(&"#991212".to_string()), "{fills:?}");
+        assert!(fills.contains(&"#cb7969".to_string()), "{fills:?}");
+        let t = texts(&doc);
+        for label in [
+            "0 cm",
+            "0.0203 cm (smallest bound)",
+            "0.0406 cm (largest bound)",
+        ] {
+            assert!(t.iter().any(|s| s == label), "{label} not in {t:?}");
+        }
     }
 }
