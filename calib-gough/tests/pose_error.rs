@@ -32,6 +32,19 @@ fn robot(radius: f64) -> Vec<LegSpec> {
         .collect()
 }
 
+/// The built-in hexapod (the geometry of `sample21`) with the boxes 21 poses of the simulator's
+/// workspace leave: `a_z` and `l` known only to ± 0.1 cm, which its nearly vertical legs turn
+/// into centimetres and degrees at the platform.
+fn centimetre_robot() -> Vec<LegSpec> {
+    builtin_hexapod()
+        .into_iter()
+        .map(|nominal| LegSpec {
+            nominal,
+            radius: [0.02, 0.02, 0.1, 0.01, 0.01, 0.05, 0.1],
+        })
+        .collect()
+}
+
 /// The pose `(p + d, Rot(φ) R)` of the commanded pose `(p, R)`, as a [`Pose`].
 fn moved(p: &Vector3<f64>, r: &Rotation3<f64>, x: &Vector6<f64>) -> Pose {
     let rot = Rotation3::from_scaled_axis(Vector3::new(x[3], x[4], x[5])) * r;
@@ -484,13 +497,7 @@ fn the_pose_improvement_is_before_lower_over_after_upper() {
 /// and within 25% of the instances.
 #[test]
 fn the_paving_of_the_moves_bounds_centimetre_errors() {
-    let spec: Vec<LegSpec> = builtin_hexapod()
-        .into_iter()
-        .map(|nominal| LegSpec {
-            nominal,
-            radius: [0.02, 0.02, 0.1, 0.01, 0.01, 0.05, 0.1],
-        })
-        .collect();
+    let spec = centimetre_robot();
     let workspace = Workspace {
         x: [-0.05, 0.05],
         y: [-0.05, 0.05],
@@ -542,13 +549,7 @@ fn the_paving_of_the_moves_bounds_centimetre_errors() {
 /// workspace's rotations).
 #[test]
 fn a_budget_that_ends_first_is_told_apart_from_an_unprovable_box() {
-    let spec: Vec<LegSpec> = builtin_hexapod()
-        .into_iter()
-        .map(|nominal| LegSpec {
-            nominal,
-            radius: [0.02, 0.02, 0.1, 0.01, 0.01, 0.05, 0.1],
-        })
-        .collect();
+    let spec = centimetre_robot();
     let workspace = Workspace {
         x: [-1.0, 1.0],
         y: [-1.0, 1.0],

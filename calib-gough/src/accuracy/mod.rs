@@ -37,6 +37,19 @@ use calib_core::{maximize, Interval, MaximumSettings, Objective};
 use rayon::prelude::*;
 use std::time::Instant;
 
+/// The built-in hexapod with the boxes 21 poses of the simulator's workspace leave (`a_z` and `l`
+/// at ± 0.1 cm): centimetre and degree errors at the platform, for the unit tests.
+#[cfg(test)]
+pub(crate) fn centimetre_robot() -> Vec<LegSpec> {
+    crate::simulate::builtin_hexapod()
+        .into_iter()
+        .map(|nominal| LegSpec {
+            nominal,
+            radius: [0.02, 0.02, 0.1, 0.01, 0.01, 0.05, 0.1],
+        })
+        .collect()
+}
+
 /// One leg's length error as a maximisation over the poses.
 struct LegLengthObjective<'a> {
     problem: &'a AccuracyProblem,

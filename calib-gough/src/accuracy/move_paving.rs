@@ -431,8 +431,6 @@ mod tests {
     use super::*;
     use crate::accuracy::enclosure::PoseVector;
     use crate::accuracy::{prove_instance, worst_instance, PoseErrorInstance, PoseErrorKind};
-    use crate::files::LegSpec;
-    use crate::simulate::builtin_hexapod;
     use crate::workspace::Workspace;
     use rand::rngs::StdRng;
     use rand::{Rng, SeedableRng};
@@ -441,13 +439,7 @@ mod tests {
     /// radii (`a_z` and `l` at ± 0.1 cm), `x, y` in `[-0.5, hi]` cm, `z` within ± 0.5 cm of 60
     /// and 1° of tilt.
     fn centimetre_problem(hi: f64) -> AccuracyProblem {
-        let spec: Vec<LegSpec> = builtin_hexapod()
-            .into_iter()
-            .map(|nominal| LegSpec {
-                nominal,
-                radius: [0.02, 0.02, 0.1, 0.01, 0.01, 0.05, 0.1],
-            })
-            .collect();
+        let spec = crate::accuracy::centimetre_robot();
         let workspace = Workspace {
             x: [-0.5, hi],
             y: [-0.5, hi],

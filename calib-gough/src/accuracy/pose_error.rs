@@ -535,8 +535,6 @@ pub fn pose_errors(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::files::LegSpec;
-    use crate::simulate::builtin_hexapod;
     use crate::workspace::Workspace;
     use rand::rngs::StdRng;
 
@@ -545,13 +543,7 @@ mod tests {
     /// poses and sign patterns of a robot whose moves are centimetres.
     #[test]
     fn the_search_score_is_the_proved_reached_move() {
-        let spec: Vec<LegSpec> = builtin_hexapod()
-            .into_iter()
-            .map(|nominal| LegSpec {
-                nominal,
-                radius: [0.02, 0.02, 0.1, 0.01, 0.01, 0.05, 0.1],
-            })
-            .collect();
+        let spec = crate::accuracy::centimetre_robot();
         let workspace = Workspace {
             x: [-2.0, 2.0],
             y: [-2.0, 2.0],
