@@ -77,8 +77,22 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         max_boxes: a.max_boxes,
         pose_seconds: checked_pose_seconds(a.pose_seconds)?,
     };
+    // A spinner with the time spent and the budget of the longest part, the pose errors' upper
+    // bounds (on a terminal only: indicatif draws nothing when stderr is not a terminal).
     let bar = indicatif::ProgressBar::new_spinner();
-    bar.set_message("bracketing the leg-length and platform pose errors");
+    if let Ok(style) = indicatif::ProgressStyle::with_template("{spinner} {msg} [{elapsed}]") {
+        bar.set_style(style);
+    }
+    let robots = if before.is_some() {
+        "each robot"
+    } else {
+        "the robot"
+    };
+    bar.set_message(format!(
+        "bracketing the leg-length and platform pose errors (the pose errors' upper bounds take \
+         up to about {} s for {robots})",
+        settings.pose_seconds
+    ));
     bar.enable_steady_tick(std::time::Duration::from_millis(120));
     let report = accuracy_report(
         &robot,
