@@ -77,32 +77,16 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         max_boxes: a.max_boxes,
         pose_seconds: checked_pose_seconds(a.pose_seconds)?,
     };
-    // A spinner with the time spent and the budget of the longest part, the pose errors' upper
-    // bounds (on a terminal only: indicatif draws nothing when stderr is not a terminal).
-    let bar = indicatif::ProgressBar::new_spinner();
-    if let Ok(style) = indicatif::ProgressStyle::with_template("{spinner} {msg} [{elapsed}]") {
-        bar.set_style(style);
-    }
-    let robots = if before.is_some() {
-        "each robot"
-    } else {
-        "the robot"
-    };
-    bar.set_message(format!(
-        "bracketing the leg-length and platform pose errors (the pose errors' upper bounds take \
-         up to about {} s for {robots})",
-        settings.pose_seconds
-    ));
-    bar.enable_steady_tick(std::time::Duration::from_millis(120));
-    let report = accuracy_report(
-        &robot,
-        before.as_deref(),
-        &workspace,
-        actuator,
-        &settings,
-        a.report.is_some(),
-    );
-    bar.finish_and_clear();
+    let report = with_spinner(settings.pose_seconds, before.is_some(), || {
+        accuracy_report(
+            &robot,
+            before.as_deref(),
+            &workspace,
+            actuator,
+            &settings,
+            a.report.is_some(),
+        )
+    });
     print_report(
         &report,
         &a.robot.display().to_string(),
@@ -118,6 +102,25 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("accuracy certificate written to {}", path.display());
     }
     Ok(0)
+}
+
+/// Runs `work` (an accuracy report) behind a spinner that shows the time spent and the budget of
+/// its longest part, the pose errors' upper bounds: `pose_seconds` per robot, two robots with
+/// `before` (on a terminal only: indicatif draws nothing when stderr is not a terminal).
+pub(crate) fn with_spinner<T>(pose_seconds: f64, before: bool, work: impl FnOnce() -> T) -> T {
+    let bar = indicatif::ProgressBar::new_spinner();
+    if let Ok(style) = indicatif::ProgressStyle::with_template("{spinner} {msg} [{elapsed}]") {
+        bar.set_style(style);
+    }
+    let robots = if before { "each robot" } else { "the robot" };
+    bar.set_message(format!(
+        "bracketing the leg-length and platform pose errors (the pose errors' upper bounds take \
+         up to about {pose_seconds} s for {robots})"
+    ));
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    let out = work();
+    bar.finish_and_clear();
+    out
 }
 
 /// The accuracy certificate page: the section, then the inputs with their SHA-256.

@@ -186,17 +186,19 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     }
     let accuracy = match (&workspace, &calibrated) {
         (Some(w), Some(legs)) => {
-            let report = accuracy_report(
-                legs,
-                Some(&robot),
-                w,
-                Some(u.len),
-                &AccuracySettings {
-                    pose_seconds,
-                    ..AccuracySettings::default()
-                },
-                a.report.is_some(),
-            );
+            let report = super::accuracy::with_spinner(pose_seconds, true, || {
+                accuracy_report(
+                    legs,
+                    Some(&robot),
+                    w,
+                    Some(u.len),
+                    &AccuracySettings {
+                        pose_seconds,
+                        ..AccuracySettings::default()
+                    },
+                    a.report.is_some(),
+                )
+            });
             println!();
             super::accuracy::print_report(&report, "the calibrated robot", &a.workspace_name());
             Some(report)
