@@ -40,7 +40,7 @@
 use super::enclosure::{AccuracyProblem, PoseBox};
 use super::pose_bound::{errors_from_squares, leg_change_bounds, leg_inputs, reached_change};
 use super::pose_bound::{key, ReachedChange};
-use super::pose_chart::mul_up;
+use super::pose_chart::{add_up, mul_up};
 use calib_core::bisection::split_widest;
 use calib_core::maximum::Ranked;
 use calib_core::{Interval, Model, Quadratic};
@@ -402,6 +402,9 @@ fn vertex_value(m: &Matrix6<f64>, a: &[Form; 6], s: &[Interval; 6]) -> [f64; 2] 
             })
         })
         .collect();
+    // Each component's largest magnitude is `|mid R + P ε + M s| + pad`, the pad rounded up
+    // once here rather than in the 4,096 vertex pairs.
+    let pad: [f64; 6] = core::array::from_fn(|r| add_up(rest[r].rad(), margin[r]));
     let mut best = [0.0f64; 2];
     for signs in 0..64u32 {
         let shift: [f64; 6] = core::array::from_fn(|r| {
@@ -414,12 +417,12 @@ fn vertex_value(m: &Matrix6<f64>, a: &[Form; 6], s: &[Interval; 6]) -> [f64; 2] 
             })
         });
         for ms in &moves {
-            let comp: [f64; 6] =
-                core::array::from_fn(|r| (shift[r] + ms[r]).abs() + rest[r].rad() + margin[r]);
-            let sq = |k: usize| {
-                comp[k] * comp[k] + comp[k + 1] * comp[k + 1] + comp[k + 2] * comp[k + 2]
-            };
-            best = [best[0].max(sq(0)), best[1].max(sq(3))];
+            let mut sq = [0.0f64; 2];
+            for r in 0..6 {
+                let c = (shift[r] + ms[r]).abs() + pad[r];
+                sq[r / 3] += c * c;
+            }
+            best = [best[0].max(sq[0]), best[1].max(sq[1])];
         }
     }
     // Three squares summed: within 5 units in the last place.

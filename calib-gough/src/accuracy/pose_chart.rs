@@ -59,7 +59,7 @@ pub(super) struct PoseChart {
 }
 
 /// `a + b` rounded up (`+∞` when either is not finite).
-fn add_up(a: f64, b: f64) -> f64 {
+pub(super) fn add_up(a: f64, b: f64) -> f64 {
     if a.is_finite() && b.is_finite() {
         (Interval::point(a) + Interval::point(b)).sup()
     } else {
