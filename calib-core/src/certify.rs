@@ -1,6 +1,7 @@
 //! [`certify`]: contraction to a fixed point plus the evidence for the verdict.
 
 use crate::certificate::{find_witness, inner_points};
+use crate::certified_set::Cover;
 use crate::contract::{contract, EmptinessProof, Workspace};
 use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
 use crate::{Interval, Settings, VectorModel};
@@ -47,6 +48,10 @@ pub struct Certification<const NX: usize> {
     /// parameter vector fitting at least `p - q` of them misfits — certified outliers under the
     /// assumption that at most `q` are bad. Empty otherwise.
     pub outliers: Vec<usize>,
+    /// Boxes whose union contains every solution: `outer` itself, or with outliers tolerated one
+    /// box per subset not proved empty (empty when the status is `Empty`). What
+    /// [`crate::CertifiedSet::new`] turns into the certified set.
+    pub cover: Cover<NX>,
 }
 
 impl<const NX: usize> Certification<NX> {
@@ -139,10 +144,16 @@ fn certify_relaxed<
         lp_failures: 0,
         conflict: None,
         outliers: Vec::new(),
+        cover: Cover::single(*x0),
     };
     let Some(drops) = drop_sets(p, settings.max_outliers, MAX_SUBSETS) else {
         // Too many subsets (or q >= p): keep the initial box, undecided.
         return out;
+    };
+    let mut cover = Cover {
+        boxes: Vec::new(),
+        subsets: Vec::new(),
+        dropped: drops.clone(),
     };
     let mut outer: Option<[Interval; NX]> = None;
     let mut alive = Vec::with_capacity(drops.len());
@@ -156,6 +167,8 @@ fn certify_relaxed<
         if c.status == Status::Empty {
             continue;
         }
+        cover.boxes.push(c.outer);
+        cover.subsets.push(alive.len() - 1);
         outer = Some(hull_box(outer, &c.outer));
         if let Some(inner) = c.inner {
             out.inner = Some(hull_box(out.inner, &inner));
@@ -169,9 +182,11 @@ fn certify_relaxed<
             out.status = Status::Empty;
             out.outer = [Interval::EMPTY; NX];
             out.emptiness = Some(EmptinessProof::EverySubset);
+            out.cover = Cover::empty();
         }
         Some(o) => {
             out.outer = o;
+            out.cover = cover;
             out.status = if out.witness.is_some() {
                 Status::Consistent
             } else {
@@ -215,6 +230,7 @@ fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, c
         lp_failures: 0,
         conflict: None,
         outliers: Vec::new(),
+        cover: Cover::empty(),
     };
     match c.result {
         Err(proof) => {
@@ -223,6 +239,7 @@ fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, c
         }
         Ok(outer) => {
             out.outer = outer;
+            out.cover = Cover::single(outer);
             let extremes = if c.iterations > 0 {
                 ws.extreme_points.clone()
             } else {

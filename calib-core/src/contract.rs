@@ -316,20 +316,38 @@ pub(crate) fn newton_step<M, const NX: usize, const NM: usize, const NR: usize>(
 where
     M: VectorModel<NX, NM, NR>,
 {
+    let xm_iv = build_relaxation(model, x, measurements, relaxation, iteration, &mut ws.poly)?;
+    bound_by_linear_programs(x, &xm_iv, ws)
+}
+
+/// The polyhedron of one Newton step (steps 1 and 2 of the module documentation): every solution
+/// `x` in the box `x` has `y = x - mid(x)` in `poly` (over the box `x - mid(x)`, rounded
+/// outward). Returns `mid(x)` as point intervals, or the cheap rejection's proof of emptiness.
+pub(crate) fn build_relaxation<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    relaxation: Relaxation,
+    iteration: usize,
+    poly: &mut Polyhedron,
+) -> Result<[Interval; NX], EmptinessProof>
+where
+    M: VectorModel<NX, NM, NR>,
+{
     let frame = StepFrame::new(x, relaxation, iteration);
     let ylo = frame.y_box.map(|v| v.inf());
     let yhi = frame.y_box.map(|v| v.sup());
-    ws.poly.reset(&ylo, &yhi);
+    poly.reset(&ylo, &yhi);
     for j in 0..NX {
         if is_fixed(x[j]) {
-            ws.poly.freeze(j, frame.y_box[j].mag());
+            poly.freeze(j, frame.y_box[j].mag());
         }
     }
     let mut row = [0.0; NX];
     // The affine forms' noise symbols: x_j = mid(x_j) + rad(x_j) ε_j, i.e. y_j = rad(x_j) ε_j.
     let rad_x = x.map(|v| v.rad());
     for (k, m) in measurements.iter().enumerate() {
-        ws.poly.begin_group(k as u32);
+        poly.begin_group(k as u32);
         let e = model.evaluate_rows_interval(x, m);
         let forms = model.linear_enclosures(x, m);
         let excluded = |r: usize| {
@@ -349,16 +367,16 @@ where
         // prior, and no looser near the fixed point) their rows replace the interval relaxation.
         if let Some(forms) = forms {
             for form in &forms {
-                push_enclosure_rows(&mut ws.poly, &mut row, form, &rad_x);
+                push_enclosure_rows(poly, &mut row, form, &rad_x);
             }
             for lambda in directions.as_slice() {
-                push_enclosure_rows(&mut ws.poly, &mut row, &combine(lambda, &forms), &rad_x);
+                push_enclosure_rows(poly, &mut row, &combine(lambda, &forms), &rad_x);
             }
         } else {
-            push_relaxation_rows(model, &frame, m, &e, &directions, &mut ws.poly, &mut row);
+            push_relaxation_rows(model, &frame, m, &e, &directions, poly, &mut row);
         }
     }
-    bound_by_linear_programs(x, &frame.xm_iv, ws)
+    Ok(frame.xm_iv)
 }
 
 /// The interval relaxation rows ([`Relaxation`]) of one configuration: each of its rows and each

@@ -38,12 +38,13 @@
 //! on the time budget, when one is set and reached).
 
 use crate::bisection::split_widest;
-use crate::certificate::{find_witness, inner_points, FailFirst};
+use crate::certificate::{find_witness, inner_points};
+use crate::certified_set::Cover;
 use crate::certify::{certify, hull_box, MAX_SUBSETS};
 use crate::contract::{contract, is_fixed, EmptinessProof, Workspace};
-use crate::coupling::for_each_linearised_row;
-use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
+use crate::lp::{DenseSimplex, LpBackend};
 use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
+use crate::push::push_towards;
 use crate::{Interval, Settings, Status, VectorModel};
 use rayon::prelude::*;
 use std::marker::PhantomData;
@@ -89,6 +90,9 @@ pub struct Hull<const NX: usize> {
     /// With [`Settings::max_outliers`] `= q > 0`: the measurements that every parameter vector
     /// fitting at least `p - q` of them misfits (certified outliers; see [`crate::outliers`]).
     pub outliers: Vec<usize>,
+    /// The boxes whose union contains every solution (empty when the status is `Empty`): what
+    /// [`crate::CertifiedSet::new`] turns into the certified set.
+    pub cover: Cover<NX>,
 }
 
 /// A box of the cover, with whether it is too small to split further and which measurement subset
@@ -121,6 +125,13 @@ impl Face {
         } else {
             -b.inf()
         }
+    }
+
+    /// The unit vector pointing out of the face: `-e_j` for a lower face, `e_j` for an upper one.
+    fn direction<const NX: usize>(self) -> [f64; NX] {
+        let mut d = [0.0; NX];
+        d[self.j] = if self.upper { 1.0 } else { -1.0 };
+        d
     }
 
     /// The slot of this face in the workspace's LP extreme points.
@@ -231,6 +242,7 @@ where
         seconds: 0.0,
         conflict: None,
         outliers: Vec::new(),
+        cover: Cover::single(*x0),
     };
     let q = settings.max_outliers;
     let drops = if q == 0 {
@@ -286,6 +298,7 @@ where
     let Some(x1) = x1 else {
         out.status = Status::Empty;
         out.outer = [Interval::EMPTY; NX];
+        out.cover = Cover::empty();
         if q > 0 {
             out.emptiness = Some(EmptinessProof::EverySubset);
         }
@@ -294,6 +307,11 @@ where
     };
     out.emptiness = None;
     out.x1 = Some(x1);
+    out.cover = Cover {
+        boxes: cover.iter().map(|p: &Piece<NX>| p.b).collect(),
+        subsets: cover.iter().map(|p: &Piece<NX>| p.set).collect(),
+        dropped: drops.clone(),
+    };
     if !x1.iter().all(|v| v.is_bounded()) {
         // An unbounded box can be neither split at its midpoint nor linearised: keep it whole.
         out.outer = x1;
@@ -308,6 +326,7 @@ where
         engine,
         cover,
         retired: None,
+        retired_pieces: Vec::new(),
         retired_sets: vec![false; sets.len()],
         pointed_sets: vec![false; sets.len()],
         inner: None,
@@ -369,6 +388,12 @@ where
     out.witness = refiner.witness;
     out.inner = refiner.inner;
     out.inner_points = refiner.inner_points.clone();
+    let pieces = refiner.cover.iter().chain(&refiner.retired_pieces);
+    out.cover = Cover {
+        boxes: pieces.clone().map(|p| p.b).collect(),
+        subsets: pieces.map(|p| p.set).collect(),
+        dropped: drops.clone(),
+    };
     match refiner.outer() {
         None => {
             out.status = Status::Empty;
@@ -408,6 +433,8 @@ struct Refiner<'a, M, const NX: usize, const NM: usize, const NR: usize> {
     cover: Vec<Piece<NX>>,
     /// The hull of retired boxes (boxes within the satisfied zone of every face).
     retired: Option<[Interval; NX]>,
+    /// The retired boxes themselves (the cover of the solution set they hold).
+    retired_pieces: Vec<Piece<NX>>,
     /// Per subset: whether one of its boxes was retired (so it may hold solutions).
     retired_sets: Vec<bool>,
     /// Per subset: whether a certified point of it was found (so it holds solutions).
@@ -512,7 +539,14 @@ where
             return Vec::new();
         }
         let push = |lp: &mut DenseSimplex, (face, seed): &(Face, [f64; NX])| {
-            push_outward(self.model, lp, seed, *face, &region, &self.sets[set])
+            push_towards(
+                self.model,
+                lp,
+                seed,
+                &face.direction::<NX>(),
+                &region,
+                &self.sets[set],
+            )
         };
         // Each push is independent of the others (it starts its LPs afresh), so the points do not
         // depend on how the pushes are spread over threads.
@@ -589,10 +623,12 @@ where
         let thresholds: Vec<(Face, f64)> = Face::all(NX).map(|f| (f, self.threshold(f))).collect();
         let mut retired = self.retired;
         let retired_sets = &mut self.retired_sets;
+        let retired_pieces = &mut self.retired_pieces;
         self.cover.retain(|p| {
             let reaches = thresholds.iter().any(|(f, t)| f.reach(&p.b[f.j]) > *t);
             if !reaches {
                 retired_sets[p.set] = true;
+                retired_pieces.push(*p);
                 retired = Some(match retired {
                     None => p.b,
                     Some(h) => core::array::from_fn(|j| h[j].hull(p.b[j])),
@@ -674,169 +710,3 @@ where
 
 /// A contracted half, the certified points pushed from its LP extreme points, and its subset.
 type Refined<const NX: usize> = ([Interval; NX], Vec<[f64; NX]>, usize);
-
-/// Local optimisation of one parameter over the solution set: from `start`, successive linear
-/// programs move towards the face (see the module documentation) inside `region`; each step is
-/// kept only when the new point is certified consistent. Returns the most extreme certified point
-/// found (`None` when no point was certified).
-fn push_outward<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, const NR: usize>(
-    model: &M,
-    lp: &mut DenseSimplex,
-    start: &[f64; NX],
-    face: Face,
-    region: &[Interval; NX],
-    measurements: &[[Interval; NM]],
-) -> Option<[f64; NX]> {
-    lp.forget();
-    let mut p: [f64; NX] =
-        core::array::from_fn(|j| start[j].clamp(region[j].inf(), region[j].sup()));
-    let mut order = FailFirst::new(measurements.len());
-    let mut best = order
-        .is_consistent_point(model, &p, measurements)
-        .then_some(p);
-    // θ = 1 - margin: the margin starts tiny (the LP optimum should reach the face) and doubles
-    // whenever a step fails to certify.
-    let mut margin = 1e-3;
-    let mut poly = Polyhedron::default();
-    let mut objective = [0.0; NX];
-    objective[face.j] = if face.upper { -1.0 } else { 1.0 };
-    let mut dual = vec![0.0; 2 * measurements.len()];
-    let mut primal = [0.0; NX];
-    let mut rows: Vec<LinearisedRow<NX>> = Vec::new();
-    for _ in 0..12 {
-        let lo: [f64; NX] = core::array::from_fn(|j| region[j].inf() - p[j]);
-        let hi: [f64; NX] = core::array::from_fn(|j| region[j].sup() - p[j]);
-        if lo
-            .iter()
-            .zip(&hi)
-            .any(|(l, h)| l.partial_cmp(h).is_none_or(|o| o.is_gt()))
-        {
-            break;
-        }
-        rows.clear();
-        for m in measurements {
-            let mm = m.map(|v| v.mid());
-            let rad = m.map(|v| v.rad());
-            let e = model.evaluate_rows(&p, &mm);
-            let mut count = 0;
-            for_each_linearised_row(&e, &rad, |value, dx, w| {
-                rows.push(LinearisedRow {
-                    value,
-                    dx: *dx,
-                    w: (1.0 - margin) * w,
-                    active: count < NR,
-                });
-                count += 1;
-            });
-        }
-        let lp_step = PushLp {
-            lp: &mut *lp,
-            poly: &mut poly,
-            lo: &lo,
-            hi: &hi,
-            objective: &objective,
-            dual: &mut dual,
-            primal: &mut primal,
-        };
-        if !lp_step.solve(&mut rows) {
-            margin = (2.0 * margin).min(0.9);
-            continue;
-        }
-        let q: [f64; NX] =
-            core::array::from_fn(|j| (p[j] + primal[j]).clamp(region[j].inf(), region[j].sup()));
-        if order.is_consistent_point(model, &q, measurements) {
-            let gain = match &best {
-                None => f64::INFINITY,
-                Some(b) => {
-                    face.reach(&Interval::point(q[face.j]))
-                        - face.reach(&Interval::point(b[face.j]))
-                }
-            };
-            p = q;
-            best = Some(q);
-            if gain <= 1e-12 * (1.0 + q[face.j].abs()) {
-                break;
-            }
-        } else {
-            // Linearisation error: a larger margin, from the last certified point.
-            margin = (2.0 * margin).min(0.9);
-            if let Some(b) = best {
-                p = b;
-            } else {
-                p = q;
-            }
-        }
-    }
-    best
-}
-
-/// One linearised scalar equation of a push (see [`push_outward`]): `|value + dx·d| <= w`.
-struct LinearisedRow<const NX: usize> {
-    value: f64,
-    dx: [f64; NX],
-    w: f64,
-    /// Whether the LP holds it: every residual row from the start, coupling rows once violated.
-    active: bool,
-}
-
-/// The LP of one push step, `min ±d_j` over the active rows and the box `[lo, hi]`.
-struct PushLp<'a, const NX: usize> {
-    lp: &'a mut DenseSimplex,
-    poly: &'a mut Polyhedron,
-    lo: &'a [f64; NX],
-    hi: &'a [f64; NX],
-    objective: &'a [f64; NX],
-    dual: &'a mut Vec<f64>,
-    primal: &'a mut [f64; NX],
-}
-
-/// At most this many LPs per push step: each adds the coupling rows its optimum violates.
-const ROW_GENERATION_ROUNDS: usize = 6;
-
-impl<const NX: usize> PushLp<'_, NX> {
-    /// Solves over every row by row generation: the residual rows first, then the coupling rows
-    /// (up to `MAX_DIRECTIONS` per configuration, most of them never binding) that the optimum
-    /// violates, until it violates none or [`ROW_GENERATION_ROUNDS`] LPs were solved. False when
-    /// an LP failed. With one row per configuration (no coupling rows) this is the single LP
-    /// over every row. The optimum is a candidate only: the push certifies it.
-    fn solve(self, rows: &mut [LinearisedRow<NX>]) -> bool {
-        let mut row = [0.0; NX];
-        for _ in 0..ROW_GENERATION_ROUNDS {
-            self.poly.reset(self.lo, self.hi);
-            for (g, r) in rows.iter().enumerate().filter(|(_, r)| r.active) {
-                // Tags that name the row, so that a remembered basis survives added rows.
-                self.poly.begin_group(g as u32);
-                // f + g·d <= θw  and  -(f + g·d) <= θw
-                row.copy_from_slice(&r.dx);
-                self.poly.push_row(&row, r.w - r.value);
-                row.iter_mut().for_each(|v| *v = -*v);
-                self.poly.push_row(&row, r.w + r.value);
-            }
-            self.dual.resize(self.poly.rows(), 0.0);
-            if self
-                .lp
-                .minimize(self.poly, self.objective, self.dual, self.primal)
-                != LpStatus::Optimal
-            {
-                return false;
-            }
-            let mut added = false;
-            for r in rows.iter_mut().filter(|r| !r.active) {
-                let v = r.value
-                    + r.dx
-                        .iter()
-                        .zip(self.primal.iter())
-                        .map(|(a, d)| a * d)
-                        .sum::<f64>();
-                if v.abs() > r.w {
-                    r.active = true;
-                    added = true;
-                }
-            }
-            if !added {
-                break;
-            }
-        }
-        true
-    }
-}

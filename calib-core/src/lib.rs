@@ -40,7 +40,9 @@
 
 pub mod affine;
 pub mod bisection;
+pub mod calibrated_point;
 pub mod certificate;
+pub mod certified_set;
 mod certify;
 pub mod contract;
 pub mod coupling;
@@ -54,6 +56,7 @@ pub mod lp;
 pub mod maximum;
 mod model;
 pub mod outliers;
+mod push;
 pub mod quadratic;
 mod scalar;
 mod settings;
@@ -61,7 +64,12 @@ mod settings;
 pub use affine::Affine;
 pub use bisection::{pave, sweep, Paving, SweepResult};
 pub use calib_macros::interval_model;
+pub use calibrated_point::{calibrated_point, CalibratedPoint, PointRule};
 pub use certificate::{is_certified_consistent, is_consistent_by_corners, is_consistent_point};
+pub use certified_set::{
+    maximize_over_set, CertifiedPoint, CertifiedSet, Cover, LinearMax, SetMaximum,
+    SetMaximumSettings, SetObjective, SetPiece, SetQuery,
+};
 pub use certify::{certify, certify_with, Certification, Status};
 pub use contract::{contract, is_fixed, Contraction, EmptinessProof, Workspace};
 pub use dual::Dual;

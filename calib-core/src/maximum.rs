@@ -38,6 +38,15 @@ pub trait Objective<const N: usize> {
     /// An enclosure of `f` over the box `x`: every `f(p)` with `p` in `x` lies in it.
     fn enclose(&self, x: &[Interval; N]) -> Interval;
 
+    /// An enclosure of `f` over `x` that may be loose where its upper end is at most `enough`: a
+    /// box bounded by `enough` cannot raise the maximum beyond it, so an objective with a cheap
+    /// and a costly enclosure may stop at the cheap one there. By default
+    /// [`Objective::enclose`].
+    fn enclose_up_to(&self, x: &[Interval; N], enough: f64) -> Interval {
+        let _ = enough;
+        self.enclose(x)
+    }
+
     /// An enclosure of `f` at the point `x` (by default [`Objective::enclose`] of the thin box).
     fn at(&self, x: &[f64; N]) -> Interval {
         self.enclose(&x.map(Interval::point))
@@ -216,7 +225,7 @@ pub fn maximize<O: Objective<N>, const N: usize>(
     probe(mid(domain), &mut out);
     let mut queue = BinaryHeap::new();
     queue.push(Ranked {
-        key: upper_end(enclosure(f, domain)),
+        key: upper_end(enclosure(f, domain, f64::NEG_INFINITY)),
         item: *domain,
     });
     out.boxes = 1;
@@ -255,10 +264,13 @@ pub fn maximize<O: Objective<N>, const N: usize>(
             }
             continue;
         };
+        // A half bounded within the tolerance of the lower bound cannot keep the search open:
+        // its enclosure need not be tighter than that.
+        let enough = out.lower + settings.rel_tol.max(0.0) * out.lower.abs();
         for half in [l, r] {
             let half = to_rising_faces(f, half);
             out.boxes += 1;
-            let sup = upper_end(enclosure(f, &half));
+            let sup = upper_end(enclosure(f, &half, enough));
             if sup < out.lower {
                 continue;
             }
@@ -271,12 +283,12 @@ pub fn maximize<O: Objective<N>, const N: usize>(
     }
 }
 
-/// `f` over `b`: [`Objective::enclose`], intersected with the mean-value form
+/// `f` over `b`: [`Objective::enclose_up_to`] with `enough`, intersected with the mean-value form
 /// `f(m) + Σ_j g_j (b_j - m_j)` (`m` the midpoint, `g` the gradient's enclosure over `b`) when
 /// the gradient is available. Both contain every value of `f` on `b`, so their intersection does;
 /// the mean-value form shrinks quadratically with the box, the natural one only linearly.
-fn enclosure<O: Objective<N>, const N: usize>(f: &O, b: &[Interval; N]) -> Interval {
-    let natural = f.enclose(b);
+fn enclosure<O: Objective<N>, const N: usize>(f: &O, b: &[Interval; N], enough: f64) -> Interval {
+    let natural = f.enclose_up_to(b, enough);
     let Some(g) = f.gradient(b) else {
         return natural;
     };

@@ -350,6 +350,7 @@ impl LpBackend for DenseSimplex {
     }
 
     fn forget(&mut self) {
+        self.warm = None;
         self.large.forget();
     }
 

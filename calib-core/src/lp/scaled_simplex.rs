@@ -625,8 +625,9 @@ impl ScaledSimplex {
         status
     }
 
-    /// Forgets every remembered basis (see [`super::LpBackend::forget`]).
+    /// Forgets every remembered basis and the last optimum (see [`super::LpBackend::forget`]).
     pub(super) fn forget(&mut self) {
+        self.warm = None;
         self.memory.iter_mut().for_each(|m| *m = None);
     }
 
