@@ -51,8 +51,7 @@ fn bench(c: &mut Criterion) {
         g.bench_function(format!("accuracy/leg lengths, ±{radius} cm"), |b| {
             b.iter(|| {
                 black_box(certify_accuracy(
-                    &boxes,
-                    &Workspace::SIMULATOR,
+                    &AccuracyProblem::new(&boxes, &Workspace::SIMULATOR),
                     &AccuracySettings::default(),
                 ))
             })

@@ -1,35 +1,204 @@
 //! The calibrated arm (`arm certify --write-calibrated`): the robot file a controller loads after
-//! calibration, each free parameter at the midpoint of its certified outer box with a radius
-//! whose box contains it (so `arm accuracy` bounds the error over every geometry the data allow).
+//! calibration, and the certified set it comes from.
+//!
+//! The file holds
+//! * the **calibrated parameters**: a parameter vector proved consistent with every
+//!   measurement (with part of every error bound to spare where the data allow), chosen by a
+//!   [`PointRule`] ([`calib_core::calibrated_point`]) — by default towards the Chebyshev centre
+//!   of the tool points it predicts at the measured configurations and at configurations spread
+//!   over their joint ranges, so that the worst prediction error is as small as the data allow;
+//!   the value written (degrees, shortest decimals) is proved consistent again as read back;
+//! * `radius`: a box around it containing the certified outer box (a reader that knows only
+//!   boxes still holds every consistent parameter vector);
+//! * `[certified_set]`: the measurement boxes, the cover and certified points from which the set
+//!   is rebuilt ([`calib_pipeline::stored_set`], in the arm's own parameters in model order,
+//!   radians and mm), so that `arm accuracy` and `arm predict` work over it from the file alone.
 
+use crate::certification::{padded_index, padded_quantities, ArmRun, ArmSet, MAX_JOINTS, NM, NX};
+use crate::params::{self, Unit};
 use crate::robot::{Arm, Joint};
-use calib_core::Interval;
-use calib_pipeline::calibrated::midpoint_and_radius;
+use crate::units::{deg_to_rad, rad_to_deg, to_deg};
+use crate::Arm7Point;
+use calib_core::{
+    calibrated_point, is_certified_consistent, CalibratedPoint, Interval, PointRule, VectorModel,
+};
+use calib_pipeline::calibrated::radius_about;
+use calib_pipeline::stored_set::StoredSet;
+use rand::{Rng, SeedableRng};
 
-/// The calibrated arm from the certified outer box `outer` (the files' units, model order):
-/// free parameters at the box's midpoint with a radius containing it, fixed ones (radius 0) as
-/// they were. An error when there is no outer box (the data were proved inconsistent) or its
-/// length does not match the arm.
-pub fn calibrated_arm(arm: &Arm, outer: Option<&[Interval]>) -> Result<Arm, String> {
-    let outer = outer.ok_or(
+/// How the calibrated parameter vector is chosen (see [`calib_core::calibrated_point`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PointChoice {
+    /// Towards the Chebyshev centre of the predicted tool points (the default): the worst
+    /// prediction error over the certified set is as small as the data allow.
+    #[default]
+    Centre,
+    /// Towards the least-squares fit: on held-out data with errors the model does not hold
+    /// (gravity, gears), the fit of the average error.
+    LeastSquares,
+}
+
+/// Random configurations (besides the measured ones) whose tool points the centre rule predicts.
+const PREDICTION_CONFIGURATIONS: usize = 50;
+
+/// A calibrated arm: the file's arm and the certified set it comes from.
+#[derive(Clone, Debug)]
+pub struct CalibratedArm {
+    /// The arm a controller loads: the calibrated parameters (files' units), radii whose boxes
+    /// contain the certified outer box.
+    pub arm: Arm,
+    /// The certified set (padded model, radians).
+    pub set: ArmSet,
+    /// How the parameters were chosen.
+    pub point: CalibratedPoint<NX>,
+}
+
+/// The padded joint readings (radians) of a configuration in degrees.
+fn padded_joints(joints_deg: &[f64]) -> [f64; NM] {
+    let mut m = [0.0; NM];
+    for (i, q) in joints_deg.iter().enumerate().take(MAX_JOINTS) {
+        m[i] = q.to_radians();
+    }
+    m
+}
+
+/// The gradients `∂p/∂θ` (three rows per configuration) at the measured configurations and at
+/// [`PREDICTION_CONFIGURATIONS`] random ones within their joint ranges, at `at`.
+fn predictions(joints: &[Vec<f64>], at: &[f64; NX]) -> Vec<[f64; NX]> {
+    let n = joints.first().map_or(0, Vec::len);
+    let range: Vec<[f64; 2]> = (0..n)
+        .map(|i| {
+            joints
+                .iter()
+                .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], q| {
+                    [lo.min(q[i]), hi.max(q[i])]
+                })
+        })
+        .collect();
+    let mut rng = rand::rngs::StdRng::seed_from_u64(0xa7);
+    let random: Vec<Vec<f64>> = (0..PREDICTION_CONFIGURATIONS)
+        .map(|_| {
+            range
+                .iter()
+                .map(|[lo, hi]| lo + (hi - lo) * rng.random::<f64>())
+                .collect()
+        })
+        .collect();
+    joints
+        .iter()
+        .chain(&random)
+        .flat_map(|q| Arm7Point.evaluate_rows(at, &padded_joints(q)).map(|e| e.dx))
+        .collect()
+}
+
+/// The calibrated arm of a certified run (see the module documentation). An error when the data
+/// were proved inconsistent, or when no parameter vector was proved consistent (undecided).
+pub fn calibrated_arm(
+    arm: &Arm,
+    run: &ArmRun,
+    joints_deg: &[Vec<f64>],
+    choice: PointChoice,
+) -> Result<CalibratedArm, String> {
+    let outer = run.outcome.outer.as_ref().ok_or(
         "the data were proved inconsistent with the model and the error bounds: there is no \
          calibrated geometry to write (re-measure the conflicting configurations, or tolerate \
          outliers)",
     )?;
-    let (mut value, mut radius) = (arm.nominal(), arm.radius());
-    if outer.len() != value.len() {
+    let undecided = "no parameter vector was proved consistent with every measurement (the \
+                     certification is undecided), so none can be handed out as calibrated: \
+                     check the error bounds (`--error-scale auto`), allow more time (--hull), \
+                     or tolerate outliers";
+    let mut set = run.set.clone().ok_or(undecided)?;
+    let joints = arm.joints.len();
+    let index = padded_index(joints);
+    if outer.len() != index.len() {
         return Err(format!(
             "the certified box has {} parameters; the arm has {}",
             outer.len(),
-            value.len()
+            index.len()
         ));
     }
-    for j in 0..value.len() {
+    let witness = set.points().first().map(|p| p.x).ok_or(undecided)?;
+    let preds = predictions(joints_deg, &witness);
+    let rule = match choice {
+        PointChoice::Centre => PointRule::PredictionCentre(&preds),
+        PointChoice::LeastSquares => PointRule::LeastSquares,
+    };
+    let point = calibrated_point(&Arm7Point, &mut set, rule).ok_or(undecided)?;
+    // The point as the file writes it, proved again as a controller reads it back; else the
+    // deepest point, which keeps the most room.
+    let kept = set.subset_measurements(point.subset);
+    let written = [point.x, point.deepest]
+        .into_iter()
+        .map(|x| with_point(arm, outer, &x))
+        .find(|a| is_certified_consistent(&Arm7Point, &read_back(a), &kept))
+        .ok_or(undecided)?;
+    Ok(CalibratedArm {
+        arm: written,
+        set,
+        point,
+    })
+}
+
+/// The arm with its free parameters at the padded model's point `x` (files' units, shortest
+/// decimals) and radii whose boxes contain `outer` and the point.
+fn with_point(arm: &Arm, outer: &[Interval], x: &[f64; NX]) -> Arm {
+    let joints = arm.joints.len();
+    let units: Vec<Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
+    let (mut value, mut radius) = (arm.nominal(), arm.radius());
+    for (j, &p) in padded_index(joints).iter().enumerate() {
         if radius[j] > 0.0 {
-            (value[j], radius[j]) = midpoint_and_radius(outer[j]);
+            value[j] = match units[j] {
+                Unit::Deg => to_deg(x[p]),
+                Unit::Mm => x[p],
+            };
+            radius[j] = radius_about(value[j], outer[j]);
         }
     }
-    Ok(with_parameters(arm.joints.len(), &value, &radius))
+    with_parameters(joints, &value, &radius)
+}
+
+/// The padded model's box of the values a controller reads from `arm` (each decimal in degrees
+/// enclosed in radians).
+fn read_back(arm: &Arm) -> [Interval; NX] {
+    let joints = arm.joints.len();
+    let units: Vec<Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
+    let mut x = [Interval::ZERO; NX];
+    for ((j, &p), v) in padded_index(joints).iter().enumerate().zip(arm.nominal()) {
+        x[p] = match units[j] {
+            Unit::Deg => deg_to_rad(Interval::point(v)),
+            Unit::Mm => Interval::point(v),
+        };
+    }
+    x
+}
+
+/// `robot.toml` text of a calibrated arm: the arm, then its `[certified_set]`.
+pub fn calibrated_toml(c: &CalibratedArm, comment: &str) -> String {
+    let joints = c.arm.joints.len();
+    let stored = StoredSet::of(&c.set, &padded_index(joints), &padded_quantities(joints));
+    format!(
+        "{comment}{}{}",
+        crate::write::robot_toml(&c.arm),
+        stored.to_toml("certified_set")
+    )
+}
+
+/// The certified set's outer box in the files' units (degrees, outward), arm order.
+pub fn outer_in_file_units(arm: &Arm, set: &ArmSet) -> Option<Vec<Interval>> {
+    let o = set.outer()?;
+    let joints = arm.joints.len();
+    let units: Vec<Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
+    Some(
+        padded_index(joints)
+            .iter()
+            .zip(&units)
+            .map(|(&p, u)| match u {
+                Unit::Deg => rad_to_deg(o[p]),
+                Unit::Mm => o[p],
+            })
+            .collect(),
+    )
 }
 
 /// The arm with these values and half-widths (model order, the files' units).
@@ -59,30 +228,50 @@ fn with_parameters(joints: usize, value: &[f64], radius: &[f64]) -> Arm {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::robot::builtin_arm;
+    use crate::certification::{certify_arm, RunOptions};
+    use crate::simulate::{measurement_box, simulate, Uncertainty};
+    use calib_pipeline::Depth;
 
     #[test]
-    fn the_calibrated_arm_keeps_fixed_parameters_and_contains_the_certified_box() {
-        let arm = builtin_arm();
-        let outer: Vec<Interval> = arm
+    fn the_calibrated_arm_fits_every_measurement_and_its_box_contains_the_certified_one() {
+        let arm = crate::builtin_arm();
+        let sim = simulate(&arm, 30, 5, Uncertainty::TRACKER, 1.0, &[]);
+        let run = certify_arm(
+            &arm,
+            &sim.readings,
+            &sim.uncertainty,
+            RunOptions {
+                depth: Depth::Fast,
+                lsq: false,
+            },
+            &crate::certification::arm_settings(),
+        )
+        .expect("an arm");
+        let joints: Vec<Vec<f64>> = sim.readings.iter().map(|r| r.joints_deg.clone()).collect();
+        let c = calibrated_arm(&arm, &run, &joints, PointChoice::LeastSquares).expect("consistent");
+        let boxes: Vec<[Interval; NM]> = sim
+            .readings
+            .iter()
+            .filter_map(|r| measurement_box(r, &sim.uncertainty))
+            .collect();
+        assert!(is_certified_consistent(
+            &Arm7Point,
+            &read_back(&c.arm),
+            &boxes
+        ));
+        let outer = run.outcome.outer.as_ref().expect("outer");
+        for ((v, r), (o, r0)) in c
+            .arm
             .nominal()
             .iter()
-            .zip(arm.radius())
-            .map(|(v, r)| Interval::new(v - 0.3 * r, v + 0.1 * r))
-            .collect();
-        let c = calibrated_arm(&arm, Some(&outer)).unwrap();
-        for ((o, v), (r, r0)) in outer
-            .iter()
-            .zip(c.nominal())
-            .zip(c.radius().into_iter().zip(arm.radius()))
+            .zip(c.arm.radius())
+            .zip(outer.iter().zip(arm.radius()))
         {
             if r0 == 0.0 {
                 assert_eq!(r, 0.0);
             } else {
-                assert!(v - r <= o.inf() && o.sup() <= v + r && r < r0);
+                assert!(v - r <= o.inf() && o.sup() <= v + r);
             }
         }
-        assert!(calibrated_arm(&arm, None).is_err());
-        assert!(calibrated_arm(&arm, Some(&outer[1..])).is_err());
     }
 }

@@ -396,6 +396,7 @@ mod tests {
                 max_abs: 0.02,
                 evaluations: 5,
             }),
+            set: None,
         }
     }
 

@@ -15,7 +15,7 @@ use crate::robot::Arm;
 use crate::simulate::{measurement_box, Reading, Uncertainty};
 use crate::units::{rad_to_deg, to_deg, to_rad};
 use crate::Arm7Point;
-use calib_core::{Interval, Settings};
+use calib_core::{CertifiedSet, Interval, Settings};
 use calib_pipeline::design::CandidateRows;
 use calib_pipeline::identify::{analyse, identification_jacobian, Identifiability};
 use calib_pipeline::lsq::{least_squares, Fit};
@@ -26,7 +26,7 @@ use calib_pipeline::{
 };
 
 /// What one run on an arm's data found (every value in the files' units: mm and degrees).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct ArmRun {
     /// The certified outcome.
     pub outcome: Outcome,
@@ -34,7 +34,19 @@ pub struct ArmRun {
     pub identifiability: Identifiability,
     /// The least-squares fit from the nominal (`None` when not asked for).
     pub fit: Option<Fit>,
+    /// The certified set, in the padded model's parameters and units (radians, mm; see
+    /// [`ArmSet`]): `None` when nothing was certified or the data were proved inconsistent.
+    pub set: Option<ArmSet>,
 }
+
+/// An arm's certified set in the padded model (every arm goes through the 7-joint model): its
+/// parameters are [`padded_index`] of the arm's, in radians and mm; its measured quantities the
+/// joint readings (radians, padded joints at 0) and the tracked point (mm).
+pub type ArmSet = CertifiedSet<NX, NM>;
+
+/// At most this many pieces in an arm's certified set: each query solves one linear program of
+/// up to 44 variables per piece.
+pub const ARM_PIECES: usize = 1;
 
 /// What to compute.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -239,14 +251,20 @@ fn dispatch(
 }
 
 /// The most joints an arm may have (the model every arm is padded to).
-pub(crate) const MAX_JOINTS: usize = 7;
+pub const MAX_JOINTS: usize = 7;
 /// Parameters of the padded model.
-pub(crate) const NX: usize = 5 * MAX_JOINTS + 9;
+pub const NX: usize = 5 * MAX_JOINTS + 9;
 /// Measured quantities of the padded model.
-pub(crate) const NM: usize = MAX_JOINTS + 3;
+pub const NM: usize = MAX_JOINTS + 3;
+
+/// The padded model's index of each of the arm's measured quantities (joint readings, then the
+/// tracked point).
+pub fn padded_quantities(joints: usize) -> Vec<usize> {
+    (0..joints).chain(MAX_JOINTS..NM).collect()
+}
 
 /// The padded model's index of each of the arm's parameters (model order).
-pub(crate) fn padded_index(joints: usize) -> Vec<usize> {
+pub fn padded_index(joints: usize) -> Vec<usize> {
     let shift = 5 * (MAX_JOINTS - joints);
     (0..params::count(joints))
         .map(|j| if j < 5 * joints { j } else { j + shift })
@@ -263,22 +281,37 @@ struct Padded {
     units: Vec<Unit>,
 }
 
-fn padded(arm: &Arm, readings: &[Reading], u: &Uncertainty) -> Padded {
-    let joints = arm.joints.len();
-    let index = padded_index(joints);
-    let units: Vec<Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
-    let prior = arm.initial_box();
-    let nominal_files = arm.nominal();
-    // Padded parameters are points at 0 (an identity joint).
+/// The arm's prior box in the padded model (radians; padded parameters are points at 0, an
+/// identity joint).
+pub fn padded_box(arm: &Arm) -> [Interval; NX] {
     let mut x0 = [Interval::ZERO; NX];
+    for (j, &p) in padded_index(arm.joints.len()).iter().enumerate() {
+        x0[p] = arm.initial_box()[j];
+    }
+    x0
+}
+
+/// The arm's nominal values in the padded model (radians; padded parameters at 0).
+pub fn padded_nominal(arm: &Arm) -> [f64; NX] {
+    let joints = arm.joints.len();
+    let units: Vec<Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
+    let nominal_files = arm.nominal();
     let mut nominal = [0.0; NX];
-    for (j, &p) in index.iter().enumerate() {
-        x0[p] = prior[j];
+    for (j, &p) in padded_index(joints).iter().enumerate() {
         nominal[p] = match units[j] {
             Unit::Deg => to_rad(nominal_files[j]),
             Unit::Mm => nominal_files[j],
         };
     }
+    nominal
+}
+
+fn padded(arm: &Arm, readings: &[Reading], u: &Uncertainty) -> Padded {
+    let joints = arm.joints.len();
+    let index = padded_index(joints);
+    let units: Vec<Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
+    let x0 = padded_box(arm);
+    let nominal = padded_nominal(arm);
     // At most MAX_JOINTS joint readings (checked by `dispatch`): every reading has a box.
     let boxes: Vec<[Interval; NM]> = readings
         .iter()
@@ -339,18 +372,22 @@ fn run(arm: &Arm, readings: &[Reading], u: &Uncertainty, job: Job, settings: &Se
         c.members.iter_mut().for_each(|m| m.0 = to_arm(m.0));
     }
     let mid = || -> Vec<[f64; NM]> { boxes.iter().map(|b| b.map(|v| v.mid())).collect() };
-    let (outcome, fit) = match job {
+    let (outcome, fit, set) = match job {
         Job::Certify(o) => {
             let all_names: Vec<String> = (0..NX).map(|p| format!("#{p}")).collect();
-            let outcome = certify_model(model, &all_names, &x0, &boxes, o.depth, settings);
+            let c = certify_model(model, &all_names, &x0, &boxes, o.depth, settings);
             let fit = o.lsq.then(|| least_squares(model, &nominal, &free, &mid()));
-            (outcome.select(&index, names), fit)
+            let set = (c.outcome.status != calib_core::Status::Empty)
+                .then(|| CertifiedSet::new(model, &c.cover, &boxes, &c.points, ARM_PIECES))
+                .filter(|s| !s.is_empty());
+            (c.outcome.select(&index, names), fit, set)
         }
         Job::Fit => (
             uncertified(names, &prior),
             Some(least_squares(model, &nominal, &free, &mid())),
+            None,
         ),
-        Job::Identify => (uncertified(names, &prior), None),
+        Job::Identify => (uncertified(names, &prior), None, None),
     };
     let outcome = outcome.map_units(
         |j, v| to_file_units(units[j], v),
@@ -374,6 +411,7 @@ fn run(arm: &Arm, readings: &[Reading], u: &Uncertainty, job: Job, settings: &Se
         outcome,
         identifiability,
         fit,
+        set,
     }
 }
 

@@ -2,8 +2,12 @@
 //! `uncertainty.toml`. Every malformed input is a [`DataError`] naming the file, the line and the
 //! field.
 
+use crate::certification::{padded_box, padded_index, padded_quantities, ArmSet, NM, NX};
 use crate::robot::{Arm, Joint};
 use crate::simulate::{Reading, Uncertainty};
+use crate::Arm7Point;
+use calib_core::Interval;
+use calib_pipeline::stored_set::StoredSet;
 use calib_pipeline::{
     line_at, parse_number_table, read_text, toml_error, DataError, MAX_MAGNITUDE,
 };
@@ -20,6 +24,7 @@ struct RobotFile {
     joint: Vec<JointEntry>,
     base: BaseEntry,
     tool: ToolEntry,
+    certified_set: Option<StoredSet>,
 }
 
 #[derive(Deserialize)]
@@ -90,6 +95,47 @@ and radius (one or three)";
 /// Reads `robot.toml` (see [`parse_robot`]).
 pub fn read_robot(file: &Path) -> Result<Arm, DataError> {
     parse_robot(file, &read_text(file)?)
+}
+
+/// Reads a robot file with the certified set a calibrated file carries (`arm certify
+/// --write-calibrated`): the arm, and its set rebuilt (`None` in a file without one). The
+/// stored measurement boxes, cover and points are checked (errors name the field), the
+/// polyhedra recomputed by the Newton step's relaxation and the points proved consistent again.
+pub fn read_calibrated(file: &Path) -> Result<(Arm, Option<ArmSet>), DataError> {
+    let text = read_text(file)?;
+    let arm = parse_robot(file, &text)?;
+    let parsed: RobotFile =
+        toml::from_str(&text).map_err(|e| toml_error(file, &text, &e, ROBOT_FORMAT))?;
+    let Some(stored) = parsed.certified_set else {
+        return Ok((arm, None));
+    };
+    let joints = arm.joints.len();
+    let x0 = padded_box(&arm);
+    let restored = stored
+        .restore::<NX, NM>(
+            &padded_index(joints),
+            &padded_quantities(joints),
+            &x0,
+            &[Interval::ZERO; NM],
+        )
+        .map_err(|(f, m)| DataError::new(file, None, Some(&format!("certified_set.{f}")), m))?;
+    let set = ArmSet::new(
+        &Arm7Point,
+        &restored.cover,
+        &restored.measurements,
+        &restored.points,
+        usize::MAX,
+    );
+    if set.is_empty() || set.points().is_empty() {
+        return Err(DataError::new(
+            file,
+            None,
+            Some("certified_set.points"),
+            "the stored set holds no parameter vector proved consistent with its measurements \
+             (was the file edited?): recalibrate with `arm certify --write-calibrated`",
+        ));
+    }
+    Ok((arm, Some(set)))
 }
 
 /// Parses `robot.toml`: one `[[joint]]` table per joint, base to flange, with `theta_deg, d, a,

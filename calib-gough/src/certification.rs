@@ -5,7 +5,9 @@ use crate::files::LegSpec;
 use crate::measurement::{leg_boxes, measured, Configuration, Uncertainty};
 use crate::report::{bounds, LegReport, Report};
 use crate::{GoughLeg, PARAMETER_NAMES};
-use calib_core::{certify, hull, pave, sweep, EmptinessProof, Hull, Interval, Settings, Status};
+use calib_core::{
+    certify, hull, pave, sweep, Cover, EmptinessProof, Hull, Interval, Settings, Status,
+};
 use calib_pipeline::identify::{analyse, identification_jacobian};
 use calib_pipeline::{check_hull_options, smallest_consistent, Outcome, OutlierBudget};
 use rayon::prelude::*;
@@ -121,6 +123,11 @@ pub struct LegResult {
     pub boxes: usize,
     /// Wall-clock seconds.
     pub seconds: f64,
+    /// Boxes whose union contains every consistent geometry (what the certified set is built
+    /// on, [`calib_core::CertifiedSet`]).
+    pub cover: Cover<7>,
+    /// Certified consistent geometries: the witness and the points that attain the inner bounds.
+    pub points: Vec<[f64; 7]>,
 }
 
 impl LegResult {
@@ -144,6 +151,8 @@ impl LegResult {
             paving: None,
             boxes: h.boxes_contracted,
             seconds: 0.0,
+            points: h.witness.into_iter().chain(h.inner_points).collect(),
+            cover: h.cover,
         }
     }
 
@@ -254,6 +263,8 @@ pub fn certify_leg(
             paving: None,
             boxes: 1,
             seconds: 0.0,
+            points: c.witness.into_iter().collect(),
+            cover: c.cover,
         }
     } else {
         LegResult::from_hull(leg, x0, hull(&GoughLeg, &x0, &boxes, settings))

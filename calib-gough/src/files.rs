@@ -3,6 +3,9 @@
 
 use crate::geometry::{Leg, Pose};
 use crate::measurement::{Configuration, Orientation, Uncertainty};
+use crate::GoughLeg;
+use calib_core::{CertifiedSet, Interval};
+use calib_pipeline::stored_set::StoredSet;
 use serde::Deserialize;
 use std::path::Path;
 
@@ -28,7 +31,7 @@ pub struct LegSpec {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RobotFile {
+struct RobotEntries {
     leg: Vec<LegEntry>,
 }
 
@@ -39,6 +42,17 @@ struct LegEntry {
     b: [f64; 3],
     l: f64,
     radius: Radius,
+    certified_set: Option<StoredSet>,
+}
+
+/// A robot file as read: the legs and, in a calibrated file (`gough certify
+/// --write-calibrated`), each certified leg's stored set.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RobotFile {
+    /// The legs: nominal geometry (a calibrated file's calibrated geometry) and radii.
+    pub legs: Vec<LegSpec>,
+    /// Per leg, its `[leg.certified_set]` table (`None` in a robot file that has none).
+    pub sets: Vec<Option<StoredSet>>,
 }
 
 #[derive(Deserialize)]
@@ -56,7 +70,58 @@ pub fn read_robot(file: &Path) -> Result<Vec<LegSpec>, DataError> {
 
 /// [`read_robot`] on text already in memory; `file` names it in errors (e.g. an array).
 pub fn parse_robot(file: &Path, text: &str) -> Result<Vec<LegSpec>, DataError> {
-    let parsed: RobotFile = toml::from_str(text).map_err(|e| {
+    Ok(parse_robot_file(file, text)?.legs)
+}
+
+/// Reads a robot file with the certified sets a calibrated file carries (see [`RobotFile`]).
+pub fn read_robot_file(file: &Path) -> Result<RobotFile, DataError> {
+    parse_robot_file(file, &read_text(file)?)
+}
+
+/// The certified sets of a robot file, rebuilt (per leg; `None` for a leg without one): the
+/// stored measurement boxes, cover and points checked (errors name the leg's field), the
+/// polyhedra recomputed by the Newton step's relaxation, the points proved consistent again. An
+/// error when a stored set holds no piece or no point proved consistent (the file was edited).
+pub fn leg_sets(
+    file: &Path,
+    robot: &RobotFile,
+) -> Result<Vec<Option<CertifiedSet<7, 7>>>, DataError> {
+    let all: Vec<usize> = (0..7).collect();
+    robot
+        .sets
+        .iter()
+        .enumerate()
+        .map(|(i, stored)| {
+            let Some(stored) = stored else {
+                return Ok(None);
+            };
+            let field = |f: &str| format!("leg[{}].certified_set.{f}", i + 1);
+            let restored = stored
+                .restore::<7, 7>(&all, &all, &[Interval::ZERO; 7], &[Interval::ZERO; 7])
+                .map_err(|(f, m)| error(file, None, Some(&field(&f)), m))?;
+            let set = CertifiedSet::new(
+                &GoughLeg,
+                &restored.cover,
+                &restored.measurements,
+                &restored.points,
+                usize::MAX,
+            );
+            if set.is_empty() || set.points().is_empty() {
+                return Err(error(
+                    file,
+                    None,
+                    Some(&field("points")),
+                    "the stored set holds no geometry proved consistent with its measurements                      (was the file edited?): recalibrate with `gough certify --write-calibrated`",
+                ));
+            }
+            Ok(Some(set))
+        })
+        .collect()
+}
+
+/// [`read_robot_file`] on text already in memory.
+pub fn parse_robot_file(file: &Path, text: &str) -> Result<RobotFile, DataError> {
+    let parsed: RobotEntries = toml::from_str(text).map_err(|e| {
         let line = e.span().map(|s| line_at(text, s.start));
         error(file, line, None, format!("{}; expected [[leg]] tables with a = [x, y, z], b = [x, y, z], l = offset, radius = r", e.message()))
     })?;
@@ -95,7 +160,11 @@ pub fn parse_robot(file: &Path, text: &str) -> Result<Vec<LegSpec>, DataError> {
             }
             Ok(LegSpec { nominal, radius })
         })
-        .collect()
+        .collect::<Result<Vec<LegSpec>, DataError>>()
+        .map(|legs| RobotFile {
+            legs,
+            sets: parsed.leg.iter().map(|e| e.certified_set.clone()).collect(),
+        })
 }
 
 #[derive(Deserialize)]

@@ -91,12 +91,14 @@ mod tests {
             paving: None,
             boxes: 1,
             seconds: 0.0,
+            cover: calib_core::Cover::single(outer),
+            points: vec![],
         };
         let words = touching_x0(&r).expect("two faces reached");
         assert!(words.contains("az (lower end), l (both ends)"), "{words}");
         let inside = LegResult {
             outer: Some([calib_core::Interval::new(-0.5, 0.5); 7]),
-            ..r
+            ..r.clone()
         };
         assert_eq!(touching_x0(&inside), None);
     }

@@ -6,7 +6,7 @@
 
 mod support;
 
-use calib_gough::accuracy::{axis_angle, certify_accuracy, AccuracySettings};
+use calib_gough::accuracy::{axis_angle, certify_accuracy, AccuracyProblem, AccuracySettings};
 use calib_gough::files::LegSpec;
 use calib_gough::geometry::{leg_reading, Leg, Pose};
 use calib_gough::simulate::builtin_hexapod;
@@ -47,7 +47,7 @@ fn upper_bounds_hold_at_random_poses_and_geometries_and_instances_recheck() {
         let robot = random_robot(&mut rng);
         let workspace = random_workspace(&mut rng, 20.0);
         let settings = AccuracySettings::default();
-        let a = certify_accuracy(&robot, &workspace, &settings);
+        let a = certify_accuracy(&AccuracyProblem::new(&robot, &workspace), &settings);
         let nominal: Vec<Leg> = robot.iter().map(|s| s.nominal).collect();
         for (i, (spec, b)) in robot.iter().zip(&a.leg_length).enumerate() {
             assert!(b.lower <= b.upper, "case {case} leg {i}: {b:?}");
@@ -120,8 +120,14 @@ fn a_wider_box_gives_a_proportionally_larger_error() {
             .collect()
     };
     let settings = AccuracySettings::default();
-    let after = certify_accuracy(&robot(0.01), &Workspace::SIMULATOR, &settings);
-    let before = certify_accuracy(&robot(0.1), &Workspace::SIMULATOR, &settings);
+    let after = certify_accuracy(
+        &AccuracyProblem::new(&robot(0.01), &Workspace::SIMULATOR),
+        &settings,
+    );
+    let before = certify_accuracy(
+        &AccuracyProblem::new(&robot(0.1), &Workspace::SIMULATOR),
+        &settings,
+    );
     for (a, b) in after.leg_length.iter().zip(&before.leg_length) {
         let factor = b.lower / a.upper;
         assert!(factor > 9.0 && b.upper / a.lower < 11.0, "{a:?} {b:?}");

@@ -261,9 +261,8 @@ fn a_workspace_at_a_singular_pose_proves_no_instance() {
         stroke: None,
     };
     let report = accuracy_report(
-        &spec,
+        &AccuracyProblem::new(&spec, &workspace),
         None,
-        &workspace,
         Some(0.0005),
         &AccuracySettings {
             rel_tol: 0.04,
@@ -453,9 +452,8 @@ fn the_pose_improvement_is_before_lower_over_after_upper() {
     let workspace = centre_workspace();
     let (after, before) = (robot(0.001), robot(0.01));
     let report = accuracy_report(
-        &after,
-        Some(&before),
-        &workspace,
+        &AccuracyProblem::new(&after, &workspace),
+        Some(&AccuracyProblem::new(&before, &workspace)),
         Some(0.001),
         &AccuracySettings {
             pose_seconds: 5.0,

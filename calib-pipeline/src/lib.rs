@@ -18,11 +18,12 @@ mod outcome;
 mod outlier_budget;
 mod output;
 pub mod report;
+pub mod stored_set;
 mod table;
 pub mod verdict;
 
 pub use error::{line_at, read_text, toml_error, DataError, MAX_MAGNITUDE};
-pub use outcome::{certify_model, is_fixed, Depth, Outcome};
+pub use outcome::{certify_model, is_fixed, Depth, ModelCertification, Outcome};
 pub use outlier_budget::{smallest_consistent, OutlierBudget};
 pub use output::{
     check_hull_options, exit_quietly_when_output_closes, main_with, write_atomically,

@@ -3,7 +3,7 @@
 //! [`certify_model`] produces it from any [`VectorModel`].
 
 pub use calib_core::is_fixed;
-use calib_core::{certify, hull, EmptinessProof, Interval, Settings, Status, VectorModel};
+use calib_core::{certify, hull, Cover, EmptinessProof, Interval, Settings, Status, VectorModel};
 use std::time::Instant;
 
 /// What is certified about one sub-problem (parameters in the model's units).
@@ -49,6 +49,18 @@ pub enum Depth {
     Hull,
 }
 
+/// What [`certify_model`] proves: the [`Outcome`], and the cover and certified points the
+/// certified set is built from ([`calib_core::CertifiedSet::new`]), in the model's dimensions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelCertification<const NX: usize> {
+    /// The outcome.
+    pub outcome: Outcome,
+    /// Boxes whose union holds every consistent parameter vector (empty when proved empty).
+    pub cover: Cover<NX>,
+    /// Certified consistent parameter vectors: the witness, then the inner bounds' points.
+    pub points: Vec<[f64; NX]>,
+}
+
 /// Certifies `x0` against the measurement boxes (one per configuration).
 pub fn certify_model<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
@@ -57,17 +69,18 @@ pub fn certify_model<M, const NX: usize, const NM: usize, const NR: usize>(
     boxes: &[[Interval; NM]],
     depth: Depth,
     settings: &Settings,
-) -> Outcome
+) -> ModelCertification<NX>
 where
     M: VectorModel<NX, NM, NR> + Sync,
 {
     let t = Instant::now();
     let vec = |b: [Interval; NX]| b.to_vec();
-    let mut out = match depth {
+    let (mut out, cover, points) = match depth {
         Depth::Fast => {
             let c = certify(model, x0, boxes, settings);
             let x1 = (c.status != Status::Empty).then(|| vec(c.outer));
-            Outcome {
+            let points = c.witness.into_iter().collect();
+            let outcome = Outcome {
                 names: names.to_vec(),
                 x0: x0.to_vec(),
                 status: c.status,
@@ -82,11 +95,17 @@ where
                 converged: None,
                 boxes: 1,
                 seconds: 0.0,
-            }
+            };
+            (outcome, c.cover, points)
         }
         Depth::Hull => {
             let h = hull(model, x0, boxes, settings);
-            Outcome {
+            let points = h
+                .witness
+                .into_iter()
+                .chain(h.inner_points.clone())
+                .collect();
+            let outcome = Outcome {
                 names: names.to_vec(),
                 x0: x0.to_vec(),
                 status: h.status,
@@ -101,11 +120,16 @@ where
                 converged: Some(h.converged),
                 boxes: h.boxes_contracted,
                 seconds: 0.0,
-            }
+            };
+            (outcome, h.cover, points)
         }
     };
     out.seconds = t.elapsed().as_secs_f64();
-    out
+    ModelCertification {
+        outcome: out,
+        cover,
+        points,
+    }
 }
 
 impl Outcome {

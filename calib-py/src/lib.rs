@@ -368,7 +368,7 @@ fn design(
 /// Brackets the leg-length errors of a robot file over a workspace, as `gough accuracy` does;
 /// returns the JSON of `gough accuracy --json`.
 #[pyfunction]
-#[pyo3(signature = (robot, workspace, before=None, uncertainty=None, tolerance=0.04, max_boxes=300_000, pose_seconds=30.0))]
+#[pyo3(signature = (robot, workspace, before=None, uncertainty=None, tolerance=0.04, max_boxes=300_000, pose_seconds=30.0, max_set_boxes=1000))]
 #[allow(clippy::too_many_arguments)]
 fn accuracy(
     py: Python<'_>,
@@ -379,9 +379,11 @@ fn accuracy(
     tolerance: f64,
     max_boxes: usize,
     pose_seconds: f64,
+    max_set_boxes: usize,
 ) -> PyResult<String> {
-    use calib_gough::accuracy::{accuracy_report, AccuracySettings};
-    let robot = read_robot(&robot).map_err(value_error)?;
+    use calib_gough::accuracy::{accuracy_report, AccuracyProblem, AccuracySettings};
+    let file = calib_gough::files::read_robot_file(&robot).map_err(value_error)?;
+    let sets = calib_gough::files::leg_sets(&robot, &file).map_err(value_error)?;
     let workspace = calib_gough::workspace::read_workspace(&workspace).map_err(value_error)?;
     let before = before
         .map(|p| read_robot(&p))
@@ -405,13 +407,16 @@ fn accuracy(
     let settings = AccuracySettings {
         rel_tol: tolerance,
         max_boxes,
+        max_set_boxes,
         pose_seconds,
     };
     let report = py.detach(|| {
         accuracy_report(
-            &robot,
-            before.as_deref(),
-            &workspace,
+            &AccuracyProblem::over_sets(&file.legs, &sets, &workspace),
+            before
+                .as_deref()
+                .map(|b| AccuracyProblem::new(b, &workspace))
+                .as_ref(),
             actuator,
             &settings,
             false,

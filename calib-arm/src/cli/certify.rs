@@ -4,11 +4,10 @@ use super::output::{
     file_name, print_identifiability, print_outcome, spinner, write_certificate, write_json,
 };
 use super::DataFiles;
-use calib_arm::calibrated::calibrated_arm;
+use calib_arm::calibrated::{calibrated_arm, calibrated_toml, PointChoice};
 use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{certify_request, CertifyRequest};
 use calib_arm::files::{parse_measurements, parse_robot, parse_uncertainty};
-use calib_arm::write::robot_toml;
 use calib_core::Status;
 use calib_pipeline::html::{command_line, now, Input};
 use calib_pipeline::verdict::{self, ConfigurationNames};
@@ -56,13 +55,27 @@ pub struct Args {
     /// SHA-256 and the settings.
     #[arg(long, value_name = "FILE")]
     report: Option<PathBuf>,
-    /// Write the calibrated robot file a controller loads: each free parameter at the midpoint
-    /// of its certified outer box, radius = the outer half-width (rounded up), so its boxes
-    /// contain the certified ones; fixed parameters as in --robot. `arm accuracy --robot FILE`
-    /// then bounds the tool-point error. Refused (nothing written) when the data are proved
-    /// inconsistent.
+    /// Write the calibrated robot file a controller loads: parameters proved consistent with
+    /// every measurement (part of each error bound to spare where the data allow), chosen by
+    /// --calibrated-point; radii whose boxes contain the certified ones; fixed parameters as in
+    /// --robot; and the certified set, so that `arm accuracy` and `arm predict` work over it.
+    /// Refused (nothing written) when the data are proved inconsistent or no parameter vector
+    /// was proved consistent (undecided).
     #[arg(long, value_name = "FILE")]
     write_calibrated: Option<PathBuf>,
+    /// How --write-calibrated chooses the parameters among those proved consistent: `centre`,
+    /// towards the centre of the tool points they predict (the smallest worst-case prediction
+    /// error), or `lsq`, towards the least-squares fit.
+    #[arg(long, value_name = "centre|lsq", default_value = "centre", value_parser = parse_choice)]
+    calibrated_point: PointChoice,
+}
+
+fn parse_choice(s: &str) -> Result<PointChoice, String> {
+    match s {
+        "centre" | "center" => Ok(PointChoice::Centre),
+        "lsq" => Ok(PointChoice::LeastSquares),
+        other => Err(format!("expected `centre` or `lsq`, found `{other}`")),
+    }
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
@@ -101,17 +114,36 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     }
     print_outcome(&run, &names, q);
     if let Some(path) = &a.write_calibrated {
-        let calibrated = calibrated_arm(&arm, run.outcome.outer.as_deref())?;
+        let joints: Vec<Vec<f64>> = data.readings.iter().map(|r| r.joints_deg.clone()).collect();
+        let calibrated = calibrated_arm(&arm, &run, &joints, a.calibrated_point)?;
+        let spare = if calibrated.point.margin > 0.0 {
+            format!(
+                " with at least {:.0}% of every error bound to spare",
+                100.0 * calibrated.point.margin
+            )
+        } else {
+            String::new()
+        };
         let comment = format!(
-            "# calibrated by certicalib {} from {} and {}: each free parameter at the midpoint of\n\
-             # its certified outer box, radius = its outer half-width\n",
+            "# calibrated by certicalib {} from {} and {}:\n\
+             # the parameters: a vector proved consistent with every measurement{spare},\n\
+             # chosen {};\n\
+             # radius: a box around it that contains the certified outer box;\n\
+             # [certified_set]: the certified set `arm accuracy` and `arm predict` work over\n",
             calib_pipeline::html::VERSION,
             a.files.robot.display(),
-            a.files.measurements.display()
+            a.files.measurements.display(),
+            match a.calibrated_point {
+                PointChoice::Centre => "towards the centre of the tool points it predicts",
+                PointChoice::LeastSquares => "towards the least-squares fit",
+            }
         );
-        write_atomically(path, &(comment + &robot_toml(&calibrated)))
+        write_atomically(path, &calibrated_toml(&calibrated, &comment))
             .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-        println!("calibrated robot written to {}", path.display());
+        println!(
+            "calibrated robot written to {}: its parameters fit every measurement{spare}",
+            path.display()
+        );
     }
     if let Some(path) = &a.json {
         write_json(path, &run, &names, q)?;

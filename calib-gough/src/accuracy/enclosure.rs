@@ -1,8 +1,20 @@
 //! The enclosures behind the accuracy certificate: per box of poses, the legs' length errors
-//! over every geometry of the certified box; per pose, an explicit worst instance.
+//! over every geometry of the certified set (or of the robot file's box); per pose, an explicit
+//! worst instance.
 //!
 //! Leg `i` has the nominal geometry `θ̂_i` the controller loads and a true geometry `θ*_i`
-//! somewhere in the box `Θ_i` of the robot file. At a pose `X = (p, q)` (`q` the Rodrigues vector)
+//! somewhere in its certified set `S_i` (a calibrated file carries it: [`crate::calibrated`]) or,
+//! for a robot file without one, in the box `Θ_i` of the file.
+//!
+//! **Over the set.** `ΔL_i(X, θ̂) = 0`, so by the mean-value theorem in `θ`,
+//! `ΔL_i(X, θ) ∈ Σ_j G_j (θ_j - θ̂_j)` with `G ⊇ ∂ΔL_i/∂θ` over the box of poses and the hull of
+//! the set and `θ̂`; its largest and smallest values over `S_i` are bounded by one linear program
+//! per piece of the set ([`calib_core::SetQuery::max_linear`], safe bounds). Instances take the
+//! certified geometries of a catalogue — the set's points pushed along `±∂ΔL_i/∂θ` at poses
+//! spread over the workspace, each proved consistent with every measurement — so every lower
+//! bound is attained by a geometry the data allow.
+//!
+//! **Over the box.** At a pose `X = (p, q)` (`q` the Rodrigues vector)
 //! the controller commands `L_i(X; θ̂_i)`; the real leg would need `L_i(X; θ*_i)`. The leg-length
 //! error `ΔL_i(X, θ*) = L_i(X; θ*) - L_i(X; θ̂)` is enclosed over a box of poses and all of `Θ_i` by
 //! the natural enclosure of [`super::leg_length_error`] (written without cancellation)
@@ -10,11 +22,17 @@
 //! and affine in `l`, its largest value over `Θ_i` is at a vertex: instances take the vertex the
 //! gradient's signs point to.
 
-use super::model::{LegLengthError, LegReading};
+use super::model::{leg_reading, LegCurvature, LegLengthError, LegReading};
 use crate::files::LegSpec;
 use crate::measurement::measured;
 use crate::workspace::Workspace;
-use calib_core::{Interval, Model};
+use crate::GoughLeg;
+use calib_core::lp::LpBackend;
+use calib_core::SetQuery;
+use calib_core::{CertifiedSet, Interval, Jet, Model, Quadratic};
+use rand::{Rng, SeedableRng};
+use std::cell::RefCell;
+use std::sync::Arc;
 
 /// The most rounds of [`AccuracyProblem::climb`].
 const MAX_CLIMB_ROUNDS: usize = 500;
@@ -25,19 +43,138 @@ pub type PoseVector = [f64; 6];
 /// A box of poses.
 pub type PoseBox = [Interval; 6];
 
-/// One leg's geometry: what the controller loads and the box the real leg lies in.
-#[derive(Clone, Debug, PartialEq)]
+/// One leg's geometry: what the controller loads and where the real leg lies.
+#[derive(Clone, Debug)]
 struct LegBounds {
     /// `θ̂`: the robot file's values, as the controller loads them.
     nominal: [f64; 7],
-    /// `Θ`: an enclosure of nominal ± radius (decimal values enclosed).
+    /// `Θ`: an enclosure of nominal ± radius (decimal values enclosed); over a set, the hull of
+    /// the set's pieces and `θ̂`.
     theta: [Interval; 7],
     /// Per parameter, the box's lower and upper ends moved inward past rounding (the vertices
     /// of instances), or, for a fixed parameter, the enclosure of its value.
     vertex: [[Interval; 7]; 2],
+    /// The certified set and its catalogue of certified geometries, when the file has one.
+    set: Option<Arc<LegSet>>,
+}
+
+/// A leg's certified set with a catalogue of certified geometries (see the module
+/// documentation): the instances' true geometries.
+#[derive(Clone, Debug)]
+pub struct LegSet {
+    set: CertifiedSet<7, 7>,
+    /// The same set as one piece (its hull, contracted, with the relaxation over it): for the
+    /// many small terms of [`AccuracyProblem::set_error`], where one linear program per term is
+    /// enough.
+    coarse: CertifiedSet<7, 7>,
+    catalogue: Vec<[f64; 7]>,
+}
+
+/// A second-order Taylor model over a box of poses: a noise symbol per pose coordinate.
+type SlopeForm = Quadratic<6>;
+
+/// At most this many pose coordinates get the vertices of [`AccuracyProblem::set_error`]
+/// (`2^n` linear programs per piece and sign).
+const MAX_VERTEX_COORDINATES: usize = 3;
+
+thread_local! {
+    /// Per thread, the LP engines of the last leg bound over a set (fine pieces, coarse piece).
+    static ENGINES: RefCell<EnginePool> = RefCell::new((Vec::new(), Vec::new()));
+}
+
+/// LP engines for the fine pieces and for the coarse piece of a leg's set.
+type EnginePool = (Vec<Box<dyn LpBackend>>, Vec<Box<dyn LpBackend>>);
+
+/// Pieces of a leg's set for the accuracy's linear programs (fewer than a file may store: each
+/// bound solves `2^n` programs per piece).
+const FINE_PIECES: usize = 4;
+
+/// Poses per leg whose `±∂ΔL/∂θ` directions the catalogue's geometries are pushed along.
+const CATALOGUE_POSES: usize = 40;
+
+impl LegSet {
+    /// The catalogue for `set` on the poses of `domain` (see the module documentation).
+    fn new(set: CertifiedSet<7, 7>, nominal: &[f64; 7], domain: &PoseBox) -> LegSet {
+        let points: Vec<[f64; 7]> = set.points().iter().map(|p| p.x).collect();
+        let mut set = CertifiedSet::new(
+            &GoughLeg,
+            &set.cover(),
+            set.measurements(),
+            &points,
+            FINE_PIECES,
+        );
+        let mut rng = rand::rngs::StdRng::seed_from_u64(0xca7a);
+        let t = domain[3].sup();
+        for k in 0..CATALOGUE_POSES {
+            // Corners of the positions and the largest rotations first, then random poses.
+            let x: PoseVector = core::array::from_fn(|c| {
+                let (lo, hi) = (domain[c].inf(), domain[c].sup());
+                let u: f64 = if k < 16 {
+                    f64::from((k >> (c % 4)) as u8 & 1)
+                } else {
+                    rng.random()
+                };
+                let v = lo + u * (hi - lo);
+                if c >= 3 {
+                    v / 3f64.sqrt().max(1.0)
+                } else {
+                    v
+                }
+            });
+            let q = (x[3] * x[3] + x[4] * x[4] + x[5] * x[5]).sqrt();
+            let x = if q > t && q > 0.0 {
+                core::array::from_fn(|c| if c >= 3 { x[c] * t / q } else { x[c] })
+            } else {
+                x
+            };
+            let m: [f64; 13] = core::array::from_fn(|c| if c < 6 { x[c] } else { nominal[c - 6] });
+            let g = LegLengthError.jacobian_x(nominal, &m);
+            for sign in [1.0, -1.0] {
+                set.extreme_point(&GoughLeg, &g.map(|v| sign * v));
+            }
+        }
+        let catalogue: Vec<[f64; 7]> = set.points().iter().map(|p| p.x).collect();
+        let coarse = CertifiedSet::new(
+            &GoughLeg,
+            &set.cover(),
+            set.measurements(),
+            &catalogue[..catalogue.len().min(1)],
+            1,
+        );
+        LegSet {
+            set,
+            coarse,
+            catalogue,
+        }
+    }
+
+    /// The certified set.
+    pub fn set(&self) -> &CertifiedSet<7, 7> {
+        &self.set
+    }
+
+    /// The catalogue of certified geometries.
+    pub fn catalogue(&self) -> &[[f64; 7]] {
+        &self.catalogue
+    }
 }
 
 impl LegBounds {
+    /// Over the certified set: `Θ` the hull of the set and `θ̂`.
+    fn over_set(spec: &LegSpec, set: CertifiedSet<7, 7>, domain: &PoseBox) -> LegBounds {
+        let nominal = spec.nominal.params();
+        let theta: [Interval; 7] = match set.outer() {
+            Some(o) => core::array::from_fn(|j| o[j].hull(Interval::point(nominal[j]))),
+            None => nominal.map(Interval::point),
+        };
+        LegBounds {
+            nominal,
+            theta,
+            vertex: [theta; 2],
+            set: Some(Arc::new(LegSet::new(set, &nominal, domain))),
+        }
+    }
+
     fn new(spec: &LegSpec) -> LegBounds {
         let nominal = spec.nominal.params();
         let theta: [Interval; 7] = core::array::from_fn(|j| measured(nominal[j], spec.radius[j]));
@@ -59,12 +196,13 @@ impl LegBounds {
             nominal,
             theta,
             vertex: [false, true].map(|up| core::array::from_fn(|j| inward(j, up))),
+            set: None,
         }
     }
 }
 
 /// The accuracy problem of a robot file on a workspace (see the module documentation).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct AccuracyProblem {
     legs: Vec<LegBounds>,
     /// The pose box searched: the workspace's position ranges and the cube `|q_j| <= tan(tilt/2)`.
@@ -75,6 +213,8 @@ pub struct AccuracyProblem {
     stroke: Option<[f64; 2]>,
     /// The position ranges as read (for the feasibility of instance poses).
     ranges: [[f64; 2]; 3],
+    /// The workspace.
+    workspace: Workspace,
 }
 
 fn thin<const N: usize>(x: &[f64; N]) -> [Interval; N] {
@@ -82,7 +222,34 @@ fn thin<const N: usize>(x: &[f64; N]) -> [Interval; N] {
 }
 
 impl AccuracyProblem {
-    /// The problem for `robot` on `workspace`.
+    /// The problem for `robot` on `workspace` over its certified sets: leg `i` over `sets[i]`
+    /// when given, else over its box (a robot file without a set).
+    pub fn over_sets(
+        robot: &[LegSpec],
+        sets: &[Option<CertifiedSet<7, 7>>],
+        workspace: &Workspace,
+    ) -> AccuracyProblem {
+        let mut problem = AccuracyProblem::new(robot, workspace);
+        let domain = problem.domain;
+        for (i, spec) in robot.iter().enumerate() {
+            if let Some(Some(set)) = sets.get(i) {
+                problem.legs[i] = LegBounds::over_set(spec, set.clone(), &domain);
+            }
+        }
+        problem
+    }
+
+    /// Whether leg `i`'s errors are taken over its certified set (else over its box).
+    pub fn over_set(&self, i: usize) -> bool {
+        self.legs[i].set.is_some()
+    }
+
+    /// Leg `i`'s certified set and catalogue, when it has one.
+    pub fn leg_set(&self, i: usize) -> Option<&LegSet> {
+        self.legs[i].set.as_deref()
+    }
+
+    /// The problem for `robot` on `workspace`, every leg over its box.
     pub fn new(robot: &[LegSpec], workspace: &Workspace) -> AccuracyProblem {
         let half_tilt = measured(workspace.tilt_deg, 0.0) * Interval::PI / Interval::point(360.0);
         let t = half_tilt.tan();
@@ -101,7 +268,13 @@ impl AccuracyProblem {
             tilt_sq: t.sqr(),
             stroke: workspace.stroke,
             ranges: [workspace.x, workspace.y, workspace.z],
+            workspace: *workspace,
         }
+    }
+
+    /// The workspace.
+    pub fn workspace(&self) -> &Workspace {
+        &self.workspace
     }
 
     /// The values `θ̂_i` the controller loads for leg `i`.
@@ -132,9 +305,12 @@ impl AccuracyProblem {
     /// Whether the box may hold a pose of the workspace (`false` is a proof that it holds none).
     pub fn may_be_feasible(&self, x: &PoseBox) -> bool {
         let q_sq = x[3].sqr() + x[4].sqr() + x[5].sqr();
-        if q_sq.inf() > self.tilt_sq.sup() {
-            return false;
-        }
+        q_sq.inf() <= self.tilt_sq.sup() && self.stroke_may_hold(x)
+    }
+
+    /// Whether the stroke may hold the commanded readings over `x` (`false` is a proof that no
+    /// pose of `x` has every reading within it).
+    fn stroke_may_hold(&self, x: &PoseBox) -> bool {
         match self.stroke {
             None => true,
             Some([lo, hi]) => (0..self.legs.len()).all(|i| {
@@ -199,7 +375,105 @@ impl AccuracyProblem {
     /// An enclosure of leg `i`'s length error `ΔL_i(X, θ*)` over the poses of `x` and every
     /// `θ*` in its box (see the module documentation).
     pub fn leg_error(&self, i: usize, x: &PoseBox) -> Interval {
-        self.mean_value(i, x, &self.legs[i].theta)
+        match &self.legs[i].set {
+            Some(set) => self.set_error(i, x, set, f64::INFINITY),
+            None => self.mean_value(i, x, &self.legs[i].theta),
+        }
+    }
+
+    /// An enclosure of `ΔL_i(X, θ)` over the poses of `x` and every `θ` of the set (see the
+    /// module documentation), tight where its magnitude exceeds `enough` (below, a cheaper
+    /// bound may be returned: it cannot raise a maximum beyond `enough`).
+    ///
+    /// Exactly `ΔL_i = G(X)·δ + r` with `δ = θ - θ̂`, `G = ∇_θ L_i(X; θ̂)` (the reading
+    /// `L = |p + R b - a| - l` at the controller's geometry) and `0 <= r <=` the curvature bound
+    /// of [`super::leg_curvature`] (`|û × d|² / 2(|v| - |d|)`, `d` the attachment points'
+    /// displacement): micrometres, where the legs' directions barely turn across the set.
+    /// The slopes `G` are second-order Taylor models ([`calib_core::Quadratic`], carried by
+    /// [`calib_core::Jet`]) in the pose's noise symbols `ε_k`:
+    /// `G_j = c_j + Σ_k a_jk ε_k + Σ_{k<=l} q_jkl ε_k ε_l ± e_j`. So
+    ///
+    /// `ΔL_i <= max_σ max_{δ ∈ S} (c + Σ_k σ_k a_k)·δ + Σ_{k<=l} max_{δ ∈ S} |q_kl·δ| + Σ_j e_j |δ_j| + max r`
+    ///
+    /// (`σ` over the vertices of the noise box of the pose coordinates whose linear term
+    /// matters most), and the same below without `r`. The pose's first- and second-order
+    /// effects are taken over the set, where the data make them small; only third-order
+    /// remainders meet the set's box. First a cheap bound (the set as one piece, each pose
+    /// coordinate's term bounded on its own); the vertices and every piece only where it
+    /// exceeds `enough`.
+    fn set_error(&self, i: usize, x: &PoseBox, set: &LegSet, enough: f64) -> Interval {
+        let leg = &self.legs[i];
+        let nominal = &leg.nominal;
+        let theta: [Jet<SlopeForm, 7>; 7] = core::array::from_fn(|j| {
+            Jet::variable(SlopeForm::from_interval(Interval::point(nominal[j])), j)
+        });
+        let m: [Jet<SlopeForm, 7>; 6] =
+            core::array::from_fn(|k| Jet::constant(SlopeForm::input(x[k], k)));
+        let g = leg_reading(&theta, &m).grad;
+        let finite = |f: &SlopeForm| {
+            f.centre().is_finite()
+                && f.error().is_finite()
+                && f.linear().iter().all(|v| v.is_finite())
+                && (0..6).all(|k| (k..6).all(|l| f.quadratic(k, l).is_finite()))
+        };
+        if !g.iter().all(finite) {
+            // A model that blew up (a box too wide for second order): no bound here; the
+            // branch and bound splits the box.
+            return Interval::ENTIRE;
+        }
+        let spread: [Interval; 7] =
+            core::array::from_fn(|j| leg.theta[j] - Interval::point(nominal[j]));
+        let delta = spread.map(|v| v.mag());
+        // Σ_j e_j mag(δ_j): the Taylor models' remainders.
+        let rest = (0..7).fold(Interval::ZERO, |s, j| {
+            s + Interval::point(g[j].error()) * Interval::point(delta[j])
+        });
+        let curvature = LegCurvature
+            .residual_interval(&spread, &self.inputs(i, x))
+            .sup();
+        let curvature = if curvature.is_finite() && curvature >= 0.0 {
+            curvature
+        } else {
+            return Interval::ENTIRE;
+        };
+        // The engines of this thread's last bound, so that nothing is allocated.
+        let (fine_engines, coarse_engines) =
+            ENGINES.with(|e| core::mem::take(&mut *e.borrow_mut()));
+        let mut q = set.set.query_reusing(fine_engines);
+        let mut coarse = set.coarse.query_reusing(coarse_engines);
+        let bounds = set_error_bounds(&g, &delta, rest, &mut q, &mut coarse, nominal, enough);
+        ENGINES.with(|e| *e.borrow_mut() = (q.into_engines(), coarse.into_engines()));
+        if bounds.is_empty() || !bounds.sup().is_finite() {
+            return Interval::ENTIRE;
+        }
+        Interval::new(
+            bounds.inf(),
+            (Interval::point(bounds.sup()) + Interval::point(curvature)).sup(),
+        )
+    }
+
+    /// The box `x` with its rotation coordinates narrowed to what the tilt allows: each
+    /// `|q_k| <= sqrt(t² - Σ_{j≠k} mig(q_j)²)`, twice (every pose of the workspace in `x` stays;
+    /// `None` when none can be in it).
+    pub fn within_tilt(&self, x: &PoseBox) -> Option<PoseBox> {
+        let mut out = *x;
+        for _ in 0..2 {
+            for k in 3..6 {
+                let others = (3..6)
+                    .filter(|&j| j != k)
+                    .fold(Interval::ZERO, |s, j| s + out[j].sqr());
+                let room = self.tilt_sq - others;
+                if room.sup() < 0.0 {
+                    return None;
+                }
+                let r = Interval::new(0.0, room.sup()).sqrt().sup();
+                out[k] = out[k].intersection(Interval::new(-r, r));
+                if out[k].is_empty() {
+                    return None;
+                }
+            }
+        }
+        Some(out)
     }
 
     /// An enclosure of `f_i(X) = max_{θ* ∈ Θ_i} |ΔL_i(X, θ*)|` over the poses of `x`.
@@ -211,7 +485,17 @@ impl AccuracyProblem {
     /// `f_i ∈ [max(ΔL_i(X, θ↑), -ΔL_i(X, θ↓))]`, each enclosed by its mean-value form: without
     /// the overestimation of an interval over every parameter.
     pub fn leg_bounds(&self, i: usize, x: &PoseBox) -> Interval {
+        self.leg_bounds_up_to(i, x, 0.0)
+    }
+
+    /// [`AccuracyProblem::leg_bounds`], tight only where it exceeds `enough` (a leg over its set
+    /// then skips the costlier part of its bound).
+    pub fn leg_bounds_up_to(&self, i: usize, x: &PoseBox, enough: f64) -> Interval {
         let leg = &self.legs[i];
+        if let Some(set) = &leg.set {
+            let e = self.set_error(i, x, set, enough);
+            return Interval::new(0.0, e.mag());
+        }
         let e = LegLengthError.evaluate_interval(&leg.theta, &self.inputs(i, x));
         let end = |up: bool| -> [Interval; 7] {
             core::array::from_fn(|j| {
@@ -239,6 +523,23 @@ impl AccuracyProblem {
     pub(crate) fn vertex(&self, i: usize, x: &PoseVector, up: bool) -> [Interval; 7] {
         let leg = &self.legs[i];
         let m: [f64; 13] = core::array::from_fn(|k| if k < 6 { x[k] } else { leg.nominal[k - 6] });
+        if let Some(set) = &leg.set {
+            // The certified geometry of the catalogue with the largest (or smallest) error, to
+            // first order (`ΔL ≈ ∂ΔL/∂θ (θ - θ̂)`: the choice only, the error of the geometry
+            // chosen is evaluated rigorously by its user).
+            let g = LegLengthError.jacobian_x(&leg.nominal, &m);
+            let sign = if up { 1.0 } else { -1.0 };
+            let e = |t: &[f64; 7]| -> f64 {
+                sign * (0..7).map(|j| g[j] * (t[j] - leg.nominal[j])).sum::<f64>()
+            };
+            let best = set
+                .catalogue
+                .iter()
+                .max_by(|a, b| e(a).total_cmp(&e(b)))
+                .copied()
+                .unwrap_or(leg.nominal);
+            return best.map(Interval::point);
+        }
         let g = LegLengthError.jacobian_x(&leg.nominal, &m);
         core::array::from_fn(|j| leg.vertex[usize::from((g[j] > 0.0) == up)][j])
     }
@@ -250,18 +551,26 @@ impl AccuracyProblem {
             .mig()
     }
 
+    /// The largest `|ΔL_i|` at `x` over the geometries instances may take (a proved lower bound
+    /// of `max |ΔL_i|` over the set at the pose, 0 for a leg over its box).
+    pub(crate) fn attained(&self, i: usize, x: &PoseVector) -> f64 {
+        if self.legs[i].set.is_none() {
+            return 0.0;
+        }
+        [true, false]
+            .map(|up| self.error_at(i, x, &self.vertex(i, x, up)))
+            .into_iter()
+            .fold(0.0, f64::max)
+    }
+
     /// The largest `|ΔL_i|` of the two extreme vertices at `x` (a floating-point estimate, for
     /// the search).
-    fn estimate(&self, i: usize, x: &PoseVector) -> f64 {
-        [true, false]
-            .map(|up| {
-                let t = self.vertex(i, x, up).map(|v| v.mid());
-                let leg = &self.legs[i];
-                let m: [f64; 13] =
-                    core::array::from_fn(|k| if k < 6 { x[k] } else { leg.nominal[k - 6] });
-                LegLengthError.residual(&t, &m).abs()
-            })
-            .into_iter()
+    fn estimate(&self, i: usize, x: &PoseVector, geometries: &[[f64; 7]; 2]) -> f64 {
+        let leg = &self.legs[i];
+        let m: [f64; 13] = core::array::from_fn(|k| if k < 6 { x[k] } else { leg.nominal[k - 6] });
+        geometries
+            .iter()
+            .map(|t| LegLengthError.residual(t, &m).abs())
             .fold(0.0, f64::max)
     }
 
@@ -329,13 +638,23 @@ impl AccuracyProblem {
 
     /// The worst instance of leg `i` found from the pose `x`: a local search (steps along each
     /// coordinate, jumps to the workspace's bounds) on the larger `|ΔL_i|` of the two extreme
-    /// vertices, then the vertex with the larger `|ΔL_i|`. `None` when `x` is not proved to lie
-    /// in the workspace.
+    /// vertices (over a set: the catalogue's two extreme geometries at `x`), then the vertex
+    /// (geometry) with the larger `|ΔL_i|` at the pose reached. `None` when `x` is not proved to
+    /// lie in the workspace.
     pub fn instance(&self, i: usize, x: &PoseVector) -> Option<Instance> {
         if !self.proved_feasible(x) {
             return None;
         }
-        let x = self.climb(x, |y| self.estimate(i, y));
+        let search = if self.legs[i].set.is_some() {
+            Some([true, false].map(|up| self.vertex(i, x, up).map(|v| v.mid())))
+        } else {
+            None
+        };
+        let x = self.climb(x, |y| {
+            let geometries = search
+                .unwrap_or_else(|| [true, false].map(|up| self.vertex(i, y, up).map(|v| v.mid())));
+            self.estimate(i, y, &geometries)
+        });
         let (value, theta) = [true, false]
             .map(|up| {
                 let theta = self.vertex(i, &x, up);
@@ -351,14 +670,126 @@ impl AccuracyProblem {
     }
 }
 
-/// An explicit worst-case instance of a leg: a pose of the workspace and a true geometry in the
-/// leg's box whose length error is at least `value`.
+/// The bounds of [`AccuracyProblem::set_error`] from the slopes' Taylor models `g`, the
+/// geometry's reach `delta` and its terms `rest`, with the set's fine (`q`) and one-piece
+/// (`coarse`) queries.
+fn set_error_bounds(
+    g: &[SlopeForm; 7],
+    delta: &[f64; 7],
+    rest: Interval,
+    q: &mut SetQuery<'_, 7, 7>,
+    coarse: &mut SetQuery<'_, 7, 7>,
+    nominal: &[f64; 7],
+    enough: f64,
+) -> Interval {
+    let point = |v: [f64; 7]| v.map(Interval::point);
+    let up = |v: f64, w: f64| (Interval::point(v) + Interval::point(w)).sup();
+    // max |v·δ| over the set (one piece).
+    let mut reach_of = |v: [f64; 7]| -> f64 {
+        if v.iter().all(|x| *x == 0.0) {
+            return 0.0;
+        }
+        let plus = coarse.max_linear(&point(v), nominal).upper;
+        let minus = coarse.max_linear(&point(v.map(|x| -x)), nominal).upper;
+        plus.max(minus).max(0.0)
+    };
+    // The pose's second-order terms, one by one: by their coefficients' magnitudes over the
+    // set's box where that is small, else by the set.
+    let quadratic: Vec<[f64; 7]> = (0..6)
+        .flat_map(|k| (k..6).map(move |l| (k, l)))
+        .map(|(k, l)| g.map(|f| f.quadratic(k, l)))
+        .collect();
+    let crude: Vec<f64> = quadratic
+        .iter()
+        .map(|v| {
+            (0..7).fold(0.0, |s, j| {
+                up(
+                    s,
+                    (Interval::point(v[j].abs()) * Interval::point(delta[j])).sup(),
+                )
+            })
+        })
+        .collect();
+    let crude_total: f64 = crude.iter().sum();
+    let mut second = Interval::ZERO;
+    for (v, c) in quadratic.iter().zip(&crude) {
+        let term = if *c > crude_total / 32.0 {
+            reach_of(*v).min(*c)
+        } else {
+            *c
+        };
+        second += Interval::point(term);
+    }
+    let c = g.map(|f| f.centre());
+    let a: [[f64; 7]; 6] = core::array::from_fn(|k| g.map(|f| f.linear()[k]));
+    let reach: [f64; 6] = core::array::from_fn(|k| reach_of(a[k]));
+    let both = |hi: f64, lo: f64| {
+        if hi.is_nan() || lo.is_nan() || !hi.is_finite() || !lo.is_finite() {
+            Interval::ENTIRE
+        } else {
+            Interval::new(lo.min(hi), hi.max(lo))
+        }
+    };
+    // The cheap bound: one piece, every pose coordinate on its own.
+    let all = reach
+        .iter()
+        .fold(rest + second, |s, r| s + Interval::point(*r))
+        .sup();
+    let cheap = both(
+        up(coarse.max_linear(&point(c), nominal).upper, all),
+        -up(coarse.max_linear(&point(c.map(|v| -v)), nominal).upper, all),
+    );
+    if cheap.mag() <= enough {
+        return cheap;
+    }
+    // The coordinates with the largest linear terms get the vertices.
+    let total: f64 = reach.iter().sum();
+    let mut vertex: Vec<usize> = (0..6).filter(|&k| reach[k] > total / 64.0).collect();
+    vertex.sort_by(|&p, &r| reach[r].total_cmp(&reach[p]));
+    vertex.truncate(MAX_VERTEX_COORDINATES);
+    let others = (0..6)
+        .filter(|k| !vertex.contains(k))
+        .fold(Interval::ZERO, |s, k| s + Interval::point(reach[k]));
+    let slack = (rest + second + others).sup();
+    let mut bound = |sign: f64| -> f64 {
+        let mut best = f64::NEG_INFINITY;
+        for pattern in 0..1u32 << vertex.len() {
+            let mut w = c;
+            for (bit, &k) in vertex.iter().enumerate() {
+                let s = if pattern >> bit & 1 == 1 { 1.0 } else { -1.0 };
+                for j in 0..7 {
+                    w[j] += s * a[k][j];
+                }
+            }
+            // The sums above are rounded: their error is bounded into the slopes' radii.
+            let slopes: [Interval; 7] = core::array::from_fn(|j| {
+                let err = vertex.iter().fold(c[j].abs(), |e, &k| e + a[k][j].abs())
+                    * (vertex.len() as f64 + 1.0)
+                    * f64::EPSILON;
+                Interval::mid_rad(sign * w[j], err)
+            });
+            best = best.max(q.max_linear(&slopes, nominal).upper);
+        }
+        up(best, slack)
+    };
+    let fine = both(bound(1.0), -bound(-1.0));
+    let tight = fine.intersection(cheap);
+    if tight.is_empty() {
+        fine
+    } else {
+        tight
+    }
+}
+
+/// An explicit worst-case instance of a leg: a pose of the workspace and a true geometry (proved
+/// consistent with the measurements, over a set; in the leg's box otherwise) whose length error
+/// is at least `value`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Instance {
     /// The commanded pose `(p, q)`, proved to lie in the workspace.
     pub pose: PoseVector,
-    /// The true geometry `θ*` (points inside the box; a fixed parameter as the enclosure of its
-    /// decimal value).
+    /// The true geometry `θ*` (over a set: a certified geometry, as point intervals; over a box:
+    /// points inside it, a fixed parameter as the enclosure of its decimal value).
     pub theta: [Interval; 7],
     /// `|L(X; θ*) - L(X; θ̂)|`, rounded down (cm).
     pub value: f64,

@@ -21,8 +21,10 @@ mod pose_bound;
 mod pose_chart;
 mod pose_error;
 
-pub use enclosure::{AccuracyProblem, Instance, PoseBox, PoseVector};
-pub use model::{leg_length_error, leg_reading, LegLengthError, LegReading};
+pub use enclosure::{AccuracyProblem, Instance, LegSet, PoseBox, PoseVector};
+pub use model::{
+    leg_curvature, leg_length_error, leg_reading, LegCurvature, LegLengthError, LegReading,
+};
 pub use pose_bound::{
     pose_error_bounds, reached_change, PoseBoundSettings, PoseErrorBounds, ReachedChange,
 };
@@ -31,7 +33,6 @@ pub use pose_error::{
     PoseErrorKind, PoseErrors,
 };
 
-use crate::files::LegSpec;
 use crate::workspace::Workspace;
 use calib_core::{maximize, Interval, MaximumSettings, Objective};
 use rayon::prelude::*;
@@ -40,10 +41,10 @@ use std::time::Instant;
 /// The built-in hexapod with the boxes 21 poses of the simulator's workspace leave (`a_z` and `l`
 /// at ± 0.1 cm): centimetre and degree errors at the platform, for the unit tests.
 #[cfg(test)]
-pub(crate) fn centimetre_robot() -> Vec<LegSpec> {
+pub(crate) fn centimetre_robot() -> Vec<crate::files::LegSpec> {
     crate::simulate::builtin_hexapod()
         .into_iter()
-        .map(|nominal| LegSpec {
+        .map(|nominal| crate::files::LegSpec {
             nominal,
             radius: [0.02, 0.02, 0.1, 0.01, 0.01, 0.05, 0.1],
         })
@@ -59,12 +60,35 @@ struct LegLengthObjective<'a> {
 }
 
 impl Objective<6> for LegLengthObjective<'_> {
+    fn at(&self, x: &PoseVector) -> Interval {
+        let value = self.enclose(&x.map(Interval::point));
+        if !self.problem.over_set(self.leg) {
+            return value;
+        }
+        // Over a set the enclosure's lower end is not attained: the catalogue's certified
+        // geometries are.
+        let attained = self.problem.attained(self.leg, x);
+        if self.problem.proved_feasible(x) && attained <= value.sup() {
+            Interval::new(attained, value.sup())
+        } else {
+            Interval::new(0.0, value.sup())
+        }
+    }
+
     fn enclose(&self, x: &PoseBox) -> Interval {
+        self.enclose_up_to(x, 0.0)
+    }
+
+    fn enclose_up_to(&self, x: &PoseBox, enough: f64) -> Interval {
         if !self.problem.may_be_feasible(x) {
             // No pose of the workspace here: it does not raise the error over the workspace.
             return Interval::ZERO;
         }
-        let value = self.problem.leg_bounds(self.leg, x);
+        // The poses of the workspace in the box lie in its part within the tilt.
+        let Some(x) = self.problem.within_tilt(x) else {
+            return Interval::ZERO;
+        };
+        let value = self.problem.leg_bounds_up_to(self.leg, &x, enough);
         if value.sup().is_nan() || value.inf().is_nan() {
             Interval::new(0.0, f64::INFINITY)
         } else {
@@ -111,8 +135,12 @@ impl Bracket {
 pub struct AccuracySettings {
     /// Stop at `upper <= (1 + rel_tol) lower` (default 0.04: brackets within 1.05 with margin).
     pub rel_tol: f64,
-    /// Examine at most this many pose boxes per error (default 300 000).
+    /// Examine at most this many pose boxes per error of a leg over its box (default 300 000).
     pub max_boxes: usize,
+    /// Examine at most this many pose boxes per error of a leg over its certified set (default
+    /// 1 000: each costs a few dozen small linear programs, where a box costs a few interval
+    /// evaluations).
+    pub max_set_boxes: usize,
     /// Stop the platform pose errors' upper bounds after about this many seconds per robot
     /// (default 30; [`PoseBoundSettings::max_seconds`]): the bounds stay valid, only less tight.
     pub pose_seconds: f64,
@@ -123,6 +151,7 @@ impl Default for AccuracySettings {
         AccuracySettings {
             rel_tol: 0.04,
             max_boxes: 300_000,
+            max_set_boxes: 1000,
             pose_seconds: PoseBoundSettings::default().max_seconds,
         }
     }
@@ -140,18 +169,13 @@ pub struct Accuracy {
     pub seconds: f64,
 }
 
-/// Brackets the leg-length error of every leg of `robot` (each parameter in nominal ± radius) on
-/// `workspace` (see the module documentation), the legs in parallel.
-pub fn certify_accuracy(
-    robot: &[LegSpec],
-    workspace: &Workspace,
-    settings: &AccuracySettings,
-) -> Accuracy {
+/// Brackets the leg-length error of every leg of the problem (over each leg's certified set, or
+/// its box) on its workspace (see the module documentation), the legs in parallel.
+pub fn certify_accuracy(problem: &AccuracyProblem, settings: &AccuracySettings) -> Accuracy {
     let start = Instant::now();
-    let problem = AccuracyProblem::new(robot, workspace);
     let leg_length = (0..problem.legs())
         .into_par_iter()
-        .map(|leg| bracket(&problem, leg, settings))
+        .map(|leg| bracket(problem, leg, settings))
         .collect();
     Accuracy {
         leg_length,
@@ -160,22 +184,22 @@ pub fn certify_accuracy(
     }
 }
 
-/// What `gough accuracy` computes: the leg-length brackets and the pose-error instances of
-/// `robot` and, when given, of the robot `before` calibration, with the actuator error `± len`
-/// when known (0 otherwise), and the error map when `map` is set.
+/// What `gough accuracy` computes: the leg-length brackets and the platform's pose errors of
+/// the calibrated robot (`after`: over its certified sets, where it has them) and, when given,
+/// of the robot `before` calibration (over its boxes), with the actuator error `± len` when
+/// known (0 otherwise), and the error map when `map` is set. Both problems share a workspace.
 pub fn accuracy_report(
-    robot: &[LegSpec],
-    before: Option<&[LegSpec]>,
-    workspace: &Workspace,
+    after: &AccuracyProblem,
+    before: Option<&AccuracyProblem>,
     actuator: Option<f64>,
     settings: &AccuracySettings,
     map: bool,
 ) -> AccuracyReport {
     let eps = actuator.unwrap_or(0.0);
-    let assess = |legs: &[LegSpec]| {
-        let mut a = certify_accuracy(legs, workspace, settings);
+    let assess = |problem: &AccuracyProblem| {
+        let mut a = certify_accuracy(problem, settings);
         let pose = pose_errors(
-            &AccuracyProblem::new(legs, workspace),
+            problem,
             eps,
             &PoseBoundSettings {
                 rel_tol: settings.rel_tol,
@@ -188,34 +212,61 @@ pub fn accuracy_report(
         a
     };
     AccuracyReport {
-        workspace: *workspace,
-        after: assess(robot),
+        workspace: *after.workspace(),
+        after: assess(after),
         before: before.map(assess),
         actuator,
-        map: map.then(|| error_map(robot, workspace, MAP_CELLS, MAP_SLABS)),
+        map: map.then(|| error_map(after, MAP_CELLS, MAP_SLABS)),
+        over_set: (0..after.legs()).map(|i| after.over_set(i)).collect(),
     }
 }
 
-/// Brackets the length error of leg `leg` (0-based).
+/// Brackets the length error of leg `leg` (0-based) over the workspace.
 pub fn bracket(problem: &AccuracyProblem, leg: usize, settings: &AccuracySettings) -> Bracket {
+    bracket_within(problem, leg, None, settings, true)
+}
+
+/// [`bracket`] over the poses whose positions lie in `positions` (the workspace's when `None`),
+/// with the local search for instances when `search`.
+fn bracket_within(
+    problem: &AccuracyProblem,
+    leg: usize,
+    positions: Option<[Interval; 3]>,
+    settings: &AccuracySettings,
+    search: bool,
+) -> Bracket {
+    let mut domain = problem.domain();
+    if let Some(p) = positions {
+        domain[..3].copy_from_slice(&p);
+    }
     let objective = LegLengthObjective {
         problem,
         leg,
-        search: true,
+        search,
     };
     let m = maximize(
         &objective,
-        &problem.domain(),
+        &domain,
         &MaximumSettings {
             rel_tol: settings.rel_tol,
             abs_tol: 0.0,
-            max_boxes: settings.max_boxes,
+            max_boxes: if problem.over_set(leg) {
+                settings.max_set_boxes
+            } else {
+                settings.max_boxes
+            },
         },
     );
-    let worst = problem.instance(leg, &m.argmax).filter(|i| i.value > 0.0);
+    let worst = if search {
+        problem.instance(leg, &m.argmax).filter(|i| i.value > 0.0)
+    } else {
+        None
+    };
     Bracket {
         upper: m.upper,
-        lower: worst.as_ref().map_or(0.0, |i| i.value),
+        lower: worst
+            .as_ref()
+            .map_or(m.lower.max(0.0), |i| i.value.max(m.lower)),
         worst,
         frontier: m.frontier,
         converged: m.converged,
@@ -302,6 +353,9 @@ pub struct AccuracyReport {
     pub actuator: Option<f64>,
     /// Where in the workspace the error is large (see [`error_map`]), when computed.
     pub map: Option<Vec<MapSlab>>,
+    /// Per leg, whether the calibrated robot's errors are taken over its certified set (else
+    /// over the robot file's box: a file without a set).
+    pub over_set: Vec<bool>,
 }
 
 /// How much calibration improved leg `i`: `before.lower / after.upper`, a proved factor (the
@@ -352,7 +406,16 @@ pub fn pose_improvement(before: &PoseErrors, after: &PoseErrors) -> [Option<f64>
     ]
 }
 
-fn bracket_json(leg: usize, b: &Bracket) -> serde_json::Value {
+/// What a bound is taken over, as the JSON says it: `"certified set"` or `"box"`.
+pub fn over_words(over_set: bool) -> &'static str {
+    if over_set {
+        "certified set"
+    } else {
+        "box"
+    }
+}
+
+fn bracket_json(leg: usize, b: &Bracket, over_set: bool) -> serde_json::Value {
     let worst = b.worst.as_ref().map(|w| {
         let (p, axis, angle_deg) = axis_angle(&w.pose);
         serde_json::json!({
@@ -363,6 +426,7 @@ fn bracket_json(leg: usize, b: &Bracket) -> serde_json::Value {
     });
     serde_json::json!({
         "leg": leg + 1,
+        "over": over_words(over_set),
         "upper": b.upper,
         "lower": b.lower,
         "ratio": b.ratio(),
@@ -382,6 +446,7 @@ fn pose_json(
     unproved: Option<&PoseVector>,
     bounds: Option<&PoseErrorBounds>,
     kind: PoseErrorKind,
+    over: &str,
 ) -> serde_json::Value {
     let worst = i.map(|w| {
         let (p, axis, angle_deg) = axis_angle(&w.commanded);
@@ -415,6 +480,7 @@ fn pose_json(
         .filter(|_| upper.is_none())
         .map(|b| serde_json::json!({ "finest": b.unprovable, "settled_share": b.settled_share }));
     serde_json::json!({
+        "over": over,
         "upper": upper,
         "lower": lower,
         "ratio": upper.zip(lower).map(|(u, l)| calib_core::maximum::bracket_ratio(u, l)),
@@ -425,29 +491,42 @@ fn pose_json(
     })
 }
 
-fn pose_fields(a: &Accuracy) -> (serde_json::Value, serde_json::Value) {
+/// What the platform's pose errors are taken over: `"certified set"` when every leg has one,
+/// `"box"` when none has, `"certified set and box"` for a mix.
+fn pose_over(over_set: &[bool]) -> &'static str {
+    match (over_set.iter().all(|o| *o), over_set.iter().any(|o| *o)) {
+        (true, _) => "certified set",
+        (false, false) => "box",
+        (false, true) => "certified set and box",
+    }
+}
+
+fn pose_fields(a: &Accuracy, over_set: &[bool]) -> (serde_json::Value, serde_json::Value) {
     let pose = a.pose.as_ref();
+    let over = pose_over(over_set);
     (
         pose_json(
             pose.and_then(|p| p.position.as_ref()),
             pose.and_then(|p| p.position_unproved.as_ref()),
             pose.and_then(|p| p.bounds.as_ref()),
             PoseErrorKind::Position,
+            over,
         ),
         pose_json(
             pose.and_then(|p| p.orientation.as_ref()),
             pose.and_then(|p| p.orientation_unproved.as_ref()),
             pose.and_then(|p| p.bounds.as_ref()),
             PoseErrorKind::Orientation,
+            over,
         ),
     )
 }
 
-fn legs_json(a: &Accuracy) -> Vec<serde_json::Value> {
+fn legs_json(a: &Accuracy, over_set: &[bool]) -> Vec<serde_json::Value> {
     a.leg_length
         .iter()
         .enumerate()
-        .map(|(i, b)| bracket_json(i, b))
+        .map(|(i, b)| bracket_json(i, b, over_set.get(i).copied().unwrap_or(false)))
         .collect()
 }
 
@@ -486,20 +565,23 @@ impl AccuracyReport {
     /// [`pose_improvement`], null where not proved; null without `before`) and `actuator`.
     pub fn json(&self) -> serde_json::Value {
         let w = &self.workspace;
-        let (position, orientation) = pose_fields(&self.after);
+        let (position, orientation) = pose_fields(&self.after, &self.over_set);
+        let boxes = vec![false; self.over_set.len()];
         serde_json::json!({
             "version": 1,
             "workspace": {
                 "x": w.x, "y": w.y, "z": w.z, "tilt_deg": w.tilt_deg, "stroke": w.stroke,
             },
             "param_order": crate::PARAMETER_NAMES,
-            "leg_length": legs_json(&self.after),
+            "over": pose_over(&self.over_set),
+            "leg_length": legs_json(&self.after, &self.over_set),
             "position": position,
             "orientation": orientation,
             "before": self.before.as_ref().map(|b| {
-                let (position, orientation) = pose_fields(b);
+                let (position, orientation) = pose_fields(b, &boxes);
                 serde_json::json!({
-                    "leg_length": legs_json(b),
+                    "over": "box",
+                    "leg_length": legs_json(b, &boxes),
                     "position": position,
                     "orientation": orientation,
                 })
@@ -551,13 +633,21 @@ impl AccuracyReport {
                 row
             })
             .collect();
+        let geometries = match pose_over(&self.over_set) {
+            "certified set" => {
+                "for every geometry the measurements allow (the certified set: not its box, \
+                 whose corners the data rule out)"
+            }
+            "box" => "for every geometry in the robot file's boxes (the file has no certified set)",
+            _ => "for every geometry of the certified set (legs without one: of their boxes)",
+        };
         let mut paragraphs = vec![format!(
             "Over the workspace (platform centre x in [{}, {}], y in [{}, {}], z in [{}, {}] cm, \
-             rotation up to {}° about any axis{}), for every geometry in the calibrated boxes, \
-             the length the controller commands (from the calibrated values) differs from the \
-             length the real leg needs by at most the upper bound — proved over the whole \
-             workspace — and by at least the lower bound, attained at an explicit pose and \
-             geometry.",
+             rotation up to {}° about any axis{}), {geometries}, the length the controller \
+             commands (from the calibrated values) differs from the length the real leg needs \
+             by at most the upper bound — proved over the whole workspace — and by at least the \
+             lower bound, attained at an explicit pose and a geometry proved consistent with the \
+             measurements.",
             w.x[0],
             w.x[1],
             w.y[0],
@@ -578,7 +668,7 @@ impl AccuracyReport {
         paragraphs.push(
             "The platform's position and orientation errors below are bracketed: each lower \
              bound is attained by an explicit instance (a commanded pose of the workspace, a \
-             true geometry at a corner of the boxes, actuator errors within their bounds) whose \
+             true geometry the data allow, actuator errors within their bounds) whose \
              reached pose is proved by interval Newton along the path from the commanded pose; \
              each upper bound is proved over the whole workspace (no path from a commanded pose \
              can leave a region whose boundary every leg excludes), where the reached pose can \
@@ -695,6 +785,12 @@ impl AccuracyReport {
     }
 }
 
+/// Boxes per leg and cell of the error map (a leg over its box).
+const MAP_BOXES: usize = 400;
+
+/// Boxes per leg and cell of the error map, a leg over its set (each costs milliseconds).
+const MAP_SET_BOXES: usize = 12;
+
 /// The error map of the certificates: cells per side of the `x`–`y` grid.
 pub const MAP_CELLS: usize = 6;
 /// The error map of the certificates: slabs of heights.
@@ -719,8 +815,7 @@ pub struct MapSlab {
 /// in `slabs` slabs of heights: where in the workspace the error is large. Each cell's bound is a
 /// short branch and bound of its own (`rel_tol` 0.2, 400 boxes per leg): proved, if coarser than
 /// the brackets.
-pub fn error_map(robot: &[LegSpec], workspace: &Workspace, n: usize, slabs: usize) -> Vec<MapSlab> {
-    let problem = AccuracyProblem::new(robot, workspace);
+pub fn error_map(problem: &AccuracyProblem, n: usize, slabs: usize) -> Vec<MapSlab> {
     let domain = problem.domain();
     // The last edge is the domain's end exactly: the cells cover the domain.
     let edges = |v: Interval, k: usize| -> Vec<f64> {
@@ -739,10 +834,11 @@ pub fn error_map(robot: &[LegSpec], workspace: &Workspace, n: usize, slabs: usiz
         edges(domain[1], n),
         edges(domain[2], slabs),
     );
-    let settings = MaximumSettings {
+    let settings = AccuracySettings {
         rel_tol: 0.2,
-        abs_tol: 0.0,
-        max_boxes: 400,
+        max_boxes: MAP_BOXES,
+        max_set_boxes: MAP_SET_BOXES,
+        ..AccuracySettings::default()
     };
     (0..slabs)
         .map(|s| {
@@ -751,18 +847,14 @@ pub fn error_map(robot: &[LegSpec], workspace: &Workspace, n: usize, slabs: usiz
                 .map(|ix| {
                     (0..n)
                         .map(|iy| {
-                            let mut cell = domain;
-                            cell[0] = Interval::new(xe[ix], xe[ix + 1]);
-                            cell[1] = Interval::new(ye[iy], ye[iy + 1]);
-                            cell[2] = Interval::new(ze[s], ze[s + 1]);
+                            let cell = [
+                                Interval::new(xe[ix], xe[ix + 1]),
+                                Interval::new(ye[iy], ye[iy + 1]),
+                                Interval::new(ze[s], ze[s + 1]),
+                            ];
                             (0..problem.legs())
                                 .map(|leg| {
-                                    let objective = LegLengthObjective {
-                                        problem: &problem,
-                                        leg,
-                                        search: false,
-                                    };
-                                    maximize(&objective, &cell, &settings).upper
+                                    bracket_within(problem, leg, Some(cell), &settings, false).upper
                                 })
                                 .fold(0.0, f64::max)
                         })

@@ -65,3 +65,46 @@ pub fn leg_reading<S: Scalar>(x: &[S; 7], m: &[S; 6]) -> S {
         - az;
     (e1.sqr() + e2.sqr() + e3.sqr()).sqrt() - l
 }
+
+/// A bound of the curvature term of a leg's reading in its geometry: with `v = p + R(q) b̂ - â`,
+/// `û = v / |v|` and `d = R(q) δb - δa` (`δ = θ - θ̂`),
+/// `|v + d| - |v| - û·d = |û × d|² / (|v + d| + |v| + û·d)`-like and lies in
+/// `[0, |û × d|² / (2 (|v| - |d|))]` when `|d| < |v|` (with `a = |v| + û·d >= |v| - |d| > 0`,
+/// `|v + d|² = a² + |û × d|²` and `√(a² + c) <= a + c / 2a`; the lower end is Cauchy–Schwarz).
+/// This function is that upper end: `x = δ = (δa, δb, δl)`, `m = (p, q, θ̂)`. So
+/// `ΔL = ∇_θ L(X; θ̂)·δ + r` with `0 <= r <=` it, exactly.
+#[interval_model]
+pub fn leg_curvature<S: Scalar>(x: &[S; 7], m: &[S; 13]) -> S {
+    let [da1, da2, da3, db1, db2, db3, _dl] = *x;
+    let [px, py, pz, q1, q2, q3, ax, ay, az, bx, by, bz, _l] = *m;
+    let (s1, s2, s3) = (q1.sqr(), q2.sqr(), q3.sqr());
+    let d = 1.0 + s1 + s2 + s3;
+    let (r11, r12, r13) = (
+        (1.0 + s1 - s2 - s3) / d,
+        2.0 * (q1 * q2 - q3) / d,
+        2.0 * (q1 * q3 + q2) / d,
+    );
+    let (r21, r22, r23) = (
+        2.0 * (q1 * q2 + q3) / d,
+        (1.0 - s1 + s2 - s3) / d,
+        2.0 * (q2 * q3 - q1) / d,
+    );
+    let (r31, r32, r33) = (
+        2.0 * (q1 * q3 - q2) / d,
+        2.0 * (q2 * q3 + q1) / d,
+        (1.0 - s1 - s2 + s3) / d,
+    );
+    let v1 = px + r11 * bx + r12 * by + r13 * bz - ax;
+    let v2 = py + r21 * bx + r22 * by + r23 * bz - ay;
+    let v3 = pz + r31 * bx + r32 * by + r33 * bz - az;
+    let n = (v1.sqr() + v2.sqr() + v3.sqr()).sqrt();
+    let (u1, u2, u3) = (v1 / n, v2 / n, v3 / n);
+    let e1 = r11 * db1 + r12 * db2 + r13 * db3 - da1;
+    let e2 = r21 * db1 + r22 * db2 + r23 * db3 - da2;
+    let e3 = r31 * db1 + r32 * db2 + r33 * db3 - da3;
+    let c1 = u2 * e3 - u3 * e2;
+    let c2 = u3 * e1 - u1 * e3;
+    let c3 = u1 * e2 - u2 * e1;
+    let size = (e1.sqr() + e2.sqr() + e3.sqr()).sqrt();
+    (c1.sqr() + c2.sqr() + c3.sqr()) / (2.0 * (n - size))
+}

@@ -1,10 +1,10 @@
 //! `gough accuracy`.
 
 use calib_gough::accuracy::{
-    accuracy_report, improvement, improvement_words, pose_words, unproved_words, Accuracy,
-    AccuracyReport, AccuracySettings, PoseErrorInstance, PoseErrors,
+    accuracy_report, improvement, improvement_words, over_words, pose_words, unproved_words,
+    Accuracy, AccuracyProblem, AccuracyReport, AccuracySettings, PoseErrorInstance, PoseErrors,
 };
-use calib_gough::files::{read_robot, read_uncertainty};
+use calib_gough::files::{leg_sets, read_robot, read_robot_file, read_uncertainty};
 use calib_gough::report::write_atomically;
 use calib_gough::workspace::{read_workspace, Workspace};
 use calib_pipeline::html;
@@ -13,7 +13,8 @@ use std::path::PathBuf;
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// The robot file the controller loads (e.g. from `gough certify --write-calibrated`): its
-    /// values are what the controller uses, its radii the box the real robot lies in.
+    /// values are what the controller uses; the real robot's geometry lies in its certified set
+    /// (a calibrated file carries it), or in its boxes (a file without a set).
     #[arg(long, value_name = "FILE")]
     robot: PathBuf,
     /// The poses the robot is used at (workspace.toml: x, y, z = [lo, hi] cm, tilt_deg,
@@ -31,9 +32,14 @@ pub struct Args {
     /// Stop each bracket at upper <= (1 + TOL) lower.
     #[arg(long, value_name = "TOL", default_value_t = 0.04)]
     tolerance: f64,
-    /// Examine at most this many pose boxes per leg-length bracket.
+    /// Examine at most this many pose boxes per leg-length bracket of a leg without a
+    /// certified set (over its box).
     #[arg(long, value_name = "N", default_value_t = AccuracySettings::default().max_boxes)]
     max_boxes: usize,
+    /// Examine at most this many pose boxes per leg-length bracket of a leg over its certified
+    /// set (each costs a few dozen small linear programs: about 2 ms on one core).
+    #[arg(long, value_name = "N", default_value_t = AccuracySettings::default().max_set_boxes)]
+    max_set_boxes: usize,
     /// Stop refining the platform's position and orientation upper bounds after about this
     /// many seconds per robot: they stay proved, only less tight (the output says so).
     #[arg(long, value_name = "S", default_value_t = AccuracySettings::default().pose_seconds)]
@@ -60,7 +66,8 @@ pub fn checked_pose_seconds(seconds: f64) -> Result<f64, String> {
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
-    let robot = read_robot(&a.robot)?;
+    let file = read_robot_file(&a.robot)?;
+    let sets = leg_sets(&a.robot, &file)?;
     let workspace = read_workspace(&a.workspace)?;
     let before = a.before.as_deref().map(read_robot).transpose()?;
     let actuator = a
@@ -75,13 +82,25 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let settings = AccuracySettings {
         rel_tol: a.tolerance,
         max_boxes: a.max_boxes,
+        max_set_boxes: a.max_set_boxes,
         pose_seconds: checked_pose_seconds(a.pose_seconds)?,
     };
+    if sets.iter().all(Option::is_none) {
+        println!(
+            "note: {} has no certified set (a robot file written by hand or by an older \
+             certicalib): its errors are bounded over its boxes, which contain geometries the \
+             measurements rule out; `gough certify --write-calibrated` writes a file whose errors \
+             are bounded over the certified set\n",
+            a.robot.display()
+        );
+    }
     let report = with_spinner(settings.pose_seconds, before.is_some(), || {
         accuracy_report(
-            &robot,
-            before.as_deref(),
-            &workspace,
+            &AccuracyProblem::over_sets(&file.legs, &sets, &workspace),
+            before
+                .as_deref()
+                .map(|b| AccuracyProblem::new(b, &workspace))
+                .as_ref(),
             actuator,
             &settings,
             a.report.is_some(),
@@ -165,10 +184,24 @@ fn describe(w: &Workspace) -> String {
 
 /// Prints the brackets, the worst instance and the improvement.
 pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
+    let over = if r.over_set.iter().all(|o| *o) {
+        "the measurements allow (its certified set)".to_string()
+    } else if r.over_set.iter().any(|o| *o) {
+        let boxed: Vec<String> = (0..r.over_set.len())
+            .filter(|&i| !r.over_set[i])
+            .map(|i| (i + 1).to_string())
+            .collect();
+        format!(
+            "the measurements allow (its certified set; legs {} over the robot file's box)",
+            boxed.join(", ")
+        )
+    } else {
+        "in the robot file's box".to_string()
+    };
     println!(
         "leg-length error of {} over the workspace of {}\n({}):\nthe length the controller \
-         commands minus the length the real leg needs, for every geometry in the robot file's \
-         box, proved between lower and upper (cm)\n",
+         commands minus the length the real leg needs, for every geometry {over}, proved \
+         between lower and upper (cm)\n",
         robot,
         workspace,
         describe(&r.workspace)
@@ -180,18 +213,22 @@ pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
              bounds below still hold over whatever the workspace contains\n"
         );
     }
-    let mut header = format!("{:<5}{:>10}{:>10}{:>8}", "leg", "lower", "upper", "ratio");
+    let mut header = format!(
+        "{:<5}{:>10}{:>10}{:>8}{:>15}",
+        "leg", "lower", "upper", "ratio", "over"
+    );
     if r.before.is_some() {
         header += &format!("{:>16}{:>14}", "before (upper)", "improvement");
     }
     println!("{header}");
     for (i, b) in r.after.leg_length.iter().enumerate() {
         let mut row = format!(
-            "{:<5}{:>10.5}{:>10.5}{:>8.3}",
+            "{:<5}{:>10.5}{:>10.5}{:>8.3}{:>15}",
             i + 1,
             b.lower,
             b.upper,
-            b.ratio()
+            b.ratio(),
+            over_words(r.over_set.get(i).copied().unwrap_or(false))
         );
         if let Some(before) = &r.before {
             let p = &before.leg_length[i];
@@ -208,7 +245,7 @@ pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
              {reach:.5} cm of the length it needs"
         );
     }
-    print_worst(&r.after);
+    print_worst(&r.after, &r.over_set);
     print_pose_errors(r);
     if let Some(before) = &r.before {
         let factor = before
@@ -322,7 +359,7 @@ fn print_pose_errors(r: &AccuracyReport) {
     }
 }
 
-fn print_worst(a: &Accuracy) {
+fn print_worst(a: &Accuracy, over_set: &[bool]) {
     let Some((i, b)) = a
         .leg_length
         .iter()
@@ -334,8 +371,13 @@ fn print_worst(a: &Accuracy) {
     let Some(w) = &b.worst else {
         return;
     };
+    let geometry = if over_set.get(i).copied().unwrap_or(false) {
+        "a true geometry proved consistent with every measurement"
+    } else {
+        "its true geometry at a corner of its box"
+    };
     println!(
-        "\nworst: leg {} is {:.5} cm off at {}, with its true geometry at a corner of its box",
+        "\nworst: leg {} is {:.5} cm off at {}, with {geometry}",
         i + 1,
         w.value,
         pose_words(&w.pose)

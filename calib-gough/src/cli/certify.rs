@@ -2,8 +2,8 @@
 
 use super::DataFiles;
 use calib_core::Status;
-use calib_gough::accuracy::{accuracy_report, AccuracyReport, AccuracySettings};
-use calib_gough::calibrated::{calibrated_robot, robot_toml};
+use calib_gough::accuracy::{accuracy_report, AccuracyProblem, AccuracyReport, AccuracySettings};
+use calib_gough::calibrated::{calibrated_robot, robot_toml, CalibratedRobot};
 use calib_gough::certificate::{self, Certificate, Input, LegEntry};
 use calib_gough::certification::{
     certify_legs, identifiability, report, CertifyOptions, LegResult,
@@ -67,14 +67,18 @@ pub struct Args {
     /// leg, and each leg's least-squares solution against its certified box.
     #[arg(long, value_name = "FILE")]
     report: Option<PathBuf>,
-    /// Write the calibrated robot file a controller loads: each parameter at the midpoint of its
-    /// certified outer box, radius = the outer half-width (rounded up), so its boxes contain the
-    /// certified ones. Refused (nothing written) when a leg is proved inconsistent.
+    /// Write the calibrated robot file a controller loads: per leg a geometry proved consistent
+    /// with every measurement (with part of each error bound to spare), chosen towards the
+    /// centre of the leg lengths it predicts over the workspace (--workspace, else the measured
+    /// poses' range); radii whose boxes contain the certified ones; and the certified set, so
+    /// that `gough accuracy` and `gough predict` work over it. Refused (nothing written) when a
+    /// leg is proved inconsistent or undecided (no geometry proved consistent).
     #[arg(long, value_name = "FILE")]
     write_calibrated: Option<PathBuf>,
     /// Also certify the accuracy over this workspace (workspace.toml): per leg, how far the
-    /// commanded leg length can be from the needed one, calibrated (the outer boxes) and
-    /// uncalibrated (robot.toml), as in `gough accuracy`; printed and on the certificate.
+    /// commanded leg length can be from the needed one, calibrated (over the certified set) and
+    /// uncalibrated (robot.toml's box), and the platform's pose errors, as in `gough accuracy`;
+    /// printed and on the certificate.
     #[arg(long, value_name = "FILE")]
     workspace: Option<PathBuf>,
     /// With --workspace: stop refining the platform's position and orientation upper bounds
@@ -168,29 +172,43 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("plots written to {}", dir.display());
     }
     let calibrated = if a.write_calibrated.is_some() || workspace.is_some() {
-        Some(calibrated_robot(&robot, &results)?)
+        Some(calibrated_robot(
+            &robot,
+            &results,
+            &data.configs,
+            &u,
+            workspace.as_ref(),
+        )?)
     } else {
         None
     };
-    if let (Some(path), Some(legs)) = (&a.write_calibrated, &calibrated) {
+    if let (Some(path), Some(cal)) = (&a.write_calibrated, &calibrated) {
         let comment = format!(
-            "calibrated by certicalib {} from {} and {}: each parameter at the midpoint of its\n\
-             certified outer box, radius = its outer half-width",
+            "calibrated by certicalib {} from {} and {}:\n\
+             a, b, l: per leg, a geometry proved consistent with every measurement ({}),\n\
+             chosen towards the centre of the leg lengths it predicts over the workspace;\n\
+             radius: a box around it that contains the certified outer box;\n\
+             [leg.certified_set]: the certified set `gough accuracy` and `gough predict` work over",
             calib_pipeline::html::VERSION,
             a.files.robot.display(),
-            a.files.measurements.display()
+            a.files.measurements.display(),
+            margin_words(cal),
         );
-        write_atomically(path, &robot_toml(legs, &comment))
+        write_atomically(path, &robot_toml(&cal.legs, &cal.sets, &comment))
             .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-        println!("calibrated robot written to {}", path.display());
+        println!(
+            "calibrated robot written to {}: each certified leg's geometry fits every \
+             measurement ({})",
+            path.display(),
+            margin_words(cal)
+        );
     }
     let accuracy = match (&workspace, &calibrated) {
-        (Some(w), Some(legs)) => {
+        (Some(w), Some(cal)) => {
             let report = super::accuracy::with_spinner(pose_seconds, true, || {
                 accuracy_report(
-                    legs,
-                    Some(&robot),
-                    w,
+                    &AccuracyProblem::over_sets(&cal.legs, &cal.sets, w),
+                    Some(&AccuracyProblem::new(&robot, w)),
                     Some(u.len),
                     &AccuracySettings {
                         pose_seconds,
@@ -265,6 +283,24 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("report written to {}", path.display());
     }
     Ok(if any_empty { 2 } else { 0 })
+}
+
+/// The margins the calibrated legs keep, in words: "every error bound with 5% to spare".
+fn margin_words(cal: &CalibratedRobot) -> String {
+    let smallest = cal
+        .points
+        .iter()
+        .flatten()
+        .map(|p| p.margin)
+        .fold(f64::INFINITY, f64::min);
+    if smallest > 0.0 && smallest.is_finite() {
+        format!(
+            "within every error bound with at least {:.0}% of it to spare",
+            100.0 * smallest
+        )
+    } else {
+        "within every error bound".to_string()
+    }
 }
 
 impl Args {
