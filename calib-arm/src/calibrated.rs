@@ -4,7 +4,7 @@
 //! The file holds
 //! * the **calibrated parameters**: a parameter vector proved consistent with every
 //!   measurement (with part of every error bound to spare where the data allow), chosen by a
-//!   [`PointRule`] ([`calib_core::calibrated_point`]) — by default towards the Chebyshev centre
+//!   [`PointRule`] ([`calib_core::calibrated_point()`]) — by default towards the Chebyshev centre
 //!   of the tool points it predicts at the measured configurations and at configurations spread
 //!   over their joint ranges, so that the worst prediction error is as small as the data allow;
 //!   the value written (degrees, shortest decimals) is proved consistent again as read back;
@@ -26,7 +26,7 @@ use calib_pipeline::calibrated::radius_about;
 use calib_pipeline::stored_set::StoredSet;
 use rand::{Rng, SeedableRng};
 
-/// How the calibrated parameter vector is chosen (see [`calib_core::calibrated_point`]).
+/// How the calibrated parameter vector is chosen (see [`calib_core::calibrated_point()`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum PointChoice {
     /// Towards the Chebyshev centre of the predicted tool points (the default): the worst

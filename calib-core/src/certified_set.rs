@@ -680,11 +680,28 @@ pub trait SetObjective<const NX: usize> {
     fn slopes(&self, x: &[Interval; NX]) -> [Interval; NX];
 }
 
+/// The linear function `g·x`, as a [`SetObjective`] (its value enclosed in interval arithmetic,
+/// its slopes exact): to bracket a prediction's range over the set with refinement.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinearFunction<const NX: usize>(pub [f64; NX]);
+
+impl<const NX: usize> SetObjective<NX> for LinearFunction<NX> {
+    fn value(&self, x: &[Interval; NX]) -> Interval {
+        (0..NX).fold(Interval::ZERO, |s, j| s + Interval::point(self.0[j]) * x[j])
+    }
+
+    fn slopes(&self, _: &[Interval; NX]) -> [Interval; NX] {
+        self.0.map(Interval::point)
+    }
+}
+
 /// When to stop [`maximize_over_set`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct SetMaximumSettings {
     /// Stop once `upper - lower <= rel_tol · |lower|` (default 0.01).
     pub rel_tol: f64,
+    /// … or `upper - lower <= abs_tol` (default 0).
+    pub abs_tol: f64,
     /// Refine at most this many pieces (default 200).
     pub max_refinements: usize,
     /// The kernel's settings for the contractions of refined pieces.
@@ -695,6 +712,7 @@ impl Default for SetMaximumSettings {
     fn default() -> Self {
         SetMaximumSettings {
             rel_tol: 0.01,
+            abs_tol: 0.0,
             max_refinements: 200,
             kernel: Settings::default(),
         }
@@ -793,7 +811,8 @@ where
                 }
             }
         }
-        let met = out.upper <= out.lower + settings.rel_tol * out.lower.abs();
+        let gap = out.upper - out.lower;
+        let met = gap <= settings.abs_tol || gap <= settings.rel_tol * out.lower.abs();
         if met || set.is_empty() {
             out.converged = true;
             return out;

@@ -6,7 +6,7 @@
 //!   measurement (with 5% of every error bound to spare where the data allow), chosen towards
 //!   the Chebyshev centre of the leg's predicted lengths over the workspace, so that the worst
 //!   leg-length error a controller loading it can make is as small as the data allow
-//!   ([`calib_core::calibrated_point`], [`PointRule::PredictionCentre`]);
+//!   ([`calib_core::calibrated_point()`], [`PointRule::PredictionCentre`]);
 //! * `radius`: a box around that geometry containing the certified outer box (so that a reader
 //!   that knows only boxes still holds every consistent geometry);
 //! * `[leg.certified_set]`: the measurement boxes, the cover and certified points from which the

@@ -1,6 +1,6 @@
 //! The calibrated robot file every robot writes (`certify --write-calibrated`): each free
 //! parameter at the calibrated point (a parameter vector proved consistent with every
-//! measurement, [`calib_core::calibrated_point`]), with a radius whose box around it contains the
+//! measurement, [`calib_core::calibrated_point()`]), with a radius whose box around it contains the
 //! certified outer box, and the certified set itself ([`crate::stored_set`]).
 
 use calib_core::Interval;
