@@ -266,6 +266,20 @@ pub fn read_measurements(file: &Path, legs: usize) -> Result<Measurements, DataE
 
 /// [`read_measurements`] on text already in memory; `file` names it in errors (e.g. an array).
 pub fn parse_measurements(file: &Path, text: &str, legs: usize) -> Result<Measurements, DataError> {
+    parse_measurements_at_least(file, text, legs, MIN_CONFIGURATIONS)
+}
+
+/// The fewest configurations a calibration takes: one per unknown parameter of a leg.
+pub const MIN_CONFIGURATIONS: usize = 7;
+
+/// [`parse_measurements`] with at least `least` configurations (held-out data to check
+/// predictions against may have fewer than a calibration needs).
+pub fn parse_measurements_at_least(
+    file: &Path,
+    text: &str,
+    legs: usize,
+    least: usize,
+) -> Result<Measurements, DataError> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .from_reader(text.as_bytes());
@@ -385,13 +399,18 @@ pub fn parse_measurements(file: &Path, text: &str, legs: usize) -> Result<Measur
         });
         lines.push(line.unwrap_or(configs.len() + 1));
     }
-    if configs.len() < 7 {
+    if configs.len() < least {
+        let why = if least == MIN_CONFIGURATIONS {
+            " (one per unknown parameter of a leg)"
+        } else {
+            ""
+        };
         return Err(error(
             file,
             None,
             None,
             format!(
-                "{} configurations; at least 7 are needed (one per unknown parameter of a leg)",
+                "{} configurations; at least {least} are needed{why}",
                 configs.len()
             ),
         ));
@@ -415,6 +434,11 @@ pub fn read_poses(file: &Path) -> Result<Vec<Pose>, DataError> {
 /// Parses a poses file: header `px,py,pz,ax,ay,az,angle_deg` ([`POSE_COLUMNS`]), one pose per
 /// row, at least 7 rows; each axis within 1e-3 of unit length (normalised on reading).
 pub fn parse_poses(file: &Path, text: &str) -> Result<Vec<Pose>, DataError> {
+    parse_poses_at_least(file, text, MIN_CONFIGURATIONS)
+}
+
+/// [`parse_poses`] with at least `least` poses.
+pub fn parse_poses_at_least(file: &Path, text: &str, least: usize) -> Result<Vec<Pose>, DataError> {
     let header: Vec<String> = POSE_COLUMNS.iter().map(|c| c.to_string()).collect();
     let table = calib_pipeline::parse_number_table(file, text, &header)?;
     let mut poses = Vec::with_capacity(table.rows.len());
@@ -435,15 +459,17 @@ pub fn parse_poses(file: &Path, text: &str) -> Result<Vec<Pose>, DataError> {
             angle_deg: row[6],
         });
     }
-    if poses.len() < 7 {
+    if poses.len() < least {
+        let why = if least == MIN_CONFIGURATIONS {
+            " (one per unknown parameter of a leg)"
+        } else {
+            ""
+        };
         return Err(error(
             file,
             None,
             None,
-            format!(
-                "{} poses; at least 7 are needed (one per unknown parameter of a leg)",
-                poses.len()
-            ),
+            format!("{} poses; at least {least} are needed{why}", poses.len()),
         ));
     }
     Ok(poses)

@@ -19,6 +19,7 @@ pub mod lsq;
 pub mod measurement;
 pub mod model;
 pub mod plot;
+pub mod predict;
 pub mod report;
 pub mod simulate;
 pub mod verdict;

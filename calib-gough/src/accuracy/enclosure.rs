@@ -376,7 +376,7 @@ impl AccuracyProblem {
     /// `θ*` in its box (see the module documentation).
     pub fn leg_error(&self, i: usize, x: &PoseBox) -> Interval {
         match &self.legs[i].set {
-            Some(set) => self.set_error(i, x, set, f64::INFINITY),
+            Some(set) => self.set_error(i, x, set, 0.0),
             None => self.mean_value(i, x, &self.legs[i].theta),
         }
     }

@@ -4,6 +4,7 @@ mod accuracy;
 mod certify;
 mod design;
 mod lsq;
+mod predict;
 mod reproduce;
 mod simulate;
 
@@ -90,6 +91,21 @@ enum Command {
     /// and how much of the workspace was settled.
     #[command(verbatim_doc_comment)]
     Accuracy(accuracy::Args),
+    /// Predict the leg readings at poses, over every geometry the calibration allows: per pose
+    /// and leg, the certified range of the reading and the range a measurement may show (with
+    /// the error bounds). With --measurements, every reading outside its prediction is named:
+    /// the model or the error bounds are wrong there. This is how a calibration is checked on
+    /// held-out data.
+    ///
+    /// Examples:
+    ///   gough predict --robot calibrated.toml --poses poses.csv \
+    ///                 --uncertainty uncertainty.toml --out predictions.csv
+    ///   gough predict --robot calibrated.toml --measurements held_out.csv \
+    ///                 --uncertainty uncertainty.toml --json check.json
+    ///
+    /// Exit code: 0, or 2 when a measured reading lies outside its prediction; 1 on errors.
+    #[command(verbatim_doc_comment)]
+    Predict(predict::Args),
     /// Choose the configurations to measure: K poses of the workspace that determine every leg
     /// parameter best, with the certified widths they are predicted to give next to a random
     /// design of the same size and the classical D-optimal one.
@@ -135,6 +151,7 @@ pub fn run(cli: Cli) -> Result<i32, Box<dyn std::error::Error>> {
         Command::Simulate(a) => simulate::run(a),
         Command::Design(a) => design::run(a),
         Command::Accuracy(a) => accuracy::run(a),
+        Command::Predict(a) => predict::run(a),
         Command::Reproduce(a) => reproduce::run(a),
     }
 }
