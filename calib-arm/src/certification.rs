@@ -285,8 +285,8 @@ struct Padded {
 /// identity joint).
 pub fn padded_box(arm: &Arm) -> [Interval; NX] {
     let mut x0 = [Interval::ZERO; NX];
-    for (j, &p) in padded_index(arm.joints.len()).iter().enumerate() {
-        x0[p] = arm.initial_box()[j];
+    for (&p, v) in padded_index(arm.joints.len()).iter().zip(arm.initial_box()) {
+        x0[p] = v;
     }
     x0
 }

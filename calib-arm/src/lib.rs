@@ -22,6 +22,7 @@ pub mod files;
 pub mod joint_space;
 pub mod model;
 pub mod params;
+pub mod predict;
 pub mod robot;
 pub mod simulate;
 pub mod units;

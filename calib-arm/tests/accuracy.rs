@@ -53,6 +53,7 @@ fn the_upper_bound_holds_and_the_worst_instance_is_rechecked() {
             &ToolAccuracySettings {
                 rel_tol: 0.04,
                 max_boxes: 600,
+                ..ToolAccuracySettings::default()
             },
         );
         assert!(

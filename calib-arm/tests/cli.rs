@@ -435,10 +435,90 @@ fn the_calibrated_arm_contains_the_certified_box_and_its_accuracy_is_bracketed()
             Some(3)
         );
     }
+    // After calibration the bounds hold over the certified set; before, over the prior box.
+    assert_eq!(a["position"]["over"], "certified set", "{a}");
+    assert_eq!(a["before"]["over"], "box", "{a}");
     // The improvement is the proved factor: before's lower bound over after's upper bound.
     let factor = a["before"]["lower"].as_f64().expect("lower")
         / a["position"]["upper"].as_f64().expect("upper");
     assert_eq!(a["improvement"].as_f64(), Some(factor), "{a}");
+    // Predictions over the set: the true tracked point (truth.json, the simulator's geometry)
+    // lies in every certified range, every measured point in its range with the error bounds.
+    let predict = |measurements: &str| {
+        arm(&[
+            "predict",
+            "--robot",
+            &p("cal.toml"),
+            "--measurements",
+            &p(measurements),
+            "--uncertainty",
+            &p("uncertainty.toml"),
+            "--json",
+            &p("predictions.json"),
+        ])
+    };
+    let o = predict("measurements.csv");
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let predicted: Value =
+        serde_json::from_str(&std::fs::read_to_string(p("predictions.json")).expect("json"))
+            .expect("json");
+    assert_eq!(predicted["over"], "certified set");
+    let truth: Value =
+        serde_json::from_str(&std::fs::read_to_string(p("truth.json")).expect("truth"))
+            .expect("json");
+    let names = calib_arm::params::names(calibrated.joints.len());
+    let x: Vec<f64> = names
+        .iter()
+        .map(|(name, unit)| {
+            let v = truth[name].as_f64().expect("a true value");
+            match unit {
+                calib_arm::params::Unit::Deg => v.to_radians(),
+                calib_arm::params::Unit::Mm => v,
+            }
+        })
+        .collect();
+    let rows = predicted["rows"].as_array().expect("rows");
+    assert_eq!(rows.len(), data.readings.len());
+    for (row, r) in rows.iter().zip(&data.readings) {
+        let q: Vec<f64> = r.joints_deg.iter().map(|v| v.to_radians()).collect();
+        let t = calib_arm::model::tracked_point(&x, &q).expect("a point");
+        for (c, t) in t.iter().enumerate() {
+            let range = &row["range"][c];
+            let (lo, hi) = (
+                range[0].as_f64().expect("lo"),
+                range[1].as_f64().expect("hi"),
+            );
+            // The true point, computed in floating point: within a rounding of the range.
+            assert!(
+                lo - 1e-9 <= *t && *t <= hi + 1e-9,
+                "row {}: {t} not in [{lo}, {hi}]",
+                row["row"]
+            );
+        }
+    }
+    // A measured point moved by ten error bounds is named by row and file line; exit code 2.
+    let measured = std::fs::read_to_string(p("measurements.csv")).expect("data");
+    let mut lines: Vec<String> = measured.lines().map(String::from).collect();
+    let mut cells: Vec<f64> = lines[3]
+        .split(',')
+        .map(|c| c.trim().parse().expect("a number"))
+        .collect();
+    let last = cells.len() - 1;
+    cells[last] += 10.0 * u.pos;
+    lines[3] = cells
+        .iter()
+        .map(|v| format!("{v:?}"))
+        .collect::<Vec<_>>()
+        .join(",");
+    std::fs::write(p("moved.csv"), lines.join("\n") + "\n").expect("write");
+    let o = predict("moved.csv");
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("row 3 ("), "{}", text(&o));
+    let predicted: Value =
+        serde_json::from_str(&std::fs::read_to_string(p("predictions.json")).expect("json"))
+            .expect("json");
+    assert_eq!(predicted["refuting"][0]["row"], 3, "{predicted}");
+    assert_eq!(predicted["refuting"][0]["line"], 4, "{predicted}");
     // A bad joint space: file, line and field named, nothing written.
     std::fs::write(
         p("bad.toml"),

@@ -34,11 +34,12 @@ use directions::{max_over_directions, DirectionCache, Sensitivities};
 use serde_json::json;
 
 mod directions;
+pub mod over_set;
 use std::cell::Cell;
 use std::time::Instant;
 
 /// A point of the search: the joints (radians, padded).
-type SearchPoint = [f64; MAX_JOINTS];
+pub(crate) type SearchPoint = [f64; MAX_JOINTS];
 
 /// The tool-point accuracy problem of a robot file on a joint space (module documentation).
 #[derive(Clone, Debug, PartialEq)]
@@ -116,6 +117,9 @@ pub struct ToolAccuracySettings {
     /// Examine at most this many joint boxes (default 20 000: at most about a minute on a
     /// 6-axis arm; a ±10° cell of every joint converges in about 8 000).
     pub max_boxes: usize,
+    /// Examine at most this many joint boxes over a certified set (default 300: each solves
+    /// eight linear programs of the arm's size, tens of milliseconds).
+    pub max_set_boxes: usize,
 }
 
 impl Default for ToolAccuracySettings {
@@ -123,6 +127,7 @@ impl Default for ToolAccuracySettings {
         ToolAccuracySettings {
             rel_tol: 0.04,
             max_boxes: 20_000,
+            max_set_boxes: 300,
         }
     }
 }
@@ -441,7 +446,7 @@ impl ToolAccuracyProblem {
     }
 }
 
-fn norm(v: [f64; 3]) -> f64 {
+pub(crate) fn norm(v: [f64; 3]) -> f64 {
     (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
@@ -557,6 +562,9 @@ pub struct ToolAccuracyReport {
     pub after: ToolBracket,
     /// The uncalibrated robot's bracket.
     pub before: Option<ToolBracket>,
+    /// Whether the calibrated robot's bracket is taken over its certified set (else over the
+    /// robot file's box: a file without a set).
+    pub over_set: bool,
 }
 
 impl ToolAccuracyReport {
@@ -613,11 +621,20 @@ impl ToolAccuracyReport {
             .enumerate()
             .map(|(k, r)| (format!("q{}", k + 1), json!(r)))
             .collect();
+        let over = |set: bool| if set { "certified set" } else { "box" };
+        let mut position = bracket(&self.after);
+        position["over"] = json!(over(self.over_set));
+        let before = self.before.as_ref().map(|b| {
+            let mut v = bracket(b);
+            v["over"] = json!("box");
+            v
+        });
         let report = json!({
             "joint_space": space,
             "joint_error_deg": self.joint_deg,
-            "position": bracket(&self.after),
-            "before": self.before.as_ref().map(bracket),
+            "over": over(self.over_set),
+            "position": position,
+            "before": before,
             "improvement": self.improvement().map(finite),
         });
         serde_json::to_string_pretty(&report).unwrap_or_default() + "\n"

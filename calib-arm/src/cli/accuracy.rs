@@ -1,12 +1,13 @@
 //! `arm accuracy`.
 
 use super::output::spinner;
+use calib_arm::accuracy::over_set::{certify_set_accuracy, SetToolAccuracy};
 use calib_arm::accuracy::{
     certify_tool_accuracy, ToolAccuracyProblem, ToolAccuracyReport, ToolAccuracySettings,
     ToolBracket,
 };
 use calib_arm::certification::names;
-use calib_arm::files::{read_robot, read_uncertainty};
+use calib_arm::files::{read_calibrated, read_robot, read_uncertainty};
 use calib_arm::joint_space::{read_joint_space, JointSpace};
 use calib_arm::params;
 use calib_arm::simulate::JOINT_LIMIT_DEG;
@@ -16,7 +17,8 @@ use std::path::PathBuf;
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// The robot file the controller loads (e.g. from `arm certify --write-calibrated`): its
-    /// values are what the controller computes with, its radii bound the real geometry.
+    /// values are what the controller computes with; the real geometry lies in its certified
+    /// set (a calibrated file carries it), or in its boxes (a file without a set).
     #[arg(long, value_name = "FILE")]
     robot: PathBuf,
     /// The joint space: q1 = [lo, hi], q2 = …, one range per joint (degrees). Default: every
@@ -34,10 +36,14 @@ pub struct Args {
     /// Stop at upper <= (1 + TOL) × lower.
     #[arg(long, value_name = "TOL", default_value_t = 0.04)]
     tolerance: f64,
-    /// Examine at most this many joint boxes per bound (the bracket stays proved; its ratio is
-    /// reported). Each costs a few milliseconds on a 6-axis arm.
+    /// Examine at most this many joint boxes per bound over a box (the bracket stays proved; its
+    /// ratio is reported). Each costs a few milliseconds on a 6-axis arm.
     #[arg(long, value_name = "N", default_value_t = 20_000)]
     max_boxes: usize,
+    /// Examine at most this many joint boxes over a certified set (each costs tens of
+    /// milliseconds on a 6-axis arm: eight linear programs of its size).
+    #[arg(long, value_name = "N", default_value_t = ToolAccuracySettings::default().max_set_boxes)]
+    max_set_boxes: usize,
     /// Write the JSON report to this file.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
@@ -50,7 +56,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     if a.max_boxes == 0 {
         return Err("--max-boxes 0: expected at least 1".into());
     }
-    let arm = read_robot(&a.robot)?;
+    let (arm, set) = read_calibrated(&a.robot)?;
     let joints = arm.joints.len();
     let before = a.before.as_deref().map(read_robot).transpose()?;
     if let Some(b) = &before {
@@ -75,8 +81,24 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let settings = ToolAccuracySettings {
         rel_tol: a.tolerance,
         max_boxes: a.max_boxes,
+        max_set_boxes: a.max_set_boxes,
     };
-    let after_problem = ToolAccuracyProblem::new(&arm, &space, joint_deg)?;
+    let over_set = set.is_some();
+    if !over_set {
+        println!(
+            "note: {} has no certified set (a robot file written by hand or by an older \
+             certicalib): the error is bounded over its boxes, which contain geometries the \
+             measurements rule out; `arm certify --write-calibrated` writes a file whose error is \
+             bounded over the certified set\n",
+            a.robot.display()
+        );
+    }
+    let after_problem = match set {
+        Some(set) => After::Set(Box::new(SetToolAccuracy::new(
+            &arm, set, &space, joint_deg,
+        )?)),
+        None => After::Box(Box::new(ToolAccuracyProblem::new(&arm, &space, joint_deg)?)),
+    };
     let before_problem = before
         .as_ref()
         .map(|b| ToolAccuracyProblem::new(b, &space, joint_deg))
@@ -91,7 +113,10 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                 .as_ref()
                 .map(|p| certify_tool_accuracy(p, &settings))
         });
-        let after = certify_tool_accuracy(&after_problem, &settings);
+        let after = match &after_problem {
+            After::Set(p) => certify_set_accuracy(p, &settings),
+            After::Box(p) => certify_tool_accuracy(p, &settings),
+        };
         (after, b.join().ok().flatten())
     });
     bar.finish_and_clear();
@@ -100,6 +125,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         joint_deg,
         after,
         before,
+        over_set,
     };
     print_report(&report, &a);
     if let Some(path) = &a.json {
@@ -111,6 +137,12 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     Ok(0)
 }
 
+/// The calibrated robot's problem: over its certified set, or over its box.
+enum After {
+    Set(Box<SetToolAccuracy>),
+    Box(Box<ToolAccuracyProblem>),
+}
+
 fn print_report(r: &ToolAccuracyReport, a: &Args) {
     let space: Vec<String> = r
         .space
@@ -119,9 +151,14 @@ fn print_report(r: &ToolAccuracyReport, a: &Args) {
         .enumerate()
         .map(|(k, [lo, hi])| format!("q{} [{lo}, {hi}]", k + 1))
         .collect();
+    let over = if r.over_set {
+        "every geometry θ* the measurements allow (the certified set)"
+    } else {
+        "every geometry θ* in the robot file's box"
+    };
     println!(
         "tool-point error |p(q; θ*) - p(q; θ̂)| (mm, tracker frame) over the joint space {}°{}, \
-         every geometry θ* in the robot file's box, joint error ±{}°:",
+         {over}, joint error ±{}°:",
         space.join(", "),
         if a.joints.is_none() {
             format!(" (the default: ±{JOINT_LIMIT_DEG}° per joint)")
@@ -146,7 +183,7 @@ fn print_report(r: &ToolAccuracyReport, a: &Args) {
             if b.converged {
                 ""
             } else {
-                "  (box budget reached: raise --max-boxes to tighten)"
+                "  (box budget reached: raise --max-boxes / --max-set-boxes to tighten)"
             }
         )
     };

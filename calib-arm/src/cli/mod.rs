@@ -5,6 +5,7 @@ mod certify;
 mod demo;
 mod lsq;
 mod output;
+mod predict;
 mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -89,6 +90,21 @@ enum Command {
     /// minute (see --max-boxes).
     #[command(verbatim_doc_comment)]
     Accuracy(accuracy::Args),
+    /// Predict the tracked point at joint readings, over every parameter vector the calibration
+    /// allows: per configuration, the certified range of each coordinate and the range a
+    /// measurement may show (with the error bounds). With --measurements, every measured point
+    /// outside its prediction is named: the model or the error bounds are wrong there. This is
+    /// how a calibration is checked on held-out data.
+    ///
+    /// Examples:
+    ///   arm predict --robot calibrated.toml --joints joints.csv \
+    ///               --uncertainty uncertainty.toml --out predictions.csv
+    ///   arm predict --robot calibrated.toml --measurements held_out.csv \
+    ///               --uncertainty uncertainty.toml --json check.json
+    ///
+    /// Exit code: 0, or 2 when a measured point lies outside its prediction; 1 on errors.
+    #[command(verbatim_doc_comment)]
+    Predict(predict::Args),
 }
 
 /// The data files every command reads.
@@ -112,5 +128,6 @@ pub fn run(cli: Cli) -> Result<i32, Box<dyn std::error::Error>> {
         Command::Lsq(a) => lsq::run(a),
         Command::Simulate(a) => simulate::run(a),
         Command::Accuracy(a) => accuracy::run(a),
+        Command::Predict(a) => predict::run(a),
     }
 }
