@@ -565,6 +565,8 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
             html.to_str().unwrap(),
             "--pose-seconds",
             "2",
+            "--max-set-boxes",
+            "150",
         ],
     );
     let stdout = String::from_utf8_lossy(&out.stdout);
@@ -636,7 +638,7 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
         "--pose-seconds",
         "2",
         "--max-set-boxes",
-        "600",
+        "300",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let page = std::fs::read_to_string(dir.join("accuracy.html")).unwrap();
@@ -650,7 +652,7 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
             leg["lower"].as_f64().unwrap(),
             leg["upper"].as_f64().unwrap(),
         );
-        // Over the set, a bracket within 1.6 after 600 boxes of poses on this workspace.
+        // Over the set, a bracket within 1.6 after 300 boxes of poses on this workspace.
         assert!(0.0 < lo && lo <= up && up <= 1.6 * lo, "{leg}");
         assert_eq!(leg["over"], "certified set");
         assert_eq!(leg["worst"]["theta"].as_array().unwrap().len(), 7);

@@ -73,7 +73,11 @@ def test_accuracy_matches_the_command_line(tmp_path):
     cli = json.loads(out.read_text())
     assert mine["leg_length"] == cli["leg_length"]
     for key in ("position", "orientation"):
-        assert mine[key] == cli[key]
+        # The pose-error bounds stop on a time budget, so where they stop depends on the
+        # machine's load: the two runs must agree as brackets (each proved upper bound at least
+        # the other run's attained lower bound), not to the bit.
+        for a, b in ((mine, cli), (cli, mine)):
+            assert b[key]["upper"] is None or b[key]["upper"] >= a[key]["lower"]
         upper, lower = mine[key]["upper"], mine[key]["lower"]
         assert lower > 0 and (upper is None or upper >= lower)
         assert upper is not None or mine[key]["upper_unproved_at"] is not None

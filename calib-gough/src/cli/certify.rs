@@ -85,6 +85,10 @@ pub struct Args {
     /// after about this many seconds per robot, as in `gough accuracy`.
     #[arg(long, value_name = "S", default_value_t = AccuracySettings::default().pose_seconds)]
     pose_seconds: f64,
+    /// With --workspace: examine at most this many boxes of poses per leg over its certified set
+    /// (see `gough accuracy --max-set-boxes`).
+    #[arg(long, value_name = "N", default_value_t = AccuracySettings::default().max_set_boxes)]
+    max_set_boxes: usize,
     /// Write one SVG per leg into this folder: x0, x1, x2, the outer and the inner box in the
     /// projections (ax, ay), (bx, by) and (az, l).
     #[arg(long, value_name = "DIR")]
@@ -212,6 +216,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                     Some(u.len),
                     &AccuracySettings {
                         pose_seconds,
+                        max_set_boxes: a.max_set_boxes,
                         ..AccuracySettings::default()
                     },
                     a.report.is_some(),
