@@ -5,12 +5,11 @@
 use crate::certification::{padded_box, padded_index, padded_quantities, ArmSet, NM, NX};
 use crate::robot::{Arm, Joint};
 use crate::simulate::{Reading, Uncertainty};
+pub use crate::tracker_file::{parse_tracker_measurements, MeasurementColumns, Slack};
 use crate::Arm7Point;
 use calib_core::Interval;
 use calib_pipeline::stored_set::StoredSet;
-use calib_pipeline::{
-    line_at, parse_number_table, read_text, toml_error, DataError, MAX_MAGNITUDE,
-};
+use calib_pipeline::{line_at, read_text, toml_error, DataError, MAX_MAGNITUDE};
 use serde::Deserialize;
 use std::path::Path;
 use toml::Spanned;
@@ -278,13 +277,18 @@ pub fn parse_uncertainty(file: &Path, text: &str) -> Result<Uncertainty, DataErr
     })
 }
 
-/// The readings of `measurements.csv` and the file line of each.
+/// The readings of a measurement file and the file line of each.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Measurements {
     /// One reading per configuration, in file order.
     pub readings: Vec<Reading>,
     /// The 1-based file line of each configuration.
     pub lines: Vec<usize>,
+    /// The largest rounding error of converting the file's units to degrees and mm (0 for a file
+    /// in those units): [`Slack::widen`] adds it to the error bounds.
+    pub slack: Slack,
+    /// Remarks on the file (values that may be in another unit than the one read).
+    pub notes: Vec<String>,
 }
 
 /// Reads `measurements.csv` (see [`parse_measurements`]).
@@ -292,37 +296,22 @@ pub fn read_measurements(file: &Path, joints: usize) -> Result<Measurements, Dat
     parse_measurements(file, &read_text(file)?, joints)
 }
 
-/// Parses `measurements.csv`: header `q1,…,qN,px,py,pz` (`N = joints`; joint readings in
-/// degrees, the tracked point in mm in the tracker frame), one row per configuration, at least
-/// one row.
+/// Parses `measurements.csv`: columns `q1,…,qN,px,py,pz` (`N = joints`; joint readings in
+/// degrees, the tracked point in mm in the tracker frame; other columns are ignored), one row per
+/// configuration, at least one row. Other layouts and units: [`parse_tracker_measurements`].
 pub fn parse_measurements(
     file: &Path,
     text: &str,
     joints: usize,
 ) -> Result<Measurements, DataError> {
-    let header: Vec<String> = (1..=joints)
-        .map(|i| format!("q{i}"))
-        .chain(["px", "py", "pz"].map(String::from))
-        .collect();
-    let table = parse_number_table(file, text, &header)?;
-    if table.rows.is_empty() {
-        return Err(DataError::new(
-            file,
-            None,
-            None,
-            "no configurations; expected one row per measured configuration",
-        ));
-    }
-    let readings = table
-        .rows
-        .iter()
-        .map(|r| Reading {
-            joints_deg: r[..joints].to_vec(),
-            point: [r[joints], r[joints + 1], r[joints + 2]],
-        })
-        .collect();
-    Ok(Measurements {
-        readings,
-        lines: table.lines,
-    })
+    parse_tracker_measurements(file, text, joints, &MeasurementColumns::standard(joints))
+}
+
+/// Reads a measurement file laid out as `columns` says (see [`parse_tracker_measurements`]).
+pub fn read_tracker_measurements(
+    file: &Path,
+    joints: usize,
+    columns: &MeasurementColumns,
+) -> Result<Measurements, DataError> {
+    parse_tracker_measurements(file, &read_text(file)?, joints, columns)
 }

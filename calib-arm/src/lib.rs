@@ -23,9 +23,12 @@ pub mod joint_space;
 pub mod model;
 pub mod params;
 pub mod predict;
+pub mod register;
 pub mod robot;
 pub mod simulate;
+pub mod tracker_file;
 pub mod units;
+pub mod vendor;
 pub mod write;
 
 pub use model::{Arm3Point, Arm4Point, Arm5Point, Arm6Point, Arm7Point};

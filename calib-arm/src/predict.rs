@@ -33,6 +33,9 @@ pub struct PointPrediction {
     /// Per coordinate, what a measurement may show: joint readings within their error bound,
     /// the tracker's error added (mm).
     pub with_errors: [Interval; 3],
+    /// The tracked point the robot file's values predict (mm, floating point): what a
+    /// controller loading the file computes.
+    pub calibrated: [f64; 3],
     /// The measured point, when given.
     pub measured: Option<[f64; 3]>,
     /// Whether every measured coordinate lies in `with_errors` (`None` without a measurement):
@@ -104,6 +107,16 @@ pub fn predict(
         .and_then(|s| s.outer())
         .unwrap_or_else(|| padded_box(arm));
     let pos = Interval::new(-u.pos, u.pos);
+    let units = crate::params::names(arm.joints.len());
+    let values: Vec<f64> = arm
+        .nominal()
+        .iter()
+        .zip(&units)
+        .map(|(v, (_, unit))| match unit {
+            crate::params::Unit::Deg => crate::units::to_rad(*v),
+            crate::params::Unit::Mm => *v,
+        })
+        .collect();
     joints_deg
         .par_iter()
         .enumerate()
@@ -111,15 +124,38 @@ pub fn predict(
             let range = point_range(set, &x, &readings_box(q, 0.0));
             let with_errors = point_range(set, &x, &readings_box(q, u.joint_deg)).map(|v| v + pos);
             let point = measured.and_then(|m| m.get(k)).copied();
+            let radians: Vec<f64> = q.iter().map(|d| crate::units::to_rad(*d)).collect();
+            let calibrated =
+                crate::model::tracked_point(&values, &radians).unwrap_or([f64::NAN; 3]);
             PointPrediction {
                 joints_deg: q.clone(),
                 range,
                 with_errors,
+                calibrated,
                 measured: point,
                 inside: point.map(|p| (0..3).all(|c| with_errors[c].contains(p[c]))),
             }
         })
         .collect()
+}
+
+/// The root mean square and the largest magnitude, over every coordinate of the rows with a
+/// measurement, of `measured − calibrated` (mm): how well the robot file's values predict the
+/// measurements. `None` without measurements.
+pub fn residuals(predictions: &[PointPrediction]) -> Option<(f64, f64)> {
+    let errors: Vec<f64> = predictions
+        .iter()
+        .filter_map(|p| {
+            p.measured
+                .map(|m| (0..3).map(move |c| m[c] - p.calibrated[c]))
+        })
+        .flatten()
+        .collect();
+    if errors.is_empty() {
+        return None;
+    }
+    let rms = (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt();
+    Some((rms, errors.iter().fold(0.0, |m, e| m.max(e.abs()))))
 }
 
 /// The rows (0-based) whose measured point lies outside its prediction.
@@ -168,7 +204,8 @@ pub fn predictions_csv(predictions: &[PointPrediction]) -> String {
 /// The predictions as JSON (schema version 1; mm, degrees): `over` (`"certified set"` or
 /// `"box"`), per row `joints_deg`, `range` and `with_errors` (per coordinate `[lo, hi]`),
 /// `measured`, `inside`; `refuting`: the rows (1-based, with their file lines) whose
-/// measurement lies outside its prediction.
+/// measurement lies outside its prediction; `calibrated` per row and `residuals` (`rms_mm`,
+/// `max_mm`): the robot file's values against the measurements.
 pub fn predictions_json(
     predictions: &[PointPrediction],
     over_set: bool,
@@ -184,9 +221,14 @@ pub fn predictions_json(
             "joints_deg": p.joints_deg,
             "range": pairs(&p.range),
             "with_errors": pairs(&p.with_errors),
+            "calibrated": p.calibrated,
             "measured": p.measured,
             "inside": p.inside,
         })).collect::<Vec<_>>(),
+        "residuals": residuals(predictions).map(|(rms, max)| serde_json::json!({
+            "rms_mm": rms,
+            "max_mm": max,
+        })),
         "refuting": refuting(predictions).iter().map(|&k| serde_json::json!({
             "row": k + 1,
             "line": lines.and_then(|l| l.get(k)),

@@ -127,7 +127,11 @@ fn measurements_and_uncertainty_are_checked() {
     assert_eq!(m.lines, vec![2, 3]);
     let e = parse_measurements(f, "q1,q2,q3,px,py,pz\n1,2,3,4,5,6\n", 6).unwrap_err();
     assert_eq!(e.line, Some(1));
-    assert!(e.message.contains("q1,q2,q3,q4,q5,q6,px,py,pz"), "{e}");
+    assert_eq!(e.field.as_deref(), Some("q4"));
+    assert!(
+        e.message.contains("no column `q4`") && e.message.contains("q1, q2, q3, px, py, pz"),
+        "{e}"
+    );
     let e = parse_measurements(f, "q1,q2,q3,px,py,pz\n1,2,3,4,5,6\n1,2,x,4,5,6\n", 3).unwrap_err();
     assert_eq!((e.line, e.field.as_deref()), (Some(3), Some("q3")));
     let e = parse_measurements(f, "q1,q2,q3,px,py,pz\n", 3).unwrap_err();

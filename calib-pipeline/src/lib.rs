@@ -29,4 +29,4 @@ pub use output::{
     check_hull_options, exit_quietly_when_output_closes, main_with, write_atomically,
     CLOSED_OUTPUT_STATUS,
 };
-pub use table::{parse_number_table, NumberTable};
+pub use table::{parse_named_columns, parse_number_table, Dialect, NumberTable};

@@ -1,5 +1,7 @@
-//! Reading a CSV file of numbers with a fixed header: every value finite and of sane magnitude,
-//! every problem named by file, line and column.
+//! Reading a CSV file of numbers: with a fixed header ([`parse_number_table`]) or picking named
+//! columns out of an instrument's export ([`parse_named_columns`]: `,`, `;` or tab delimiters and
+//! decimal commas detected); every value finite and of sane magnitude, every problem named by
+//! file, line and column.
 
 use crate::{DataError, MAX_MAGNITUDE};
 use std::path::Path;
@@ -47,36 +49,161 @@ pub fn parse_number_table(
         lines: Vec::new(),
     };
     for record in reader.records() {
-        let record = record.map_err(|e| {
-            let line = e.position().map(|p| p.line() as usize);
-            let message = match e.kind() {
-                csv::ErrorKind::UnequalLengths {
-                    expected_len, len, ..
-                } => format!("expected {expected_len} columns, found {len}"),
-                _ => e.to_string(),
-            };
-            DataError::new(file, line, None, message)
-        })?;
+        let record = record.map_err(|e| record_error(file, e))?;
         let line = record
             .position()
             .map_or(out.rows.len() + 2, |p| p.line() as usize);
         let mut values = Vec::with_capacity(expected.len());
         for (field, raw) in expected.iter().zip(record.iter()) {
-            let bad = |what: String| DataError::new(file, Some(line), Some(field), what);
-            let v: f64 = raw
-                .parse()
-                .map_err(|_| bad(format!("expected a number, found `{raw}`")))?;
-            if !v.is_finite() || v.abs() > MAX_MAGNITUDE {
-                return Err(bad(format!(
-                    "expected a finite number of magnitude below {MAX_MAGNITUDE:e}, found `{raw}`"
-                )));
-            }
-            values.push(v);
+            values.push(number(file, line, field, raw, raw)?);
         }
         out.rows.push(values);
         out.lines.push(line);
     }
     Ok(out)
+}
+
+/// How a table writes its numbers: the field delimiter and the decimal mark.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Dialect {
+    /// `,`, `;` or a tab.
+    pub delimiter: u8,
+    /// Numbers written with a decimal comma (`1,5` for 1.5): only with `;` or tab delimiters.
+    pub decimal_comma: bool,
+}
+
+impl Dialect {
+    /// The dialect of `text`: the delimiter is the one of `;`, tab and `,` the header line holds
+    /// (in that order of preference: a `;` or tab header with commas in it is a European
+    /// spreadsheet's); numbers use a decimal comma when the delimiter is not `,` and a data line
+    /// holds a comma.
+    pub fn detect(text: &str) -> Dialect {
+        let mut lines = text.lines();
+        let header = lines.next().unwrap_or("");
+        let delimiter = if header.contains(';') {
+            b';'
+        } else if header.contains('\t') {
+            b'\t'
+        } else {
+            b','
+        };
+        let decimal_comma = delimiter != b',' && lines.take(20).any(|l| l.contains(','));
+        Dialect {
+            delimiter,
+            decimal_comma,
+        }
+    }
+
+    /// A short description for messages: `';'-separated, decimal commas`.
+    pub fn describe(&self) -> String {
+        let d = match self.delimiter {
+            b'\t' => "tab".to_string(),
+            c => format!("'{}'", c as char),
+        };
+        let mark = if self.decimal_comma {
+            "decimal commas"
+        } else {
+            "decimal points"
+        };
+        format!("{d}-separated, {mark}")
+    }
+}
+
+/// Parses `text` (the contents of `file`) as a table in its own [`Dialect`] and returns the
+/// columns named `columns` (header fields trimmed, matched exactly), in that order; other columns
+/// are ignored. Every selected cell must be a finite number of magnitude at most
+/// [`MAX_MAGNITUDE`]; a missing column is named with the header's columns.
+///
+/// ```
+/// use calib_pipeline::parse_named_columns;
+/// let text = "Time;q;x\n2,0E+13;1,5;-3\n";
+/// let cols = ["x".to_string(), "q".to_string()];
+/// let t = parse_named_columns(std::path::Path::new("t.csv"), text, &cols).unwrap();
+/// assert_eq!(t.rows, vec![vec![-3.0, 1.5]]);
+/// ```
+pub fn parse_named_columns(
+    file: &Path,
+    text: &str,
+    columns: &[String],
+) -> Result<NumberTable, DataError> {
+    let dialect = Dialect::detect(text);
+    let mut reader = csv::ReaderBuilder::new()
+        .delimiter(dialect.delimiter)
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let header: Vec<String> = reader
+        .headers()
+        .map_err(|e| DataError::new(file, Some(1), None, format!("cannot read the header: {e}")))?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    let mut picked = Vec::with_capacity(columns.len());
+    for c in columns {
+        match header.iter().position(|h| h == c) {
+            Some(i) => picked.push(i),
+            None => {
+                return Err(DataError::new(
+                    file,
+                    Some(1),
+                    Some(c),
+                    format!(
+                        "no column `{c}` in the header (read as {}); its columns are: {}",
+                        dialect.describe(),
+                        header.join(", ")
+                    ),
+                ))
+            }
+        }
+    }
+    let mut out = NumberTable {
+        rows: Vec::new(),
+        lines: Vec::new(),
+    };
+    for record in reader.records() {
+        let record = record.map_err(|e| record_error(file, e))?;
+        let line = record
+            .position()
+            .map_or(out.rows.len() + 2, |p| p.line() as usize);
+        let mut values = Vec::with_capacity(columns.len());
+        for (field, &i) in columns.iter().zip(&picked) {
+            let raw = record.get(i).unwrap_or("");
+            let text = if dialect.decimal_comma {
+                raw.replace(',', ".")
+            } else {
+                raw.to_string()
+            };
+            values.push(number(file, line, field, raw, &text)?);
+        }
+        out.rows.push(values);
+        out.lines.push(line);
+    }
+    Ok(out)
+}
+
+/// The message of a malformed CSV record.
+fn record_error(file: &Path, e: csv::Error) -> DataError {
+    let line = e.position().map(|p| p.line() as usize);
+    let message = match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => format!("expected {expected_len} columns, found {len}"),
+        _ => e.to_string(),
+    };
+    DataError::new(file, line, None, message)
+}
+
+/// `text` (the cell `raw` as written) as a finite number of sane magnitude.
+fn number(file: &Path, line: usize, field: &str, raw: &str, text: &str) -> Result<f64, DataError> {
+    let bad = |what: String| DataError::new(file, Some(line), Some(field), what);
+    let v: f64 = text
+        .parse()
+        .map_err(|_| bad(format!("expected a number, found `{raw}`")))?;
+    if !v.is_finite() || v.abs() > MAX_MAGNITUDE {
+        return Err(bad(format!(
+            "expected a finite number of magnitude below {MAX_MAGNITUDE:e}, found `{raw}`"
+        )));
+    }
+    Ok(v)
 }
 
 #[cfg(test)]
@@ -106,5 +233,26 @@ mod tests {
         let e = parse_number_table(f, "q1,px\n1,2,3\n", &h).unwrap_err();
         assert_eq!(e.line, Some(2));
         assert!(e.message.contains("columns"), "{e}");
+    }
+
+    #[test]
+    fn named_columns_come_out_of_a_european_export_in_the_order_asked() {
+        let f = Path::new("t.csv");
+        let text = "Stamp;b;a;c\n2,02011E+13;1,5;-2;x\n0;3;4,25;y\n";
+        let t = parse_named_columns(f, text, &header(&["a", "b"])).unwrap();
+        assert_eq!(t.rows, vec![vec![-2.0, 1.5], vec![4.25, 3.0]]);
+        assert_eq!(t.lines, vec![2, 3]);
+        // A comma-separated file keeps its decimal points, tabs are found too.
+        let t = parse_named_columns(f, "a,b\n1.5,2\n", &header(&["b"])).unwrap();
+        assert_eq!(t.rows, vec![vec![2.0]]);
+        let t = parse_named_columns(f, "a\tb\n1,5\t2\n", &header(&["a"])).unwrap();
+        assert_eq!(t.rows, vec![vec![1.5]]);
+        // A missing column is named, with the columns there are; a bad cell by line and field.
+        let e = parse_named_columns(f, text, &header(&["z"])).unwrap_err();
+        assert_eq!((e.line, e.field.as_deref()), (Some(1), Some("z")));
+        assert!(e.message.contains("Stamp, b, a, c"), "{e}");
+        assert!(e.message.contains("';'-separated, decimal commas"), "{e}");
+        let e = parse_named_columns(f, text, &header(&["c"])).unwrap_err();
+        assert_eq!((e.line, e.field.as_deref()), (Some(2), Some("c")));
     }
 }

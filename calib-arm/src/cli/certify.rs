@@ -7,7 +7,7 @@ use super::DataFiles;
 use calib_arm::calibrated::{calibrated_arm, calibrated_toml, PointChoice};
 use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{certify_request, CertifyRequest};
-use calib_arm::files::{parse_measurements, parse_robot, parse_uncertainty};
+use calib_arm::files::{parse_robot, parse_uncertainty};
 use calib_core::Status;
 use calib_pipeline::html::{command_line, now, Input};
 use calib_pipeline::verdict::{self, ConfigurationNames};
@@ -63,10 +63,12 @@ pub struct Args {
     /// was proved consistent (undecided).
     #[arg(long, value_name = "FILE")]
     write_calibrated: Option<PathBuf>,
-    /// How --write-calibrated chooses the parameters among those proved consistent: `centre`,
-    /// towards the centre of the tool points they predict (the smallest worst-case prediction
-    /// error), or `lsq`, towards the least-squares fit.
-    #[arg(long, value_name = "centre|lsq", default_value = "centre", value_parser = parse_choice)]
+    /// How --write-calibrated chooses the parameters among those proved consistent: `lsq`,
+    /// towards the least-squares fit, or `centre`, towards the centre of the tool points they
+    /// predict (the smallest worst-case prediction error at the calibration's configurations).
+    /// `lsq` by default: on 1,435 held-out real UR10 configurations it predicted better (RMS
+    /// 0.383 mm, max 1.87 mm) than `centre` (0.448 mm, 1.96 mm), and it costs a second, not tens.
+    #[arg(long, value_name = "lsq|centre", default_value = "lsq", value_parser = parse_choice)]
     calibrated_point: PointChoice,
 }
 
@@ -84,8 +86,13 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let [robot_text, data_text, u_text] = texts;
     let (robot_text, data_text, u_text) = (robot_text?, data_text?, u_text?);
     let arm = parse_robot(&a.files.robot, &robot_text)?;
-    let data = parse_measurements(&a.files.measurements, &data_text, arm.joints.len())?;
-    let u = parse_uncertainty(&a.uncertainty, &u_text)?;
+    let data = a
+        .files
+        .columns
+        .parse(&a.files.measurements, &data_text, arm.joints.len())?;
+    let u = data
+        .slack
+        .widen(&parse_uncertainty(&a.uncertainty, &u_text)?);
     let request = CertifyRequest {
         depth: if a.hull { Depth::Hull } else { Depth::Fast },
         tolerance: a.tolerance,

@@ -2,36 +2,58 @@
 
 use super::DataFiles;
 use calib_arm::certification::{fit_arm, names, units};
-use calib_arm::files::{read_measurements, read_robot};
+use calib_arm::files::read_robot;
+use calib_pipeline::write_atomically;
+use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
     #[command(flatten)]
     files: DataFiles,
+    /// Write the fit as JSON: per parameter nominal, fit and whether it left the prior box;
+    /// residual statistics.
+    #[arg(long, value_name = "FILE")]
+    json: Option<PathBuf>,
+    /// Write a robot file with the fitted values (priors as in --robot): e.g. to compare its
+    /// predictions on held-out data with `arm predict`.
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let arm = read_robot(&a.files.robot)?;
-    let data = read_measurements(&a.files.measurements, arm.joints.len())?;
+    let data = a
+        .files
+        .columns
+        .read(&a.files.measurements, arm.joints.len())?;
     let fit = fit_arm(&arm, &data.readings)?;
     let units = units(arm.joints.len());
     let nominal = arm.nominal();
+    let radius = arm.radius();
+    let free = arm.free();
+    let names = names(arm.joints.len());
     println!(
         "{:<9} {:<4} {:>14} {:>14} {:>12}",
         "parameter", "unit", "nominal", "fit", "change"
     );
-    let names = names(arm.joints.len());
+    let mut outside = Vec::new();
     for (j, name) in names.iter().enumerate() {
-        if !arm.free()[j] {
+        if !free[j] {
             continue;
         }
+        let change = fit.x[j] - nominal[j];
+        let out = change.abs() > radius[j];
+        if out {
+            outside.push(j);
+        }
         println!(
-            "{:<9} {:<4} {:>14.5} {:>14.5} {:>12.5}",
+            "{:<9} {:<4} {:>14.5} {:>14.5} {:>12.5}{}",
             name,
             units[j],
             nominal[j],
             fit.x[j],
-            fit.x[j] - nominal[j]
+            change,
+            if out { "  outside the prior" } else { "" }
         );
     }
     println!(
@@ -42,5 +64,68 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         if fit.converged { "converged" } else { "did not converge" },
         fit.evaluations
     );
+    if !outside.is_empty() {
+        let list: Vec<String> = outside
+            .iter()
+            .map(|&j| {
+                format!(
+                    "{} {:+.3} {} (prior ± {})",
+                    names[j],
+                    fit.x[j] - nominal[j],
+                    units[j],
+                    radius[j]
+                )
+            })
+            .collect();
+        println!(
+            "warning: {} of the fitted parameters left their prior box: {}. Least squares \
+             trades poorly determined parameters against each other to absorb errors the model \
+             does not have; `arm certify` keeps every parameter in its prior.",
+            outside.len(),
+            list.join(", ")
+        );
+    }
+    if let Some(path) = &a.json {
+        let json = serde_json::json!({
+            "version": 1,
+            "converged": fit.converged,
+            "evaluations": fit.evaluations,
+            "rms_mm": fit.rms,
+            "max_mm": fit.max_abs,
+            "configurations": data.readings.len(),
+            "parameters": names.iter().enumerate().filter(|(j, _)| free[*j]).map(|(j, n)| {
+                serde_json::json!({
+                    "name": n,
+                    "unit": units[j],
+                    "nominal": nominal[j],
+                    "prior_radius": radius[j],
+                    "fit": fit.x[j],
+                    "outside_prior": outside.contains(&j),
+                })
+            }).collect::<Vec<_>>(),
+        });
+        write_atomically(path, &format!("{json:#}\n"))
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        println!("JSON written to {}", path.display());
+    }
+    if let Some(path) = &a.out {
+        let mut fitted = arm.clone();
+        let n = arm.joints.len();
+        for (i, j) in fitted.joints.iter_mut().enumerate() {
+            j.nominal.copy_from_slice(&fit.x[5 * i..5 * i + 5]);
+        }
+        fitted.base.copy_from_slice(&fit.x[5 * n..5 * n + 6]);
+        fitted.tool.copy_from_slice(&fit.x[5 * n + 6..5 * n + 9]);
+        let text = format!(
+            "# least-squares fit by certicalib {} of {} to {} (not certified)\n{}",
+            env!("CARGO_PKG_VERSION"),
+            a.files.robot.display(),
+            a.files.measurements.display(),
+            calib_arm::write::robot_toml(&fitted)
+        );
+        write_atomically(path, &text)
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        println!("fitted robot written to {}", path.display());
+    }
     Ok(0)
 }

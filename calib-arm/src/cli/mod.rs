@@ -3,9 +3,12 @@
 mod accuracy;
 mod certify;
 mod demo;
+mod export;
+mod import;
 mod lsq;
 mod output;
 mod predict;
+mod register;
 mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -105,6 +108,44 @@ enum Command {
     /// Exit code: 0, or 2 when a measured point lies outside its prediction; 1 on errors.
     #[command(verbatim_doc_comment)]
     Predict(predict::Args),
+    /// Import a vendor's kinematics (UR's YAML or a URDF) into robot.toml: the exact
+    /// Denavit-Hartenberg/Hayati parameters (the forward kinematics agree to rounding), which
+    /// are free (the identifiable set for a tracked point), and priors around them.
+    ///
+    /// Examples:
+    ///   arm import --ur-yaml default_kinematics.yaml --out nominal.toml
+    ///   arm import --urdf ur10.urdf --base-link base_link --tip-link wrist_3_link \
+    ///              --angle-radius 0.1 --length-radius 2 --out nominal.toml
+    ///
+    /// Conventions: each joint turns about its frame's z axis from the vendor's zero; axes
+    /// within 45° of parallel get Hayati's beta (d fixed at 0), others standard DH (beta fixed);
+    /// theta1, d1 and the last joint stay fixed (the base and the tool point absorb them).
+    #[command(verbatim_doc_comment)]
+    Import(import::Args),
+    /// Export a robot file (e.g. the calibrated one) as UR's kinematics YAML, for the UR
+    /// driver, or as a URDF.
+    ///
+    /// Examples:
+    ///   arm export --robot calibrated.toml --ur-yaml calibrated_kinematics.yaml
+    ///   arm export --robot calibrated.toml --urdf calibrated.urdf
+    ///
+    /// The joints' frames are placed at the feet of their Denavit-Hartenberg normals (for UR's
+    /// nominal geometry, exactly UR's frames); the tracker-to-base transform is not exported.
+    #[command(verbatim_doc_comment)]
+    Export(export::Args),
+    /// Find where the robot stands in the tracker's frame (any rotation, any distance) and the
+    /// tracked point on the flange, from scratch: a closed-form start (alternating best rigid
+    /// fits and linear least squares), then least squares of the nine base and tool parameters
+    /// with the nominal joints. Writes the robot file with them and their priors.
+    ///
+    /// Example (the real UR10 data of the tutorial, radians and metres as exported):
+    ///   arm register --robot nominal.toml --measurements series_b.csv \
+    ///                --joint-columns shoulder_pan_joint,shoulder_lift_joint,elbow_joint,\
+    ///                                wrist_1_joint,wrist_2_joint,wrist_3_joint \
+    ///                --joint-unit rad --point-columns measurement_x,measurement_y,measurement_z \
+    ///                --rows 1-60 --out robot.toml
+    #[command(verbatim_doc_comment)]
+    Register(register::Args),
 }
 
 /// The data files every command reads.
@@ -115,9 +156,88 @@ pub struct DataFiles {
     #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long, value_name = "FILE")]
     robot: PathBuf,
-    /// One row per configuration: q1,…,qN (degrees), px,py,pz (mm, tracker frame).
+    /// One row per configuration: by default columns q1,…,qN (degrees), px,py,pz (mm, tracker
+    /// frame); a tracker's own export with --joint-columns, --point-columns and the units.
     #[arg(long, value_name = "FILE")]
     measurements: PathBuf,
+    #[command(flatten)]
+    columns: ColumnArgs,
+}
+
+/// Where the measurements are in the file and in which units (a tracker's export as it comes:
+/// `,`, `;` or tab separated, decimal points or commas, detected).
+#[derive(clap::Args, Debug, Clone)]
+pub struct ColumnArgs {
+    /// The joint readings' columns, base to flange, comma-separated [default: q1,…,qN]
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    joint_columns: Option<Vec<String>>,
+    /// The tracked point's x,y,z columns [default: px,py,pz]
+    #[arg(long, value_name = "X,Y,Z", value_delimiter = ',', num_args = 1)]
+    point_columns: Option<Vec<String>>,
+    /// The joint readings' unit.
+    #[arg(long, value_enum, value_name = "UNIT", default_value = "deg")]
+    joint_unit: calib_arm::tracker_file::JointUnit,
+    /// The tracked point's unit.
+    #[arg(long, value_enum, value_name = "UNIT", default_value = "mm")]
+    length_unit: calib_arm::tracker_file::LengthUnit,
+    /// Use only these data rows (1-based, the header is not a row): A-B, A- or A. E.g. 1-60 to
+    /// calibrate on the first 60 configurations, 61- to check the rest with `predict`.
+    #[arg(long, value_name = "A-B")]
+    rows: Option<calib_arm::tracker_file::RowRange>,
+}
+
+impl ColumnArgs {
+    /// The layout for an arm with `joints` joints.
+    fn columns(
+        &self,
+        joints: usize,
+    ) -> Result<calib_arm::tracker_file::MeasurementColumns, String> {
+        let mut c = calib_arm::tracker_file::MeasurementColumns::standard(joints);
+        if let Some(j) = &self.joint_columns {
+            c.joints = j.clone();
+        }
+        if let Some(p) = &self.point_columns {
+            c.point = <[String; 3]>::try_from(p.clone()).map_err(|p| {
+                format!(
+                    "--point-columns: expected three names x,y,z, found {}",
+                    p.len()
+                )
+            })?;
+        }
+        c.joint_unit = self.joint_unit;
+        c.length_unit = self.length_unit;
+        c.rows = self.rows;
+        Ok(c)
+    }
+
+    /// Reads `file` (whose text is `text`) for an arm with `joints` joints, printing the file's
+    /// notes on standard error.
+    fn parse(
+        &self,
+        file: &std::path::Path,
+        text: &str,
+        joints: usize,
+    ) -> Result<calib_arm::files::Measurements, Box<dyn std::error::Error>> {
+        let m = calib_arm::files::parse_tracker_measurements(
+            file,
+            text,
+            joints,
+            &self.columns(joints)?,
+        )?;
+        for note in &m.notes {
+            eprintln!("note: {note}");
+        }
+        Ok(m)
+    }
+
+    /// [`ColumnArgs::parse`] reading the file.
+    fn read(
+        &self,
+        file: &std::path::Path,
+        joints: usize,
+    ) -> Result<calib_arm::files::Measurements, Box<dyn std::error::Error>> {
+        self.parse(file, &calib_pipeline::read_text(file)?, joints)
+    }
 }
 
 /// Runs a subcommand; the exit code on success.
@@ -129,5 +249,8 @@ pub fn run(cli: Cli) -> Result<i32, Box<dyn std::error::Error>> {
         Command::Simulate(a) => simulate::run(a),
         Command::Accuracy(a) => accuracy::run(a),
         Command::Predict(a) => predict::run(a),
+        Command::Import(a) => import::run(a),
+        Command::Export(a) => export::run(a),
+        Command::Register(a) => register::run(a),
     }
 }

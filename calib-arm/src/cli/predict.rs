@@ -1,7 +1,7 @@
 //! `arm predict`.
 
-use calib_arm::files::{parse_measurements, read_calibrated, read_uncertainty};
-use calib_arm::predict::{predict, predictions_csv, predictions_json, refuting};
+use calib_arm::files::{read_calibrated, read_uncertainty};
+use calib_arm::predict::{predict, predictions_csv, predictions_json, refuting, residuals};
 use calib_pipeline::{parse_number_table, read_text, write_atomically};
 use std::path::PathBuf;
 
@@ -18,6 +18,8 @@ pub struct Args {
     /// readings are predicted, and each tracked point outside its prediction is named.
     #[arg(long, value_name = "FILE", conflicts_with = "joints")]
     measurements: Option<PathBuf>,
+    #[command(flatten)]
+    columns: super::ColumnArgs,
     /// The measurement error bounds (joint_deg, pos): the predictions a measurement may show
     /// are widened by them.
     #[arg(long, value_name = "FILE")]
@@ -35,9 +37,11 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let (arm, set) = read_calibrated(&a.robot)?;
     let u = read_uncertainty(&a.uncertainty)?;
     let n = arm.joints.len();
+    let mut slack = calib_arm::files::Slack::default();
     let (joints, points, lines, source) = match (&a.measurements, &a.joints) {
         (Some(path), _) => {
-            let m = parse_measurements(path, &read_text(path)?, n)?;
+            let m = a.columns.read(path, n)?;
+            slack = m.slack;
             let joints = m.readings.iter().map(|r| r.joints_deg.clone()).collect();
             let points: Vec<[f64; 3]> = m.readings.iter().map(|r| r.point).collect();
             (joints, Some(points), Some(m.lines), path)
@@ -49,6 +53,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         }
         (None, None) => return Err("--joints or --measurements: which configurations".into()),
     };
+    let u = slack.widen(&u);
     if set.is_none() {
         println!(
             "note: {} has no certified set: the predictions are taken over its boxes (a \
@@ -70,6 +75,12 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         source.display()
     );
     let bad = refuting(&predictions);
+    if let Some((rms, max)) = residuals(&predictions) {
+        println!(
+            "the robot file's values predict the measured points with residuals rms {rms:.4} mm, \
+             max {max:.4} mm (every coordinate)"
+        );
+    }
     if points.is_some() {
         if bad.is_empty() {
             println!(

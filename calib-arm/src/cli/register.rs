@@ -1,0 +1,98 @@
+//! `arm register`.
+
+use super::DataFiles;
+use calib_arm::files::read_robot;
+use calib_arm::register::{register, RegistrationPriors};
+use calib_pipeline::write_atomically;
+use std::path::PathBuf;
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    files: DataFiles,
+    /// The prior half-widths written around the registered base: position (mm) and rotations
+    /// (degrees).
+    #[arg(
+        long,
+        value_name = "MM,DEG",
+        value_delimiter = ',',
+        num_args = 1,
+        default_value = "2,0.1"
+    )]
+    base_radius: Vec<f64>,
+    /// The prior half-width written around the registered tool point (mm).
+    #[arg(long, value_name = "MM", default_value_t = 2.0)]
+    tool_radius: f64,
+    /// The robot file to write: the --robot file's joints with the registered base and tool.
+    #[arg(long, value_name = "FILE")]
+    out: PathBuf,
+}
+
+pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    let [base_mm, base_deg] = <[f64; 2]>::try_from(a.base_radius.clone()).map_err(|v| {
+        format!(
+            "--base-radius: expected MM,DEG (two numbers), found {}",
+            v.len()
+        )
+    })?;
+    let arm = read_robot(&a.files.robot)?;
+    let data = a
+        .files
+        .columns
+        .read(&a.files.measurements, arm.joints.len())?;
+    let priors = RegistrationPriors {
+        base_mm,
+        base_deg,
+        tool_mm: a.tool_radius,
+    };
+    let r = register(&arm, &data.readings, priors)
+        .map_err(|e| format!("{}: {e}", a.files.measurements.display()))?;
+    let b = r.arm.base;
+    println!(
+        "registered on {} configurations of {}:",
+        data.readings.len(),
+        a.files.measurements.display()
+    );
+    println!(
+        "  base (tracker frame): x {:.3} y {:.3} z {:.3} mm, rx {:.4} ry {:.4} rz {:.4}° (± {base_mm} mm, ± {base_deg}°)",
+        b[0], b[1], b[2], b[3], b[4], b[5]
+    );
+    println!(
+        "  tool point (flange frame): {:.3} {:.3} {:.3} mm (± {} mm), {:.3} mm from the flange",
+        r.arm.tool[0],
+        r.arm.tool[1],
+        r.arm.tool[2],
+        a.tool_radius,
+        r.arm.tool.iter().map(|v| v * v).sum::<f64>().sqrt()
+    );
+    println!(
+        "  residuals with the nominal joints: rms {:.4} mm, max {:.4} mm (closed-form start: rms \
+         {:.4} mm; least squares {})",
+        r.rms,
+        r.max_abs,
+        r.start_rms,
+        if r.converged {
+            "converged"
+        } else {
+            "did not converge"
+        }
+    );
+    if b[4].abs() > 60.0 {
+        println!(
+            "  note: the base's ry is {:.1}°, near the rx/rz singularity at ±90°: its prior box \
+             is poorly conditioned there",
+            b[4]
+        );
+    }
+    let text = format!(
+        "# registered by certicalib {} from {} and {}: base and tool found, joints as given\n{}",
+        env!("CARGO_PKG_VERSION"),
+        a.files.robot.display(),
+        a.files.measurements.display(),
+        calib_arm::write::robot_toml(&r.arm)
+    );
+    write_atomically(&a.out, &text)
+        .map_err(|e| format!("{}: cannot write: {e}", a.out.display()))?;
+    println!("wrote {}", a.out.display());
+    Ok(0)
+}

@@ -1,0 +1,207 @@
+//! Registration: where the robot stands in the tracker's frame and where the tracked point sits
+//! on the flange, from scratch (any rotation, any distance).
+//!
+//! With the nominal joints, configuration `k`'s flange frame in the robot's base frame is
+//! `(R_k, o_k)` and the tracker measures `p_k ≈ R (R_k t + o_k) + T`: unknown the rigid transform
+//! `(R, T)` (tracker to base) and the tool point `t`. The start is closed-form and alternating:
+//! for a fixed `t`, `(R, T)` is the best rigid fit of the points `R_k t + o_k` onto the `p_k`
+//! (Kabsch: one 3×3 SVD); for a fixed `(R, T)`, `t` is linear least squares
+//! (`t = mean_k (R R_k)ᵀ (p_k − T − R o_k)`, the `R R_k` being rotations); from `t = 0`. Both steps
+//! lower the same sum of squares. Then Levenberg–Marquardt refines the nine base and tool
+//! parameters together ([`crate::certification::fit_arm`]).
+
+use crate::certification::fit_arm;
+use crate::robot::Arm;
+use crate::simulate::Reading;
+use crate::vendor::{arm_flange, base_frame, base_parameters, Frame};
+use nalgebra::{Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
+
+/// Prior half-widths written around the registered base and tool.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RegistrationPriors {
+    /// The base's position, mm.
+    pub base_mm: f64,
+    /// The base's rotations, degrees.
+    pub base_deg: f64,
+    /// The tool point, mm.
+    pub tool_mm: f64,
+}
+
+impl Default for RegistrationPriors {
+    /// ±2 mm and ±0.1° for the base, ±2 mm for the tool point.
+    fn default() -> Self {
+        RegistrationPriors {
+            base_mm: 2.0,
+            base_deg: 0.1,
+            tool_mm: 2.0,
+        }
+    }
+}
+
+/// A registered arm and how well it fits.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Registration {
+    /// The arm with the registered base and tool (and their priors); joints as given.
+    pub arm: Arm,
+    /// Root mean square of every coordinate's residual, mm (nominal joints).
+    pub rms: f64,
+    /// Largest coordinate residual, mm.
+    pub max_abs: f64,
+    /// The closed-form start's RMS, mm.
+    pub start_rms: f64,
+    /// Whether the least-squares refinement reported convergence.
+    pub converged: bool,
+}
+
+/// Alternating steps of the closed-form start.
+const START_ITERATIONS: usize = 200;
+
+/// Registers `nominal` (its joints as they are; base and tool found) on `readings`.
+pub fn register(
+    nominal: &Arm,
+    readings: &[Reading],
+    priors: RegistrationPriors,
+) -> Result<Registration, String> {
+    if readings.len() < 3 {
+        return Err(format!(
+            "registration needs at least 3 configurations, found {}",
+            readings.len()
+        ));
+    }
+    for (v, name) in [
+        (priors.base_mm, "base position prior"),
+        (priors.base_deg, "base rotation prior"),
+        (priors.tool_mm, "tool prior"),
+    ] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(format!("{name} {v}: expected a finite half-width >= 0"));
+        }
+    }
+    let flanges: Vec<Frame> = readings
+        .iter()
+        .map(|r| {
+            let q: Vec<f64> = r.joints_deg.iter().map(|d| d.to_radians()).collect();
+            arm_flange(nominal, &q)
+        })
+        .collect();
+    let measured: Vec<Vector3<f64>> = readings.iter().map(|r| Vector3::from(r.point)).collect();
+    let mut t = Vector3::zeros();
+    let mut pose = Frame::identity();
+    for _ in 0..START_ITERATIONS {
+        let points: Vec<Vector3<f64>> = flanges
+            .iter()
+            .map(|f| (f * Point3::from(t)).coords)
+            .collect();
+        pose = kabsch(&points, &measured)
+            .ok_or("the configurations' points are collinear: registration needs a spread")?;
+        let next = flanges
+            .iter()
+            .zip(&measured)
+            .map(|(f, p)| {
+                let r = (pose.rotation * f.rotation).to_rotation_matrix();
+                r.transpose() * (p - pose.translation.vector - pose.rotation * f.translation.vector)
+            })
+            .sum::<Vector3<f64>>()
+            / readings.len() as f64;
+        let moved = (next - t).norm();
+        t = next;
+        if moved < 1e-10 {
+            break;
+        }
+    }
+    let start_rms = rms(&flanges, &measured, &pose, &t);
+    let mut arm = nominal.clone();
+    arm.base = base_parameters(&(pose * base_frame(&nominal.base)));
+    arm.tool = t.into();
+    // Least squares over the base and tool only.
+    let mut free = arm.clone();
+    for j in &mut free.joints {
+        j.radius = [0.0; 5];
+    }
+    free.base_radius = [1.0; 6];
+    free.tool_radius = [1.0; 3];
+    let fit = fit_arm(&free, readings)?;
+    let n = 5 * arm.joints.len();
+    arm.base.copy_from_slice(&fit.x[n..n + 6]);
+    arm.tool.copy_from_slice(&fit.x[n + 6..n + 9]);
+    arm.base_radius = [
+        priors.base_mm,
+        priors.base_mm,
+        priors.base_mm,
+        priors.base_deg,
+        priors.base_deg,
+        priors.base_deg,
+    ];
+    arm.tool_radius = [priors.tool_mm; 3];
+    Ok(Registration {
+        arm,
+        rms: fit.rms,
+        max_abs: fit.max_abs,
+        start_rms,
+        converged: fit.converged,
+    })
+}
+
+/// The rigid transform taking the points `from` onto `to` best in least squares (Kabsch), `None`
+/// when the points do not determine it.
+fn kabsch(from: &[Vector3<f64>], to: &[Vector3<f64>]) -> Option<Frame> {
+    let n = from.len() as f64;
+    let cf = from.iter().sum::<Vector3<f64>>() / n;
+    let ct = to.iter().sum::<Vector3<f64>>() / n;
+    let h: Matrix3<f64> = from
+        .iter()
+        .zip(to)
+        .map(|(a, b)| (a - cf) * (b - ct).transpose())
+        .sum();
+    let svd = h.svd(true, true);
+    let (u, v_t) = (svd.u?, svd.v_t?);
+    let mut s = svd.singular_values;
+    s.as_mut_slice().sort_by(|a, b| b.total_cmp(a));
+    if s[1] <= 1e-9 * s[0].max(1e-300) {
+        return None;
+    }
+    let v = v_t.transpose();
+    let d = (v * u.transpose()).determinant().signum();
+    let r = v * Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, d)) * u.transpose();
+    let rotation = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r));
+    let translation = ct - rotation * cf;
+    Some(Frame::from_parts(Translation3::from(translation), rotation))
+}
+
+/// RMS over every coordinate of `pose · flange_k · t − p_k`.
+fn rms(flanges: &[Frame], measured: &[Vector3<f64>], pose: &Frame, t: &Vector3<f64>) -> f64 {
+    let sum: f64 = flanges
+        .iter()
+        .zip(measured)
+        .map(|(f, p)| ((pose * f * Point3::from(*t)).coords - p).norm_squared())
+        .sum();
+    (sum / (3.0 * flanges.len() as f64)).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simulate::{simulate, Uncertainty};
+
+    #[test]
+    fn a_far_rotated_tracker_and_an_unknown_tool_are_found_from_scratch() {
+        // The geometry exactly nominal (no prior): only the base and the tool are unknown.
+        let mut truth = crate::builtin_arm().with_radii_scaled(0.0);
+        // A tracker 3.6 m away, turned 140° and tilted.
+        truth.base = [-2500.0, 2600.0, 300.0, 3.0, -4.0, 140.0];
+        truth.tool = [5.0, -3.0, 93.0];
+        let sim = simulate(&truth, 30, 11, Uncertainty::TRACKER, 0.0, &[]);
+        let mut nominal = truth.clone();
+        nominal.base = [0.0; 6];
+        nominal.tool = [0.0; 3];
+        let r = register(&nominal, &sim.readings, RegistrationPriors::default()).expect("found");
+        let close =
+            |a: &[f64], b: &[f64], tol: f64| a.iter().zip(b).all(|(x, y)| (x - y).abs() < tol);
+        assert!(close(&r.arm.base, &truth.base, 0.01), "{:?}", r.arm.base);
+        assert!(close(&r.arm.tool, &truth.tool, 0.01), "{:?}", r.arm.tool);
+        assert!(r.rms < 0.05 && r.converged, "{r:?}");
+        assert_eq!(r.arm.base_radius, [2.0, 2.0, 2.0, 0.1, 0.1, 0.1]);
+        // Too few configurations is an error, not a guess.
+        assert!(register(&nominal, &sim.readings[..2], RegistrationPriors::default()).is_err());
+    }
+}

@@ -1,0 +1,357 @@
+//! Measurements as a tracker exports them: joint readings and tracked points picked by column
+//! name out of a wider table (`,`, `;` or tab separated, decimal points or commas), in radians or
+//! degrees, millimetres or metres, and a range of its rows.
+//!
+//! Values are converted to the crate's units (degrees, mm) in interval arithmetic: each stored
+//! value is the midpoint of the enclosure of the converted reading, and the conversion's largest
+//! rounding error is kept ([`Measurements::slack`]) and added to the error bounds
+//! ([`Slack::widen`]), so that a converted file certifies what the file says.
+
+use crate::files::Measurements;
+use crate::simulate::{Reading, Uncertainty};
+use crate::units::rad_to_deg;
+use calib_core::Interval;
+use calib_pipeline::{parse_named_columns, DataError};
+use std::path::Path;
+
+/// The unit of the joint readings in a file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum JointUnit {
+    /// Degrees (the crate's unit).
+    Deg,
+    /// Radians (robot controllers' and ROS's unit).
+    Rad,
+}
+
+/// The unit of the tracked coordinates in a file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum LengthUnit {
+    /// Millimetres (the crate's unit).
+    Mm,
+    /// Metres.
+    M,
+}
+
+/// Which rows of a file to use: data rows `first..=last`, 1-based (the header is not a row).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RowRange {
+    /// The first row used.
+    pub first: usize,
+    /// The last row used (`None`: to the end).
+    pub last: Option<usize>,
+}
+
+impl std::str::FromStr for RowRange {
+    type Err = String;
+
+    /// `A-B`, `A-` or `A` (1-based data rows, inclusive): `1-60`, `61-`, `7`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        let bad = || format!("`{s}`: expected rows as A-B, A- or A (1-based, e.g. 1-60 or 61-)");
+        let number = |t: &str| t.trim().parse::<usize>().ok().filter(|v| *v >= 1);
+        let (first, last) = match s.split_once('-') {
+            Some((a, "")) => (number(a).ok_or_else(bad)?, None),
+            Some((a, b)) => (number(a).ok_or_else(bad)?, Some(number(b).ok_or_else(bad)?)),
+            None => {
+                let a = number(s).ok_or_else(bad)?;
+                (a, Some(a))
+            }
+        };
+        if last.is_some_and(|l| l < first) {
+            return Err(format!("`{s}`: the last row comes before the first"));
+        }
+        Ok(RowRange { first, last })
+    }
+}
+
+/// Where the measurements are in a file and in which units.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeasurementColumns {
+    /// The joint readings' columns, base to flange.
+    pub joints: Vec<String>,
+    /// The tracked point's `x, y, z` columns.
+    pub point: [String; 3],
+    /// The joint readings' unit.
+    pub joint_unit: JointUnit,
+    /// The tracked point's unit.
+    pub length_unit: LengthUnit,
+    /// The rows to use (`None`: all).
+    pub rows: Option<RowRange>,
+}
+
+impl MeasurementColumns {
+    /// The crate's own layout: `q1..qN` in degrees and `px, py, pz` in mm, every row.
+    pub fn standard(joints: usize) -> Self {
+        MeasurementColumns {
+            joints: (1..=joints).map(|i| format!("q{i}")).collect(),
+            point: ["px", "py", "pz"].map(String::from),
+            joint_unit: JointUnit::Deg,
+            length_unit: LengthUnit::Mm,
+            rows: None,
+        }
+    }
+}
+
+/// Joint readings larger than this (radians, a little over a turn) are not radians.
+const MAX_RADIANS: f64 = 2.0 * std::f64::consts::PI + 0.01;
+/// Tracked coordinates in metres beyond this are millimetres (no tracker measures 100 m away).
+const MAX_METRES: f64 = 100.0;
+/// A file whose every tracked coordinate in mm is within this is in metres.
+const MIN_MILLIMETRES: f64 = 20.0;
+
+/// Parses `text` (the contents of `file`) with `columns`: `joints` joint readings and a tracked
+/// point per row, converted to degrees and mm. A value that looks like another unit than the one
+/// given is an error naming it (a joint reading beyond a turn read as radians; a coordinate beyond
+/// 100 m read as metres); every joint reading within a turn read as degrees, or every coordinate
+/// within 20 mm read as mm, is a note (a small joint cell or a tracker near the tool look the
+/// same).
+pub fn parse_tracker_measurements(
+    file: &Path,
+    text: &str,
+    joints: usize,
+    columns: &MeasurementColumns,
+) -> Result<Measurements, DataError> {
+    if columns.joints.len() != joints {
+        return Err(DataError::new(
+            file,
+            None,
+            Some("joint columns"),
+            format!(
+                "{} joint columns given ({}); the arm has {joints} joints",
+                columns.joints.len(),
+                columns.joints.join(", ")
+            ),
+        ));
+    }
+    let names: Vec<String> = columns
+        .joints
+        .iter()
+        .chain(&columns.point)
+        .cloned()
+        .collect();
+    let table = parse_named_columns(file, text, &names)?;
+    if table.rows.is_empty() {
+        return Err(DataError::new(
+            file,
+            None,
+            None,
+            "no configurations; expected one row per measured configuration",
+        ));
+    }
+    let (first, last) = columns.rows.map_or((1, None), |r| {
+        (r.first, r.last.map(|l| l.min(table.rows.len())))
+    });
+    let end = last.unwrap_or(table.rows.len());
+    if first > end {
+        return Err(DataError::new(
+            file,
+            None,
+            Some("rows"),
+            format!(
+                "no configurations in rows {first}..{end}; the file has {} data rows",
+                table.rows.len()
+            ),
+        ));
+    }
+    let mut out = Measurements {
+        readings: Vec::with_capacity(end + 1 - first),
+        lines: Vec::with_capacity(end + 1 - first),
+        slack: Slack::default(),
+        notes: Vec::new(),
+    };
+    let mut largest_joint: f64 = 0.0;
+    let mut largest_coordinate: f64 = 0.0;
+    for (row, &line) in table.rows[first - 1..end]
+        .iter()
+        .zip(&table.lines[first - 1..end])
+    {
+        let bad = |field: &str, what: String| DataError::new(file, Some(line), Some(field), what);
+        let mut joints_deg = Vec::with_capacity(joints);
+        for (v, name) in row[..joints].iter().zip(&columns.joints) {
+            largest_joint = largest_joint.max(v.abs());
+            let deg = match columns.joint_unit {
+                JointUnit::Deg => Interval::point(*v),
+                JointUnit::Rad => {
+                    if v.abs() > MAX_RADIANS {
+                        return Err(bad(
+                            name,
+                            format!(
+                                "{v} read as radians is more than a turn: it looks like degrees \
+                                 (use --joint-unit deg)"
+                            ),
+                        ));
+                    }
+                    rad_to_deg(Interval::point(*v))
+                }
+            };
+            joints_deg.push(out.slack.keep_joint(deg));
+        }
+        let mut point = [0.0; 3];
+        for ((p, v), name) in point.iter_mut().zip(&row[joints..]).zip(&columns.point) {
+            largest_coordinate = largest_coordinate.max(v.abs());
+            let mm = match columns.length_unit {
+                LengthUnit::Mm => Interval::point(*v),
+                LengthUnit::M => {
+                    if v.abs() > MAX_METRES {
+                        return Err(bad(
+                            name,
+                            format!(
+                                "{v} read as metres is more than {MAX_METRES} m: it looks like \
+                                 millimetres (use --length-unit mm)"
+                            ),
+                        ));
+                    }
+                    Interval::point(*v) * Interval::point(1000.0)
+                }
+            };
+            *p = out.slack.keep_point(mm);
+        }
+        out.readings.push(Reading { joints_deg, point });
+        out.lines.push(line);
+    }
+    if columns.length_unit == LengthUnit::Mm
+        && largest_coordinate < MIN_MILLIMETRES
+        && out.readings.len() > 3
+    {
+        out.notes.push(format!(
+            "{}: every tracked coordinate is within ±{largest_coordinate} read as mm; if they \
+             are metres, pass --length-unit m",
+            file.display()
+        ));
+    }
+    if columns.joint_unit == JointUnit::Deg
+        && largest_joint <= MAX_RADIANS
+        && out.readings.len() > 3
+    {
+        out.notes.push(format!(
+            "{}: every joint reading is within ±{largest_joint:.3}, read as degrees; if they are \
+             radians, pass --joint-unit rad",
+            file.display()
+        ));
+    }
+    Ok(out)
+}
+
+/// The largest rounding error of the unit conversions (0 when nothing was converted).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Slack {
+    /// On the joint readings, degrees.
+    pub joint_deg: f64,
+    /// On the tracked coordinates, mm.
+    pub pos: f64,
+}
+
+impl Slack {
+    /// The error bounds `u` widened by these rounding errors, rounded up: what converted
+    /// readings are certified with.
+    pub fn widen(&self, u: &Uncertainty) -> Uncertainty {
+        let up = |a: f64, b: f64| (Interval::point(a) + Interval::point(b)).sup();
+        Uncertainty {
+            joint_deg: up(u.joint_deg, self.joint_deg),
+            pos: up(u.pos, self.pos),
+        }
+    }
+
+    /// The midpoint of `deg`, remembering how far its ends are.
+    fn keep_joint(&mut self, deg: Interval) -> f64 {
+        let (mid, rad) = mid_and_radius(deg);
+        self.joint_deg = self.joint_deg.max(rad);
+        mid
+    }
+
+    /// The midpoint of `mm`, remembering how far its ends are.
+    fn keep_point(&mut self, mm: Interval) -> f64 {
+        let (mid, rad) = mid_and_radius(mm);
+        self.pos = self.pos.max(rad);
+        mid
+    }
+}
+
+/// A value of `v` and an upper bound of its distance to either end.
+fn mid_and_radius(v: Interval) -> (f64, f64) {
+    let mid = v.mid();
+    let up = (Interval::point(v.sup()) - Interval::point(mid)).sup();
+    let down = (Interval::point(mid) - Interval::point(v.inf())).sup();
+    (mid, up.max(down))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn columns(unit: JointUnit, length: LengthUnit) -> MeasurementColumns {
+        MeasurementColumns {
+            joints: vec!["j1".into(), "j2".into(), "j3".into()],
+            point: ["X".into(), "Y".into(), "Z".into()],
+            joint_unit: unit,
+            length_unit: length,
+            rows: None,
+        }
+    }
+
+    const EXPORT: &str = "Stamp;j1;j2;j3;T;X;Y;Z\n\
+        2,02011E+13;-2,78E-05;-3,14159;-1,5708;21,9;383,76294;-3240,8734;201,93157\n\
+        2,02011E+13;0,5;-0,05;-1,9;21,9;-0,507;-3343,15;-426,95\n";
+
+    #[test]
+    fn a_european_export_in_radians_reads_in_degrees_with_its_rounding_kept() {
+        let f = Path::new("series.csv");
+        let c = columns(JointUnit::Rad, LengthUnit::Mm);
+        let m = parse_tracker_measurements(f, EXPORT, 3, &c).unwrap();
+        assert_eq!(m.lines, vec![2, 3]);
+        let r = &m.readings[0];
+        let reading: f64 = "-3.14159".parse().unwrap();
+        assert!((r.joints_deg[1] - reading.to_degrees()).abs() < 1e-12);
+        assert_eq!(r.point, [383.76294, -3240.8734, 201.93157]);
+        // The conversion's rounding: positive, tiny, and the bounds grow by it.
+        assert!(m.slack.joint_deg > 0.0 && m.slack.joint_deg < 1e-12);
+        assert_eq!(m.slack.pos, 0.0);
+        let u = m.slack.widen(&Uncertainty {
+            joint_deg: 0.001,
+            pos: 0.5,
+        });
+        assert!(u.joint_deg > 0.001 && u.pos == 0.5);
+        // Rows pick a part of the file.
+        let mut one = c.clone();
+        one.rows = Some("2-".parse().unwrap());
+        let m = parse_tracker_measurements(f, EXPORT, 3, &one).unwrap();
+        assert_eq!(m.lines, vec![3]);
+    }
+
+    #[test]
+    fn values_in_the_wrong_unit_are_named() {
+        let f = Path::new("series.csv");
+        // Radians read as degrees: a note, not an error (a small cell looks the same).
+        let many = format!(
+            "{EXPORT}{}",
+            EXPORT.lines().skip(1).collect::<Vec<_>>().join("\n")
+        );
+        let m = parse_tracker_measurements(f, &many, 3, &columns(JointUnit::Deg, LengthUnit::Mm))
+            .unwrap();
+        assert!(m.notes[0].contains("--joint-unit rad"), "{:?}", m.notes);
+        // Millimetres read as metres: the coordinate, its line and the fix.
+        let e = parse_tracker_measurements(f, EXPORT, 3, &columns(JointUnit::Rad, LengthUnit::M))
+            .unwrap_err();
+        assert_eq!((e.line, e.field.as_deref()), (Some(2), Some("X")));
+        assert!(e.message.contains("--length-unit mm"), "{e}");
+        // Degrees read as radians.
+        let deg = "j1,j2,j3,X,Y,Z\n10,90,-120,1000,2000,3000\n";
+        let e = parse_tracker_measurements(f, deg, 3, &columns(JointUnit::Rad, LengthUnit::Mm))
+            .unwrap_err();
+        assert_eq!((e.line, e.field.as_deref()), (Some(2), Some("j1")));
+        assert!(e.message.contains("--joint-unit deg"), "{e}");
+        // Metres read as millimetres: a note.
+        let m_file = format!("j1,j2,j3,X,Y,Z\n{}", "10,90,-120,1.1,2.2,-0.3\n".repeat(4));
+        let m = parse_tracker_measurements(f, &m_file, 3, &columns(JointUnit::Deg, LengthUnit::Mm))
+            .unwrap();
+        assert!(m.notes[0].contains("--length-unit m"), "{:?}", m.notes);
+        // A missing column, the wrong number of joints, an empty row range.
+        let e = parse_tracker_measurements(f, deg, 4, &columns(JointUnit::Deg, LengthUnit::Mm))
+            .unwrap_err();
+        assert!(e.message.contains("4 joints"), "{e}");
+        let mut c = columns(JointUnit::Deg, LengthUnit::Mm);
+        c.rows = Some("5-".parse().unwrap());
+        let e = parse_tracker_measurements(f, deg, 3, &c).unwrap_err();
+        assert!(e.message.contains("1 data rows"), "{e}");
+        assert!("3-1".parse::<RowRange>().is_err() && "0-".parse::<RowRange>().is_err());
+    }
+}

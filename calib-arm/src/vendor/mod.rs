@@ -1,0 +1,429 @@
+//! Vendor kinematics in and out: a chain of joint frames (UR's `kinematics:` YAML, URDF) turned
+//! into this crate's Denavit–Hartenberg + Hayati parameters exactly, and back.
+//!
+//! # Conventions
+//! A vendor chain is a list of joint origins `F_1 … F_N` (rigid transforms, each from the previous
+//! link's frame to the joint's frame); joint `i` turns about its frame's `z` axis by the reading
+//! `q_i`, and the flange frame is the last joint's frame after the turn:
+//! `T(q) = F_1 Rz(q_1) F_2 Rz(q_2) ⋯ F_N Rz(q_N)` (UR's YAML and ROS's URDF both mean this; the
+//! zero of each joint is the vendor's). This crate's model ([`crate::model`]) is
+//! `T_base Rz(q_1) D_1 Rz(q_2) D_2 ⋯ Rz(q_N) D_N` with
+//! `D_i = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i) Ry(beta_i)`.
+//!
+//! A rotation about and a slide along a joint's axis commute with the joint's turn, so each
+//! `F_{i+1}` (with the slide left over from the link before) is split as
+//! `D_i · Rz(φ) Tz(s)`, the `Rz(φ) Tz(s)` going into `theta_{i+1}, d_{i+1}`:
+//! - axes at more than 45° (**Denavit–Hartenberg**, `beta_i = 0`): `x_i` along the common normal
+//!   of the two axes, `d_i` and `a_i` the feet of that normal, `alpha_i` the angle between the axes;
+//! - nearly parallel axes (**Hayati**, `d_i = 0`): `x_i` towards where the next axis crosses the
+//!   plane `z = 0`, `alpha_i` and `beta_i` the next axis' tilt;
+//! - the sign of `x_i` is chosen so that `theta_i` lies in `(−90°, 90°]` (so `a_i` may be negative,
+//!   as in UR's published parameters).
+//!
+//! `F_1` is `Rz(theta_1) Tz(d_1)` when it turns and slides along the base's `z` only (UR's arms);
+//! otherwise its rest is kept in `[base]` (the tracker-to-base transform registration finds).
+//! The flange frame is the last joint's frame, so the last joint's `a, alpha, beta` are 0.
+//! Export inverts this: `F_1 = Rz(theta_1) Tz(d_1)`,
+//! `F_{i+1} = Tx(a_i) Rx(alpha_i) Ry(beta_i) Rz(theta_{i+1}) Tz(d_{i+1})`: every joint frame at the
+//! foot of its axis' common normal (for UR's nominal geometry, exactly UR's own frames).
+//!
+//! Which parameters are free (the identifiable set for a tracked point without orientation):
+//! `theta_1, d_1` fixed (the base's `rz, z` do the same), `beta` fixed on Denavit–Hartenberg links
+//! and `d` on Hayati links, everything of the last joint fixed (it trades off with the tool point).
+
+pub mod ur_yaml;
+pub mod urdf;
+
+use crate::robot::{Arm, Joint};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+
+/// A rigid transform (lengths in mm).
+pub type Frame = Isometry3<f64>;
+
+/// Prior half-widths for imported parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImportRadii {
+    /// Angles (`theta, alpha, beta`), degrees.
+    pub angle_deg: f64,
+    /// Lengths (`d, a`), mm.
+    pub length_mm: f64,
+}
+
+/// `Rz(angle)`.
+fn rz(angle: f64) -> Frame {
+    Isometry3::from_parts(
+        Translation3::identity(),
+        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), angle),
+    )
+}
+
+/// `Rx(angle)`.
+fn rx(angle: f64) -> Frame {
+    Isometry3::from_parts(
+        Translation3::identity(),
+        UnitQuaternion::from_axis_angle(&Vector3::x_axis(), angle),
+    )
+}
+
+/// `Ry(angle)`.
+fn ry(angle: f64) -> Frame {
+    Isometry3::from_parts(
+        Translation3::identity(),
+        UnitQuaternion::from_axis_angle(&Vector3::y_axis(), angle),
+    )
+}
+
+/// A translation.
+fn trans(x: f64, y: f64, z: f64) -> Frame {
+    Isometry3::translation(x, y, z)
+}
+
+/// `Rz(theta) Tz(d) Tx(a) Rx(alpha) Ry(beta)` (radians, mm).
+pub fn link(theta: f64, d: f64, a: f64, alpha: f64, beta: f64) -> Frame {
+    rz(theta) * trans(a, 0.0, d) * rx(alpha) * ry(beta)
+}
+
+/// The frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` (URDF's `rpy`, radians).
+pub fn from_xyz_rpy(xyz: [f64; 3], rpy: [f64; 3]) -> Frame {
+    Isometry3::from_parts(
+        Translation3::new(xyz[0], xyz[1], xyz[2]),
+        UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]),
+    )
+}
+
+/// The `xyz` and URDF `rpy` (radians) of a frame.
+pub fn to_xyz_rpy(f: &Frame) -> ([f64; 3], [f64; 3]) {
+    let t = f.translation.vector;
+    let (r, p, y) = f.rotation.euler_angles();
+    ([t.x, t.y, t.z], [r, p, y])
+}
+
+/// The vendor chain's flange frame at joint readings `q` (radians).
+pub fn chain_flange(origins: &[Frame], q: &[f64]) -> Frame {
+    origins
+        .iter()
+        .zip(q)
+        .fold(Frame::identity(), |t, (f, q)| t * f * rz(*q))
+}
+
+/// The model's flange frame of `arm` (files' units) at joint readings `q` (radians), with the
+/// base transform: `T_base Rz(q_1) D_1 ⋯ Rz(q_N) D_N`.
+pub fn arm_flange(arm: &Arm, q: &[f64]) -> Frame {
+    let b = arm.base;
+    let base = trans(b[0], b[1], b[2])
+        * rz(b[5].to_radians())
+        * ry(b[4].to_radians())
+        * rx(b[3].to_radians());
+    arm.joints.iter().zip(q).fold(base, |t, (j, q)| {
+        let [theta, d, a, alpha, beta] = j.nominal;
+        t * rz(*q)
+            * link(
+                theta.to_radians(),
+                d,
+                a,
+                alpha.to_radians(),
+                beta.to_radians(),
+            )
+    })
+}
+
+/// The base parameters `x, y, z, rx, ry, rz` (mm, degrees) of a frame:
+/// `Trans(xyz) Rz(rz) Ry(ry) Rx(rx)`.
+pub fn base_parameters(f: &Frame) -> [f64; 6] {
+    let ([x, y, z], [r, p, yaw]) = to_xyz_rpy(f);
+    [x, y, z, r.to_degrees(), p.to_degrees(), yaw.to_degrees()]
+}
+
+/// The base frame of base parameters (mm, degrees).
+pub fn base_frame(b: &[f64; 6]) -> Frame {
+    from_xyz_rpy(
+        [b[0], b[1], b[2]],
+        [b[3].to_radians(), b[4].to_radians(), b[5].to_radians()],
+    )
+}
+
+/// How far a frame is from `Rz(φ) Tz(s)`: the largest of its `x, y` offset (mm) and its `z`
+/// axis' tilt (radians).
+fn off_axis(f: &Frame) -> f64 {
+    let t = f.translation.vector;
+    let z = f.rotation * Vector3::z();
+    t.x.hypot(t.y).max(z.x.hypot(z.y))
+}
+
+/// `(φ, s)` of a frame `Rz(φ) Tz(s)`.
+fn turn_and_slide(f: &Frame) -> (f64, f64) {
+    let x = f.rotation * Vector3::x();
+    (x.y.atan2(x.x), f.translation.vector.z)
+}
+
+/// How far off-axis the remainder of a split may be (mm or radians): rounding only.
+const SPLIT_TOLERANCE: f64 = 1e-9;
+
+/// Splits `g` (from a joint's frame to the next joint's frame) into the five link parameters
+/// `theta, d, a, alpha, beta` (radians, mm) and the turn and slide `(φ, s)` about the next axis:
+/// `g = link(…) · Rz(φ) Tz(s)` (see the module documentation for the choice).
+pub fn split_link(g: &Frame) -> Result<([f64; 5], (f64, f64)), String> {
+    let u = g.rotation * Vector3::z();
+    let p = g.translation.vector;
+    let sin = u.x.hypot(u.y);
+    let params = if !is_parallel(g) {
+        // Denavit–Hartenberg: x along the common normal, sign so that theta is in (-90°, 90°].
+        let mut x = Vector3::z().cross(&u) / sin;
+        if x.x < 0.0 || (x.x == 0.0 && x.y < 0.0) {
+            x = -x;
+        }
+        let theta = x.y.atan2(x.x);
+        // Feet of the common normal: on the z axis at d, on the next axis at p + t u.
+        let (b, dz, e) = (u.z, p.z, u.dot(&p));
+        let denom = 1.0 - b * b;
+        let d = (dz - b * e) / denom;
+        let t = (b * dz - e) / denom;
+        let foot = p + t * u;
+        let a = (foot - Vector3::new(0.0, 0.0, d)).dot(&x);
+        let y = Vector3::z().cross(&x);
+        let alpha = (-u.dot(&y)).atan2(u.z);
+        [theta, d, a, alpha, 0.0]
+    } else {
+        // Hayati: the next axis crosses z = 0 at c.
+        let c = p - (p.z / u.z) * u;
+        let (mut theta, mut a) = (c.y.atan2(c.x), c.x.hypot(c.y));
+        if theta > std::f64::consts::FRAC_PI_2 {
+            theta -= std::f64::consts::PI;
+            a = -a;
+        } else if theta <= -std::f64::consts::FRAC_PI_2 {
+            theta += std::f64::consts::PI;
+            a = -a;
+        }
+        let v = rz(-theta) * u;
+        let beta = v.x.clamp(-1.0, 1.0).asin();
+        let alpha = (-v.y).atan2(v.z);
+        [theta, 0.0, a, alpha, beta]
+    };
+    let [theta, d, a, alpha, beta] = params;
+    let rest = link(theta, d, a, alpha, beta).inverse() * g;
+    let off = off_axis(&rest);
+    if off > SPLIT_TOLERANCE * (1.0 + p.norm()) {
+        return Err(format!(
+            "a link could not be split into Denavit-Hartenberg/Hayati parameters (off by {off:e})"
+        ));
+    }
+    Ok((params, turn_and_slide(&rest)))
+}
+
+/// The arm of a vendor chain `origins` (mm): exact parameters (see the module documentation),
+/// priors `radii` on the free ones, the base at the chain's base frame (refined by registration),
+/// the tool point at the flange's origin with no prior.
+pub fn chain_to_arm(origins: &[Frame], radii: ImportRadii) -> Result<Arm, String> {
+    let n = origins.len();
+    if !crate::files::JOINTS.contains(&n) {
+        return Err(format!(
+            "a chain of {n} joints; arms with {} to {} joints are supported",
+            crate::files::JOINTS.start(),
+            crate::files::JOINTS.end()
+        ));
+    }
+    // F_1 = base · Rz(φ) Tz(s): the base is the identity when F_1 turns and slides along z.
+    let (base, mut carry) = if off_axis(&origins[0]) <= SPLIT_TOLERANCE {
+        (Frame::identity(), turn_and_slide(&origins[0]))
+    } else {
+        (origins[0], (0.0, 0.0))
+    };
+    let mut joints = Vec::with_capacity(n);
+    for i in 0..n {
+        let next = origins.get(i + 1).copied().unwrap_or_else(Frame::identity);
+        let (params, rest) = split_link(&next)?;
+        let [theta, d, a, alpha, beta] = params;
+        let (theta, d) = (theta + carry.0, d + carry.1);
+        let hayati = is_parallel(&next);
+        let (ar, lr) = (radii.angle_deg, radii.length_mm);
+        let radius = if i + 1 == n {
+            [0.0; 5]
+        } else if i == 0 {
+            if hayati {
+                [0.0, 0.0, lr, ar, ar]
+            } else {
+                [0.0, 0.0, lr, ar, 0.0]
+            }
+        } else if hayati {
+            [ar, 0.0, lr, ar, ar]
+        } else {
+            [ar, lr, lr, ar, 0.0]
+        };
+        if i + 1 == n && (a.abs() > SPLIT_TOLERANCE || alpha.abs() > SPLIT_TOLERANCE) {
+            return Err("the flange frame is not the last joint's frame".to_string());
+        }
+        joints.push(Joint {
+            nominal: [
+                wrap_deg(theta.to_degrees()),
+                d,
+                a,
+                wrap_deg(alpha.to_degrees()),
+                beta.to_degrees(),
+            ],
+            radius,
+        });
+        carry = rest;
+    }
+    Ok(Arm {
+        joints,
+        base: base_parameters(&base),
+        base_radius: [0.0; 6],
+        tool: [0.0; 3],
+        tool_radius: [0.0; 3],
+    })
+}
+
+/// Whether the next joint's axis (`g`'s `z`) is within 45° of parallel to this one's (a Hayati
+/// link).
+fn is_parallel(g: &Frame) -> bool {
+    let u = g.rotation * Vector3::z();
+    u.z.abs() > std::f64::consts::FRAC_1_SQRT_2
+}
+
+/// An angle in `(−180°, 180°]`.
+fn wrap_deg(a: f64) -> f64 {
+    let w = a.rem_euclid(360.0);
+    if w > 180.0 {
+        w - 360.0
+    } else {
+        w
+    }
+}
+
+/// The vendor chain (mm) of `arm`'s joints, from its base frame (see the module documentation);
+/// the last joint's `a, alpha, beta` must be 0 (the flange is its frame).
+pub fn arm_to_chain(arm: &Arm) -> Result<Vec<Frame>, String> {
+    let n = arm.joints.len();
+    let rad = |j: &Joint| {
+        let [theta, d, a, alpha, beta] = j.nominal;
+        (
+            theta.to_radians(),
+            d,
+            a,
+            alpha.to_radians(),
+            beta.to_radians(),
+        )
+    };
+    let last = rad(&arm.joints[n - 1]);
+    if last.2 != 0.0 || last.3 != 0.0 || last.4 != 0.0 {
+        return Err(format!(
+            "a{n}, alpha{n}, beta{n} must be 0 to write a vendor chain (its flange is the last \
+             joint's frame)"
+        ));
+    }
+    let mut out = Vec::with_capacity(n);
+    let mut before = Frame::identity();
+    for j in &arm.joints {
+        let (theta, d, a, alpha, beta) = rad(j);
+        out.push(before * rz(theta) * trans(0.0, 0.0, d));
+        before = trans(a, 0.0, 0.0) * rx(alpha) * ry(beta);
+    }
+    Ok(out)
+}
+
+/// The tracked point of `arm` at joint readings `q` (radians), from [`arm_flange`]: for tests
+/// against the model's residual.
+pub fn arm_point(arm: &Arm, q: &[f64]) -> [f64; 3] {
+    let p = arm_flange(arm, q) * Point3::new(arm.tool[0], arm.tool[1], arm.tool[2]);
+    [p.x, p.y, p.z]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    /// A random rigid transform: translation within ±`t` mm, any rotation.
+    fn random_frame(rng: &mut impl Rng, t: f64) -> Frame {
+        let mut v = || rng.random_range(-1.0..1.0);
+        Isometry3::from_parts(
+            Translation3::new(t * v(), t * v(), t * v()),
+            UnitQuaternion::from_euler_angles(3.0 * v(), 1.5 * v(), 3.0 * v()),
+        )
+    }
+
+    #[test]
+    fn random_chains_become_arms_with_the_same_flange_and_back() {
+        let mut rng = rand::rngs::StdRng::seed_from_u64(3);
+        let radii = ImportRadii {
+            angle_deg: 0.1,
+            length_mm: 1.0,
+        };
+        for trial in 0..200 {
+            let n = 3 + trial % 5;
+            let mut origins: Vec<Frame> = (0..n).map(|_| random_frame(&mut rng, 500.0)).collect();
+            // Every other chain: a first joint turning about the base's z, nearly parallel axes.
+            if trial % 2 == 0 {
+                origins[0] = rz(rng.random_range(-3.0..3.0)) * trans(0.0, 0.0, 120.0);
+                origins[2] = trans(-600.0, 3.0, 40.0) * rx(1e-3) * ry(-2e-3);
+            }
+            let arm = chain_to_arm(&origins, radii).expect("an arm");
+            let back = arm_to_chain(&arm).expect("a chain");
+            let base = base_frame(&arm.base);
+            for _ in 0..5 {
+                let q: Vec<f64> = (0..n).map(|_| rng.random_range(-3.2..3.2)).collect();
+                let want = chain_flange(&origins, &q);
+                let got = arm_flange(&arm, &q);
+                let again = base * chain_flange(&back, &q);
+                for f in [got, again] {
+                    let dt = (f.translation.vector - want.translation.vector).norm();
+                    let dr = f.rotation.angle_to(&want.rotation);
+                    assert!(dt < 1e-9 && dr < 1e-12, "trial {trial}: {dt} mm, {dr} rad");
+                }
+                // The model's residual computes the same point.
+                let units = crate::params::names(n);
+                let x: Vec<f64> = arm
+                    .nominal()
+                    .iter()
+                    .zip(&units)
+                    .map(|(v, (_, u))| match u {
+                        crate::params::Unit::Deg => v.to_radians(),
+                        crate::params::Unit::Mm => *v,
+                    })
+                    .collect();
+                let p = crate::model::tracked_point(&x, &q).expect("a point");
+                let want_p = arm_point(&arm, &q);
+                assert!((0..3).all(|c| (p[c] - want_p[c]).abs() < 1e-9));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod ur10 {
+    use super::*;
+
+    #[test]
+    fn the_ur10_yaml_imports_as_ur_s_published_denavit_hartenberg_parameters() {
+        let text = include_str!("../../tests/data/ur10_default_kinematics.yaml");
+        let k = ur_yaml::parse(std::path::Path::new("ur10.yaml"), text).expect("UR10");
+        let radii = ImportRadii {
+            angle_deg: 0.1,
+            length_mm: 1.0,
+        };
+        let arm = chain_to_arm(&k.origins, radii).expect("an arm");
+        let d = [127.3, 0.0, 0.0, 163.941, 115.7, 92.2];
+        let a = [0.0, -612.0, -572.3, 0.0, 0.0, 0.0];
+        let alpha = [90.0, 0.0, 0.0, 90.0, -90.0, 0.0];
+        for (i, j) in arm.joints.iter().enumerate() {
+            let [theta, dj, aj, al, beta] = j.nominal;
+            let close = |x: f64, y: f64| (x - y).abs() < 1e-6;
+            assert!(
+                close(theta, 0.0) && close(dj, d[i]) && close(aj, a[i]) && close(al, alpha[i]),
+                "joint {}: {:?}",
+                i + 1,
+                j.nominal
+            );
+            assert!(close(beta, 0.0));
+        }
+        // The identifiable set of the built-in arm: 18 joint parameters (+ base and tool).
+        let free = arm
+            .joints
+            .iter()
+            .flat_map(|j| j.radius)
+            .filter(|r| *r > 0.0)
+            .count();
+        assert_eq!(free, 18);
+        assert_eq!(arm.base, [0.0; 6]);
+    }
+}

@@ -1,0 +1,195 @@
+//! Universal Robots' kinematics YAML (`default_kinematics.yaml`, and the per-robot calibration
+//! the UR driver extracts from a controller): under `kinematics:`, one entry per joint —
+//! `shoulder, upper_arm, forearm, wrist_1, wrist_2, wrist_3` — with the joint origin's
+//! `x, y, z` (metres) and `roll, pitch, yaw` (radians, URDF's `Rz(yaw) Ry(pitch) Rx(roll)`), and
+//! `hash`, the controller calibration's checksum.
+//!
+//! The UR driver compares `hash` with the controller's and warns when they differ: a file written
+//! by [`write`] describes *this* calibration, not the controller's, so its hash is this file's
+//! own (`certicalib_…`) unless one is given (e.g. the imported one, to silence the check knowingly).
+
+use super::{from_xyz_rpy, to_xyz_rpy, Frame};
+use calib_pipeline::DataError;
+use serde::Deserialize;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The joints of a UR arm, base to flange, as the YAML names them.
+pub const JOINT_NAMES: [&str; 6] = [
+    "shoulder",
+    "upper_arm",
+    "forearm",
+    "wrist_1",
+    "wrist_2",
+    "wrist_3",
+];
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct File {
+    kinematics: Kinematics,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Kinematics {
+    shoulder: Origin,
+    upper_arm: Origin,
+    forearm: Origin,
+    wrist_1: Origin,
+    wrist_2: Origin,
+    wrist_3: Origin,
+    #[serde(default)]
+    hash: Option<String>,
+}
+
+#[derive(Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+struct Origin {
+    x: f64,
+    y: f64,
+    z: f64,
+    roll: f64,
+    pitch: f64,
+    yaw: f64,
+}
+
+/// A UR kinematics file: the joint origins (mm) and the hash.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrKinematics {
+    /// The six joint origins, base to flange, in mm.
+    pub origins: Vec<Frame>,
+    /// The `hash` field, when present.
+    pub hash: Option<String>,
+}
+
+/// Parses a UR kinematics YAML (`text`, the contents of `file`); errors name the file, line and
+/// field.
+pub fn parse(file: &Path, text: &str) -> Result<UrKinematics, DataError> {
+    let f: File = serde_norway::from_str(text).map_err(|e| {
+        let line = e.location().map(|l| l.line());
+        DataError::new(
+            file,
+            line,
+            None,
+            format!(
+                "{e}; expected `kinematics:` with shoulder, upper_arm, forearm, wrist_1, wrist_2, \
+                 wrist_3 (x, y, z in metres, roll, pitch, yaw in radians) and hash"
+            ),
+        )
+    })?;
+    let k = f.kinematics;
+    let entries = [
+        k.shoulder,
+        k.upper_arm,
+        k.forearm,
+        k.wrist_1,
+        k.wrist_2,
+        k.wrist_3,
+    ];
+    let mut origins = Vec::with_capacity(6);
+    for (o, name) in entries.iter().zip(JOINT_NAMES) {
+        let values = [o.x, o.y, o.z, o.roll, o.pitch, o.yaw];
+        if let Some(v) = values.iter().find(|v| !v.is_finite() || v.abs() > 100.0) {
+            return Err(DataError::new(
+                file,
+                line_of(text, name),
+                Some(name),
+                format!("{v}: expected metres and radians of magnitude below 100"),
+            ));
+        }
+        origins.push(from_xyz_rpy(
+            [1000.0 * o.x, 1000.0 * o.y, 1000.0 * o.z],
+            [o.roll, o.pitch, o.yaw],
+        ));
+    }
+    Ok(UrKinematics {
+        origins,
+        hash: k.hash,
+    })
+}
+
+/// The line of `key:` in `text` (1-based).
+fn line_of(text: &str, key: &str) -> Option<usize> {
+    text.lines()
+        .position(|l| l.trim_start().starts_with(&format!("{key}:")))
+        .map(|i| i + 1)
+}
+
+/// The YAML of six joint origins (mm) in UR's layout, with `hash` (or this file's own checksum
+/// when `None`), preceded by the `comment` lines.
+pub fn write(origins: &[Frame], hash: Option<&str>, comment: &str) -> Result<String, String> {
+    if origins.len() != 6 {
+        return Err(format!(
+            "a UR kinematics file has 6 joints; this arm has {}",
+            origins.len()
+        ));
+    }
+    let mut body = String::new();
+    for (o, name) in origins.iter().zip(JOINT_NAMES) {
+        let (xyz, rpy) = to_xyz_rpy(o);
+        let _ = write!(
+            body,
+            "  {name}:\n    x: {:?}\n    y: {:?}\n    z: {:?}\n    roll: {:?}\n    pitch: {:?}\n    yaw: {:?}\n",
+            xyz[0] / 1000.0,
+            xyz[1] / 1000.0,
+            xyz[2] / 1000.0,
+            rpy[0],
+            rpy[1],
+            rpy[2]
+        );
+    }
+    let hash = match hash {
+        Some(h) => h.to_string(),
+        None => format!("certicalib_{}", fnv1a(&body)),
+    };
+    let mut out = String::new();
+    for line in comment.lines() {
+        let _ = writeln!(out, "# {line}");
+    }
+    let _ = write!(out, "kinematics:\n{body}  hash: {hash}\n");
+    Ok(out)
+}
+
+/// The 64-bit FNV-1a checksum of `text` (a stable identifier of the numbers written).
+fn fnv1a(text: &str) -> u64 {
+    text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const UR10: &str = include_str!("../../tests/data/ur10_default_kinematics.yaml");
+
+    #[test]
+    fn ur10_reads_writes_and_reads_back_the_same_frames() {
+        let f = Path::new("ur10.yaml");
+        let k = parse(f, UR10).expect("UR10");
+        assert_eq!(k.hash.as_deref(), Some("calib_17227329492635474227"));
+        assert!((k.origins[0].translation.vector.z - 127.3).abs() < 1e-12);
+        let text = write(&k.origins, k.hash.as_deref(), "test").expect("six joints");
+        assert!(text.starts_with("# test\nkinematics:\n  shoulder:\n"));
+        let again = parse(f, &text).expect("reads back");
+        assert_eq!(again.hash, k.hash);
+        for (a, b) in again.origins.iter().zip(&k.origins) {
+            assert!((a.translation.vector - b.translation.vector).norm() < 1e-12);
+            assert!(a.rotation.angle_to(&b.rotation) < 1e-12);
+        }
+        let own = write(&k.origins, None, "").expect("six joints");
+        assert!(own.contains("hash: certicalib_"), "{own}");
+    }
+
+    #[test]
+    fn bad_files_are_named_with_line_and_field() {
+        let f = Path::new("bad.yaml");
+        let e = parse(f, &UR10.replace("forearm", "fore_arm")).unwrap_err();
+        assert!(e.line.is_some() && e.message.contains("fore_arm"), "{e}");
+        let e = parse(f, &UR10.replace("x: -0.612", "x: -612e9")).unwrap_err();
+        assert_eq!((e.line, e.field.as_deref()), (Some(16), Some("forearm")));
+        let e = parse(f, "kinematics: [1, 2]").unwrap_err();
+        assert_eq!(e.line, Some(1));
+    }
+}

@@ -1,0 +1,252 @@
+//! URDF (ROS's robot description): the chain of joints from a base link to a tip link.
+//!
+//! Reading ([`parse`], with `urdf-rs`): revolute and continuous joints become the chain's joints,
+//! fixed joints between them are folded into the next joint's origin, a joint axis other than
+//! `z` is turned onto `z` (the turn carried into the next origin), so that
+//! `T(q) = F_1 Rz(q_1) ⋯ F_N Rz(q_N)` is the tip link's frame. The tip must be the last moving
+//! joint's child link or fixed to it without offset (the tool point is expressed in it).
+//! Writing ([`write`]): `base_link`, one continuous joint per arm joint (`joint1…`, axis `z`,
+//! origins in metres and radians), and a fixed `tool_joint` to a `tool` link at the tool point.
+
+use super::{from_xyz_rpy, to_xyz_rpy, Frame};
+use calib_pipeline::DataError;
+use nalgebra::{UnitQuaternion, Vector3};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// How far the tip may be from the last joint's frame (mm, radians): rounding only.
+const TIP_TOLERANCE: f64 = 1e-9;
+
+/// Reads the chain of `text` (a URDF, the contents of `file`) from the link `base` (default: the
+/// root link) to the link `tip` (default: the end of the chain when it does not branch). Origins
+/// in mm.
+pub fn parse(
+    file: &Path,
+    text: &str,
+    base: Option<&str>,
+    tip: Option<&str>,
+) -> Result<Vec<Frame>, DataError> {
+    let err = |field: Option<&str>, m: String| DataError::new(file, None, field, m);
+    let robot = urdf_rs::read_from_string(text).map_err(|e| err(None, format!("{e}")))?;
+    let parent_joint = |link: &str| -> Option<&urdf_rs::Joint> {
+        robot.joints.iter().find(|j| j.child.link == link)
+    };
+    let root = robot
+        .links
+        .iter()
+        .map(|l| l.name.as_str())
+        .find(|l| parent_joint(l).is_none())
+        .ok_or_else(|| {
+            err(
+                None,
+                "no root link (every link is some joint's child)".into(),
+            )
+        })?;
+    let base = base.unwrap_or(root);
+    if !robot.links.iter().any(|l| l.name == base) {
+        return Err(err(Some("base link"), format!("no link `{base}`")));
+    }
+    let tip = match tip {
+        Some(t) => t.to_string(),
+        None => {
+            // Follow the only child joint from the base while there is one.
+            let mut link = base.to_string();
+            loop {
+                let children: Vec<&urdf_rs::Joint> = robot
+                    .joints
+                    .iter()
+                    .filter(|j| j.parent.link == link)
+                    .collect();
+                match children.as_slice() {
+                    [] => break link,
+                    [j] => link = j.child.link.clone(),
+                    _ => {
+                        return Err(err(
+                            Some("tip link"),
+                            format!("the chain branches at `{link}`: name the tip link"),
+                        ))
+                    }
+                }
+            }
+        }
+    };
+    // From the tip up to the base.
+    let mut joints = Vec::new();
+    let mut link = tip.clone();
+    while link != base {
+        let j = parent_joint(&link).ok_or_else(|| {
+            err(
+                Some("tip link"),
+                format!("`{tip}` is not below `{base}` (or no link `{tip}`)"),
+            )
+        })?;
+        joints.push(j);
+        link = j.parent.link.clone();
+    }
+    joints.reverse();
+    let mut origins = Vec::new();
+    let mut pending = Frame::identity();
+    for j in joints {
+        let o = from_xyz_rpy(
+            [
+                1000.0 * j.origin.xyz[0],
+                1000.0 * j.origin.xyz[1],
+                1000.0 * j.origin.xyz[2],
+            ],
+            *j.origin.rpy,
+        );
+        match &j.joint_type {
+            urdf_rs::JointType::Fixed => pending *= o,
+            urdf_rs::JointType::Revolute | urdf_rs::JointType::Continuous => {
+                let a = Vector3::from(*j.axis.xyz);
+                let norm = a.norm();
+                if !(norm > 0.0 && norm.is_finite()) {
+                    return Err(err(Some(&j.name), "a joint axis of zero length".into()));
+                }
+                let onto = UnitQuaternion::rotation_between(&Vector3::z(), &(a / norm))
+                    .unwrap_or_else(|| {
+                        UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)
+                    });
+                let turn = Frame::from_parts(nalgebra::Translation3::identity(), onto);
+                origins.push(pending * o * turn);
+                pending = turn.inverse();
+            }
+            other => {
+                return Err(err(
+                    Some(&j.name),
+                    format!("a {other:?} joint: only revolute, continuous and fixed joints"),
+                ))
+            }
+        }
+    }
+    let off = pending
+        .translation
+        .vector
+        .norm()
+        .max(pending.rotation.angle());
+    if off > TIP_TOLERANCE {
+        return Err(err(
+            Some("tip link"),
+            format!(
+                "`{tip}` is offset from the last moving joint's frame; name that joint's child \
+                 link as the tip (the tool point is expressed in it)"
+            ),
+        ));
+    }
+    if origins.is_empty() {
+        return Err(err(
+            None,
+            format!("no moving joint between `{base}` and `{tip}`"),
+        ));
+    }
+    Ok(origins)
+}
+
+/// A URDF of the chain `origins` (mm) named `name`, with the tool point `tool` (mm, in the last
+/// joint's frame) as a fixed `tool` link.
+pub fn write(name: &str, origins: &[Frame], tool: [f64; 3]) -> String {
+    let mut s = format!(
+        "<?xml version=\"1.0\"?>\n<!-- written by certicalib: joint origins in metres and \
+         radians, every joint about its z axis -->\n<robot name=\"{name}\">\n  <link name=\"base_link\"/>\n"
+    );
+    let mut parent = "base_link".to_string();
+    for (i, o) in origins.iter().enumerate() {
+        let (xyz, rpy) = to_xyz_rpy(o);
+        let child = format!("link{}", i + 1);
+        let _ = write!(
+            s,
+            "  <link name=\"{child}\"/>\n  <joint name=\"joint{}\" type=\"continuous\">\n    \
+             <parent link=\"{parent}\"/>\n    <child link=\"{child}\"/>\n    <origin xyz=\"{:?} \
+             {:?} {:?}\" rpy=\"{:?} {:?} {:?}\"/>\n    <axis xyz=\"0 0 1\"/>\n  </joint>\n",
+            i + 1,
+            xyz[0] / 1000.0,
+            xyz[1] / 1000.0,
+            xyz[2] / 1000.0,
+            rpy[0],
+            rpy[1],
+            rpy[2]
+        );
+        parent = child;
+    }
+    let _ = write!(
+        s,
+        "  <link name=\"tool\"/>\n  <joint name=\"tool_joint\" type=\"fixed\">\n    <parent \
+         link=\"{parent}\"/>\n    <child link=\"tool\"/>\n    <origin xyz=\"{:?} {:?} {:?}\" \
+         rpy=\"0 0 0\"/>\n  </joint>\n</robot>\n",
+        tool[0] / 1000.0,
+        tool[1] / 1000.0,
+        tool[2] / 1000.0
+    );
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::vendor::{chain_flange, ur_yaml};
+
+    const UR10: &str = include_str!("../../tests/data/ur10_default_kinematics.yaml");
+
+    #[test]
+    fn a_urdf_of_the_ur10_reads_back_as_the_yaml_chain() {
+        let yaml = ur_yaml::parse(Path::new("ur10.yaml"), UR10).expect("UR10");
+        let text = write("ur10", &yaml.origins, [0.0, 0.0, 93.0]);
+        let f = Path::new("ur10.urdf");
+        // Up to the last moving joint's link (the default tip) and with the tool link as tip
+        // refused (it is offset).
+        let chain = parse(f, &text, None, Some("link6")).expect("a chain");
+        let e = parse(f, &text, None, None).unwrap_err();
+        assert!(e.message.contains("offset"), "{e}");
+        for q in [[0.1, -1.2, 0.7, 2.0, -0.4, 3.0], [0.0; 6]] {
+            let a = chain_flange(&yaml.origins, &q);
+            let b = chain_flange(&chain, &q);
+            assert!((a.translation.vector - b.translation.vector).norm() < 1e-9);
+            assert!(a.rotation.angle_to(&b.rotation) < 1e-12);
+        }
+    }
+
+    #[test]
+    fn axes_other_than_z_and_fixed_links_fold_into_the_chain() {
+        let text = r#"<robot name="r">
+  <link name="b"/><link name="m"/><link name="l1"/><link name="l2"/><link name="l3"/>
+  <link name="l4"/>
+  <joint name="fix" type="fixed"><parent link="b"/><child link="m"/>
+    <origin xyz="0 0 0.1" rpy="0 0 0.3"/></joint>
+  <joint name="j1" type="revolute"><parent link="m"/><child link="l1"/>
+    <origin xyz="0.01 0 0.2" rpy="0.1 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="j2" type="continuous"><parent link="l1"/><child link="l2"/>
+    <origin xyz="0.3 0 0" rpy="0 0 0"/><axis xyz="0 1 0"/></joint>
+  <joint name="j3" type="continuous"><parent link="l2"/><child link="l3"/>
+    <origin xyz="0.25 0.02 0" rpy="0 0 0"/><axis xyz="-1 0 0"/></joint>
+  <joint name="j4" type="continuous"><parent link="l3"/><child link="l4"/>
+    <origin xyz="0 0 0.05" rpy="0 0 0"/><axis xyz="0 0 1"/></joint>
+</robot>"#;
+        let chain = parse(Path::new("r.urdf"), text, None, None).expect("a chain");
+        assert_eq!(chain.len(), 4);
+        // The same frames by hand: about y then about -x.
+        let q = [0.4, -0.8, 1.1, 0.6];
+        let by_hand = from_xyz_rpy([0.0, 0.0, 100.0], [0.0, 0.0, 0.3])
+            * from_xyz_rpy([10.0, 0.0, 200.0], [0.1, 0.0, 0.0])
+            * from_xyz_rpy([0.0; 3], [0.0, 0.0, q[0]])
+            * from_xyz_rpy([300.0, 0.0, 0.0], [0.0; 3])
+            * from_xyz_rpy([0.0; 3], [0.0, q[1], 0.0])
+            * from_xyz_rpy([250.0, 20.0, 0.0], [0.0; 3])
+            * from_xyz_rpy([0.0; 3], [-q[2], 0.0, 0.0])
+            * from_xyz_rpy([0.0, 0.0, 50.0], [0.0, 0.0, q[3]]);
+        let got = chain_flange(&chain, &q);
+        let p = nalgebra::Point3::new(5.0, -7.0, 11.0);
+        assert!((by_hand * p - got * p).norm() < 1e-9);
+        let e = parse(
+            Path::new("r.urdf"),
+            &text.replace("continuous", "prismatic"),
+            None,
+            None,
+        )
+        .unwrap_err();
+        assert!(
+            e.message.contains("Prismatic") && e.field.as_deref() == Some("j2"),
+            "{e}"
+        );
+    }
+}
