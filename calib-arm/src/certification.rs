@@ -228,6 +228,27 @@ pub fn certify_arm(
     dispatch(arm, readings, u, Job::Certify(options), settings)
 }
 
+/// Only the verdict of certifying `arm` against `readings` with the error bounds `u` (the paper's
+/// x1, no inner bounds, no search of conflicting configurations): what the smallest consistent
+/// error bound is searched with.
+pub fn verdict_only(
+    arm: &Arm,
+    readings: &[Reading],
+    u: &Uncertainty,
+) -> Result<calib_core::Status, String> {
+    let mut settings = CertifyRequest::default()
+        .settings(readings.len())?
+        .with_conflict_sets(false);
+    settings.inner_bounds = false;
+    let options = RunOptions {
+        depth: Depth::Fast,
+        lsq: false,
+    };
+    Ok(certify_arm(arm, readings, u, options, &settings)?
+        .outcome
+        .status)
+}
+
 fn dispatch(
     arm: &Arm,
     readings: &[Reading],

@@ -190,8 +190,12 @@ fn dependent_sets(free: &[usize], j: &DMatrix<f64>) -> Vec<Combination> {
     sets
 }
 
+/// Weak groups with more members are named by their first few.
+const MAX_NAMED: usize = 6;
+
 impl Identifiability {
-    /// The findings in words, naming parameters by `names` (all parameters, model order).
+    /// The findings in words (each weak group once, members in model order, smallest groups
+    /// first), naming parameters by `names` (all parameters, model order).
     pub fn sentences(&self, names: &[String]) -> Vec<String> {
         let list = |c: &Combination| {
             c.members
@@ -217,7 +221,47 @@ impl Identifiability {
                 )
             });
         }
+        // Each weak group once, its members in model order, the smallest groups first (a group
+        // spanning most parameters says little beyond its size).
+        let mut weak: Vec<Combination> = Vec::new();
         for c in &self.weak {
+            let mut members = c.members.clone();
+            members.sort_by_key(|(j, _)| *j);
+            let same = |w: &Combination| {
+                w.members.len() == members.len()
+                    && w.members.iter().zip(&members).all(|(a, b)| a.0 == b.0)
+            };
+            if !weak.iter().any(same) {
+                weak.push(Combination {
+                    effect: c.effect,
+                    members,
+                });
+            }
+        }
+        weak.sort_by(|a, b| {
+            a.members
+                .len()
+                .cmp(&b.members.len())
+                .then(a.effect.total_cmp(&b.effect))
+        });
+        let shown = |c: &Combination| {
+            if c.members.len() <= MAX_NAMED {
+                list(c)
+            } else {
+                let first = Combination {
+                    effect: c.effect,
+                    members: c.members[..MAX_NAMED].to_vec(),
+                };
+                format!(
+                    "{} parameters ({}, and {} more)",
+                    c.members.len(),
+                    list(&first),
+                    c.members.len() - MAX_NAMED
+                )
+            }
+        };
+        for c in &weak {
+            let list = shown;
             let (what, them) = if c.members.len() == 1 {
                 (format!("moving {} across its prior box", list(c)), "it")
             } else {
@@ -240,6 +284,32 @@ impl Identifiability {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn weak_groups_are_named_once_in_order_smallest_first() {
+        let names: Vec<String> = (0..12).map(|i| format!("p{i}")).collect();
+        let group = |m: &[usize], effect: f64| Combination {
+            effect,
+            members: m.iter().map(|&j| (j, 1.0)).collect(),
+        };
+        let id = Identifiability {
+            singular_values: vec![],
+            undetermined: vec![],
+            weak: vec![
+                group(&[0, 1, 2, 3, 4, 5, 6, 7, 8], 0.5),
+                group(&[3, 1], 0.2),
+                group(&[1, 3], 0.3),
+            ],
+        };
+        let s = id.sentences(&names);
+        assert_eq!(s.len(), 2, "{s:?}");
+        assert!(s[0].contains("moving p1, p3 together"), "{}", s[0]);
+        assert!(
+            s[1].contains("9 parameters (p0, p1, p2, p3, p4, p5, and 3 more)"),
+            "{}",
+            s[1]
+        );
+    }
 
     #[test]
     fn a_dependent_pair_is_named_and_a_clean_set_is_not() {

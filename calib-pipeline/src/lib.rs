@@ -11,6 +11,7 @@
 pub mod calibrated;
 pub mod design;
 mod error;
+pub mod error_scale;
 pub mod html;
 pub mod identify;
 pub mod lsq;

@@ -52,7 +52,7 @@ pub fn parse_number_table(
         let record = record.map_err(|e| record_error(file, e))?;
         let line = record
             .position()
-            .map_or(out.rows.len() + 2, |p| p.line() as usize);
+            .map_or(out.rows.len() + 2, |p| line_at_byte(text, p.byte()));
         let mut values = Vec::with_capacity(expected.len());
         for (field, raw) in expected.iter().zip(record.iter()) {
             values.push(number(file, line, field, raw, raw)?);
@@ -163,7 +163,7 @@ pub fn parse_named_columns(
         let record = record.map_err(|e| record_error(file, e))?;
         let line = record
             .position()
-            .map_or(out.rows.len() + 2, |p| p.line() as usize);
+            .map_or(out.rows.len() + 2, |p| line_at_byte(text, p.byte()));
         let mut values = Vec::with_capacity(columns.len());
         for (field, &i) in columns.iter().zip(&picked) {
             let raw = record.get(i).unwrap_or("");
@@ -178,6 +178,18 @@ pub fn parse_named_columns(
         out.lines.push(line);
     }
     Ok(out)
+}
+
+/// The 1-based line of the record starting at the byte offset `byte` of `text` (csv's own line
+/// count is off by one on files with CRLF line ends).
+fn line_at_byte(text: &str, byte: u64) -> usize {
+    let bytes = text.as_bytes();
+    let mut end = usize::try_from(byte).map_or(bytes.len(), |b| b.min(bytes.len()));
+    // A record after a CRLF starts, for csv, at the LF.
+    while end < bytes.len() && (bytes[end] == b'\n' || bytes[end] == b'\r') {
+        end += 1;
+    }
+    1 + bytes[..end].iter().filter(|&&c| c == b'\n').count()
 }
 
 /// The message of a malformed CSV record.
@@ -245,6 +257,9 @@ mod tests {
         // A comma-separated file keeps its decimal points, tabs are found too.
         let t = parse_named_columns(f, "a,b\n1.5,2\n", &header(&["b"])).unwrap();
         assert_eq!(t.rows, vec![vec![2.0]]);
+        // CRLF line ends: the same lines.
+        let t = parse_named_columns(f, "a;b\r\n1,5;2\r\n3;4\r\n", &header(&["b"])).unwrap();
+        assert_eq!((t.rows.len(), t.lines.clone()), (2, vec![2, 3]));
         let t = parse_named_columns(f, "a\tb\n1,5\t2\n", &header(&["a"])).unwrap();
         assert_eq!(t.rows, vec![vec![1.5]]);
         // A missing column is named, with the columns there are; a bad cell by line and field.

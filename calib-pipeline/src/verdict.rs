@@ -248,7 +248,21 @@ pub fn auto_outliers(q: usize, status: Status) -> String {
                 "--max-outliers auto: empty even with {q} outliers tolerated, the most possible"
             )
         }
+        (0, Status::Undecided) => "--max-outliers auto: undecided with every configuration kept \
+                                    (no outlier was proved needed; none was proved absent either)"
+            .into(),
         (0, _) => "--max-outliers auto: no outlier needed (every configuration kept)".into(),
+        (1, Status::Undecided) => "--max-outliers auto: undecided with 1 outlier tolerated \
+                                    (proved: with every configuration kept, no parameter vector \
+                                    of x0 fits; with 1 tolerated, neither a fit nor its absence \
+                                    was proved)"
+            .into(),
+        (q, Status::Undecided) => format!(
+            "--max-outliers auto: undecided with {q} outliers tolerated (proved: with {} or fewer \
+             tolerated, no parameter vector of x0 fits; with {q}, neither a fit nor its absence \
+             was proved)",
+            q - 1
+        ),
         (1, _) => "--max-outliers auto: 1 outlier tolerated (proved: with every configuration \
                    kept, no parameter vector of x0 fits)"
             .into(),
@@ -260,14 +274,45 @@ pub fn auto_outliers(q: usize, status: Status) -> String {
     }
 }
 
+/// The proved improvement `factor` (the uncalibrated robot's lower bound over the calibrated
+/// one's upper bound) of `what` (e.g. "the worst tool-point error") in words: a reduction only
+/// when the factor exceeds 1.
+pub fn improvement(what: &str, factor: f64) -> String {
+    if factor > 1.0 {
+        format!(
+            "calibration reduced {what} at least {factor:.2}-fold (proved: before's lower bound \
+             over after's upper bound)"
+        )
+    } else {
+        format!(
+            "no improvement of {what} is proved: before's lower bound is {factor:.2} times \
+             after's upper bound (the brackets overlap; tighten them, or calibration did not help)"
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
+    fn factors_below_one_are_not_improvements() {
+        assert!(improvement("the error", 23.9)
+            .starts_with("calibration reduced the error at least 23.90"));
+        let none = improvement("the error", 0.99);
+        assert!(
+            none.starts_with("no improvement of the error is proved"),
+            "{none}"
+        );
+    }
+
+    #[test]
     fn auto_outliers_say_what_was_proved() {
         assert!(auto_outliers(0, Status::Consistent).contains("no outlier needed"));
-        assert!(auto_outliers(1, Status::Undecided).contains("with every configuration kept"));
+        assert!(auto_outliers(1, Status::Consistent).contains("with every configuration kept"));
+        let undecided = auto_outliers(3, Status::Undecided);
+        assert!(undecided.contains("undecided with 3") && undecided.contains("2 or fewer"));
+        assert!(!auto_outliers(0, Status::Undecided).contains("no outlier needed"));
         assert!(auto_outliers(3, Status::Consistent).contains("with 2 or fewer tolerated"));
         assert!(auto_outliers(4, Status::Empty).contains("empty even with 4"));
     }

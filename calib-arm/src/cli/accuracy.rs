@@ -193,8 +193,8 @@ fn print_report(r: &ToolAccuracyReport, a: &Args) {
     }
     if let Some(f) = r.improvement() {
         println!(
-            "calibration reduced the worst tool-point error at least {f:.2}× (before's lower bound \
-             / after's upper bound, both proved)"
+            "{}",
+            calib_pipeline::verdict::improvement("the worst tool-point error", f)
         );
     }
     if let Some(w) = &r.after.worst {

@@ -6,9 +6,11 @@ use super::output::{
 use super::DataFiles;
 use calib_arm::calibrated::{calibrated_arm, calibrated_toml, PointChoice};
 use calib_arm::certificate::ArmCertificate;
-use calib_arm::certification::{certify_request, CertifyRequest};
+use calib_arm::certification::{certify_request, verdict_only, CertifyRequest};
 use calib_arm::files::{parse_robot, parse_uncertainty};
+use calib_arm::simulate::Uncertainty;
 use calib_core::Status;
+use calib_pipeline::error_scale::{find_error_scale, ScaleSearch};
 use calib_pipeline::html::{command_line, now, Input};
 use calib_pipeline::verdict::{self, ConfigurationNames};
 use calib_pipeline::{read_text, write_atomically};
@@ -70,6 +72,164 @@ pub struct Args {
     /// 0.383 mm, max 1.87 mm) than `centre` (0.448 mm, 1.96 mm), and it costs a second, not tens.
     #[arg(long, value_name = "lsq|centre", default_value = "lsq", value_parser = parse_choice)]
     calibrated_point: PointChoice,
+    /// `auto`: first find how much error the data need — the smallest factor by which the
+    /// uncertainty file's bounds (--scale-bounds) must be multiplied for the data to be
+    /// consistent, as a proved bracket (s_lo proved inconsistent, s_hi certified consistent,
+    /// within 2%) — then certify at s_hi × --scale-margin. A few certifications of this size.
+    #[arg(long, value_name = "auto", value_enum)]
+    error_scale: Option<ErrorScaleMode>,
+    /// With --error-scale: which bounds to scale: `all`, `pos` (the tracker's) or `joint_deg`
+    /// (the encoders').
+    #[arg(long, value_name = "WHICH", value_enum, default_value = "all")]
+    scale_bounds: ScaleBounds,
+    /// With --error-scale: certify at s_hi times this factor (>= 1: a margin over the smallest
+    /// consistent bounds).
+    #[arg(long, value_name = "F", default_value_t = 1.0)]
+    scale_margin: f64,
+}
+
+/// `--error-scale`'s modes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum ErrorScaleMode {
+    /// Find the smallest consistent factor.
+    Auto,
+}
+
+/// Which error bounds `--error-scale` multiplies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum ScaleBounds {
+    /// Every bound.
+    All,
+    /// The tracked point's (`pos`).
+    Pos,
+    /// The joint readings' (`joint_deg`).
+    #[value(name = "joint_deg")]
+    JointDeg,
+}
+
+impl ScaleBounds {
+    /// `u` with the chosen bounds multiplied by `s` (rounded up).
+    fn scale(self, u: &Uncertainty, s: f64) -> Uncertainty {
+        let times =
+            |v: f64| (calib_core::Interval::point(v) * calib_core::Interval::point(s)).sup();
+        Uncertainty {
+            joint_deg: if self == ScaleBounds::Pos {
+                u.joint_deg
+            } else {
+                times(u.joint_deg)
+            },
+            pos: if self == ScaleBounds::JointDeg {
+                u.pos
+            } else {
+                times(u.pos)
+            },
+        }
+    }
+
+    /// The name used in the JSON and messages.
+    fn name(self) -> &'static str {
+        match self {
+            ScaleBounds::All => "all",
+            ScaleBounds::Pos => "pos",
+            ScaleBounds::JointDeg => "joint_deg",
+        }
+    }
+}
+
+/// Finds the smallest consistent scale of `u`'s bounds, prints it in words, and returns the
+/// bracket's JSON and the bounds to certify with.
+fn error_scale(
+    a: &Args,
+    arm: &calib_arm::Arm,
+    readings: &[calib_arm::simulate::Reading],
+    u: &Uncertainty,
+) -> Result<(serde_json::Value, Uncertainty), Box<dyn std::error::Error>> {
+    if !(a.scale_margin.is_finite() && a.scale_margin >= 1.0) {
+        return Err(format!("--scale-margin {}: expected a factor >= 1", a.scale_margin).into());
+    }
+    let which = a.scale_bounds;
+    let started = std::time::Instant::now();
+    let bar = spinner("finding the smallest consistent error bounds");
+    let mut failure = None;
+    let found = find_error_scale(&ScaleSearch::default(), |s| {
+        bar.set_message(format!("certifying with the error bounds × {s:.4}"));
+        match verdict_only(arm, readings, &which.scale(u, s)) {
+            Ok(status) => status,
+            Err(e) => {
+                failure.get_or_insert(e);
+                Status::Undecided
+            }
+        }
+    });
+    bar.finish_and_clear();
+    if let Some(e) = failure {
+        return Err(e.into());
+    }
+    let seconds = started.elapsed().as_secs_f64();
+    let show = |s: Option<f64>| s.map_or("—".to_string(), |v| format!("{v:.4}"));
+    let describe = |s: f64| {
+        let b = which.scale(u, s);
+        match which {
+            ScaleBounds::All => format!("pos {:.4} mm and joints {:.5}°", b.pos, b.joint_deg),
+            ScaleBounds::Pos => format!("pos {:.4} mm", b.pos),
+            ScaleBounds::JointDeg => format!("joints {:.5}°", b.joint_deg),
+        }
+    };
+    println!(
+        "error scale ({} bounds, {} certifications, {seconds:.1} s): proved inconsistent at × {}, certified consistent at × {}",
+        which.name(),
+        found.trials.len(),
+        show(found.s_lo),
+        show(found.s_hi)
+    );
+    let Some(hi) = found.s_hi else {
+        return Err(format!(
+            "the data are not consistent with the model even with the error bounds × {}: a model error, or outliers (try --max-outliers auto)",
+            found.trials.iter().map(|t| t.scale).fold(0.0, f64::max)
+        )
+        .into());
+    };
+    match found.s_lo {
+        Some(lo) if hi > 1.0 => println!(
+            "these data fit the model only if the error bounds are {} (× {lo:.4} to × {hi:.4}: {} is proved too small); the uncertainty file says {}: the rest is the model's (errors it does not describe: compliance, gears, temperature)",
+            describe(hi),
+            describe(lo),
+            describe(1.0)
+        ),
+        Some(lo) => println!(
+            "these data fit the model with error bounds of {} (× {hi:.4}; × {lo:.4} is proved too small): the uncertainty file's {} are conservative",
+            describe(hi),
+            describe(1.0)
+        ),
+        None => println!(
+            "these data fit the model with error bounds of {} (× {hi:.4}); no smaller factor was proved inconsistent",
+            describe(hi)
+        ),
+    }
+    let certify_at = hi * a.scale_margin;
+    println!(
+        "certifying at × {certify_at:.4} ({}){}",
+        describe(certify_at),
+        if a.scale_margin > 1.0 {
+            format!(", a margin of × {} over s_hi", a.scale_margin)
+        } else {
+            String::new()
+        }
+    );
+    let json = serde_json::json!({
+        "bounds": which.name(),
+        "s_lo": found.s_lo,
+        "s_hi": found.s_hi,
+        "ratio": found.ratio(),
+        "certified_at": certify_at,
+        "certifications": found.trials.len(),
+        "seconds": seconds,
+        "trials": found.trials.iter().map(|t| serde_json::json!({
+            "scale": t.scale,
+            "verdict": format!("{:?}", t.status).to_lowercase(),
+        })).collect::<Vec<_>>(),
+    });
+    Ok((json, which.scale(u, certify_at)))
 }
 
 fn parse_choice(s: &str) -> Result<PointChoice, String> {
@@ -93,6 +253,13 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let u = data
         .slack
         .widen(&parse_uncertainty(&a.uncertainty, &u_text)?);
+    let (scale_json, u) = match a.error_scale {
+        Some(ErrorScaleMode::Auto) => {
+            let (json, scaled) = error_scale(&a, &arm, &data.readings, &u)?;
+            (Some(json), scaled)
+        }
+        None => (None, u),
+    };
     let request = CertifyRequest {
         depth: if a.hull { Depth::Hull } else { Depth::Fast },
         tolerance: a.tolerance,
@@ -153,7 +320,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         );
     }
     if let Some(path) = &a.json {
-        write_json(path, &run, &names, q)?;
+        write_json(path, &run, &names, q, scale_json)?;
         println!("wrote {}", path.display());
     }
     if let Some(path) = &a.report {

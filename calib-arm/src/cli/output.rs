@@ -34,6 +34,14 @@ pub fn print_outcome(run: &ArmRun, names: &ConfigurationNames<'_>, max_outliers:
     for s in verdict::verdict(o, names, max_outliers) {
         println!("{s}");
     }
+    if o.status == calib_core::Status::Empty {
+        println!(
+            "if a few readings are bad, tolerate them (--max-outliers); if every configuration is \
+             a little off — the model does not describe the arm to these bounds (real arms bend \
+             and their gears play) — tolerating outliers only hides it: find the bounds the data \
+             need with --error-scale auto"
+        );
+    }
     let units = units(o.names.len().saturating_sub(9) / 5);
     let ratios = o.width_ratios();
     let lsq = run.fit.as_ref().map(|f| &f.x);
@@ -121,9 +129,16 @@ pub fn write_json(
     run: &ArmRun,
     names: &ConfigurationNames<'_>,
     max_outliers: usize,
+    error_scale: Option<serde_json::Value>,
 ) -> Result<(), String> {
-    write_atomically(path, &json_report(run, names, max_outliers))
-        .map_err(|e| format!("{}: cannot write: {e}", path.display()))
+    let mut text = json_report(run, names, max_outliers);
+    if let Some(scale) = error_scale {
+        let mut v: serde_json::Value =
+            serde_json::from_str(&text).map_err(|e| format!("the JSON report: {e}"))?;
+        v["error_scale"] = scale;
+        text = format!("{v:#}\n");
+    }
+    write_atomically(path, &text).map_err(|e| format!("{}: cannot write: {e}", path.display()))
 }
 
 /// A spinner on a terminal while the kernel works (indicatif draws nothing when stderr is not a

@@ -5,7 +5,7 @@
 //! `hash`, the controller calibration's checksum.
 //!
 //! The UR driver compares `hash` with the controller's and warns when they differ: a file written
-//! by [`write`] describes *this* calibration, not the controller's, so its hash is this file's
+//! by [`write()`] describes *this* calibration, not the controller's, so its hash is this file's
 //! own (`certicalib_…`) unless one is given (e.g. the imported one, to silence the check knowingly).
 
 use super::{from_xyz_rpy, to_xyz_rpy, Frame};

@@ -5,7 +5,7 @@
 //! `z` is turned onto `z` (the turn carried into the next origin), so that
 //! `T(q) = F_1 Rz(q_1) ⋯ F_N Rz(q_N)` is the tip link's frame. The tip must be the last moving
 //! joint's child link or fixed to it without offset (the tool point is expressed in it).
-//! Writing ([`write`]): `base_link`, one continuous joint per arm joint (`joint1…`, axis `z`,
+//! Writing ([`write()`]): `base_link`, one continuous joint per arm joint (`joint1…`, axis `z`,
 //! origins in metres and radians), and a fixed `tool_joint` to a `tool` link at the tool point.
 
 use super::{from_xyz_rpy, to_xyz_rpy, Frame};

@@ -369,12 +369,15 @@ pub fn improvement(before: &Bracket, after: &Bracket) -> f64 {
 }
 
 /// "reduced the platform's worst position error at least …-fold and …" for the proved factors of
-/// [`pose_improvement`], or `None` when neither
-/// factor is proved.
+/// [`pose_improvement`], or `None` when neither factor is proved above 1 (a factor below 1 is
+/// no improvement).
 pub fn improvement_words([position, orientation]: [Option<f64>; 2]) -> Option<String> {
     let parts: Vec<String> = [(position, "position"), (orientation, "orientation")]
         .into_iter()
-        .filter_map(|(f, name)| f.map(|f| format!("worst {name} error at least {f:.1}-fold")))
+        .filter_map(|(f, name)| {
+            f.filter(|f| *f > 1.0)
+                .map(|f| format!("worst {name} error at least {f:.1}-fold"))
+        })
         .collect();
     (!parts.is_empty()).then(|| {
         format!(

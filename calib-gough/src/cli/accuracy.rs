@@ -255,8 +255,8 @@ pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
             .map(|(b, a)| improvement(b, a))
             .fold(f64::INFINITY, f64::min);
         println!(
-            "\ncalibration reduced every leg's worst length error at least {factor:.1}-fold \
-             (proved: before's lower bound over after's upper bound)"
+            "\n{}",
+            calib_pipeline::verdict::improvement("every leg's worst length error", factor)
         );
         if let Some(words) = r.pose_improvement().and_then(improvement_words) {
             println!("calibration {words}");

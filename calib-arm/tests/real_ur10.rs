@@ -1,0 +1,241 @@
+//! The real UR10 (docs/data/ur10_ipa, laser-tracker data as exported) through the commands a
+//! newcomer runs: import UR's YAML, register the tracker, certify, predict held-out rows, export
+//! the calibrated YAML; and the files' mistakes named without anything written.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn arm(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_arm"))
+        .args(args)
+        .output()
+        .expect("the arm binary runs")
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}\n{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+fn data(file: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../docs/data/ur10_ipa")
+        .join(file)
+        .to_string_lossy()
+        .into_owned()
+}
+
+fn tempdir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("arm-ur10-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+const JOINTS: &str = "shoulder_pan_joint,shoulder_lift_joint,elbow_joint,wrist_1_joint,\
+                      wrist_2_joint,wrist_3_joint";
+const POINT: &str = "measurement_x,measurement_y,measurement_z";
+
+/// The arguments that read the tracker's file as it comes, rows `rows`.
+fn tracker(rows: &str) -> Vec<String> {
+    [
+        "--measurements",
+        &data("series_b_joint_configurations.csv"),
+        "--joint-columns",
+        JOINTS,
+        "--joint-unit",
+        "rad",
+        "--point-columns",
+        POINT,
+        "--rows",
+        rows,
+    ]
+    .map(String::from)
+    .to_vec()
+}
+
+fn run(args: &[&str], extra: &[String]) -> Output {
+    let mut all: Vec<&str> = args.to_vec();
+    all.extend(extra.iter().map(String::as_str));
+    arm(&all)
+}
+
+#[test]
+fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
+    let dir = tempdir("pipeline");
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let o = arm(&[
+        "import",
+        "--ur-yaml",
+        &data("ur10_default_kinematics.yaml"),
+        "--out",
+        &p("nominal.toml"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let o = run(
+        &[
+            "register",
+            "--robot",
+            &p("nominal.toml"),
+            "--out",
+            &p("robot.toml"),
+        ],
+        &tracker("1-60"),
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    // The T-Mac sits about 93 mm out along the flange axis (the dataset's README).
+    let robot = calib_arm::files::read_robot(Path::new(&p("robot.toml"))).expect("robot");
+    assert!((robot.tool[2] - 93.0).abs() < 2.0, "{:?}", robot.tool);
+    assert!(robot.tool[0].hypot(robot.tool[1]) < 2.0, "{:?}", robot.tool);
+    std::fs::write(p("u.toml"), "joint_deg = 0.001\npos = 0.6\n").expect("write");
+    let o = run(
+        &[
+            "certify",
+            "--robot",
+            &p("robot.toml"),
+            "--uncertainty",
+            &p("u.toml"),
+            "--write-calibrated",
+            &p("calibrated.toml"),
+        ],
+        &tracker("1-60"),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(text(&o).contains("verdict: consistent"), "{}", text(&o));
+    // Held-out rows: every measurement inside its certified prediction with the error bounds,
+    // and the written model's residuals reported.
+    let o = run(
+        &[
+            "predict",
+            "--robot",
+            &p("calibrated.toml"),
+            "--uncertainty",
+            &p("u.toml"),
+            "--json",
+            &p("check.json"),
+        ],
+        &tracker("61-160"),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let check: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(p("check.json")).expect("json"))
+            .expect("json");
+    assert_eq!(check["rows"].as_array().map(Vec::len), Some(100));
+    assert_eq!(check["over"], "certified set");
+    let rms = check["residuals"]["rms_mm"].as_f64().expect("rms");
+    assert!(rms > 0.0 && rms < 0.6, "held-out rms {rms} mm");
+    // The UR YAML out, and its forward kinematics are the calibrated file's.
+    let o = arm(&[
+        "export",
+        "--robot",
+        &p("calibrated.toml"),
+        "--ur-yaml",
+        &p("calibrated.yaml"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let yaml = std::fs::read_to_string(p("calibrated.yaml")).expect("yaml");
+    let k = calib_arm::vendor::ur_yaml::parse(Path::new("calibrated.yaml"), &yaml).expect("UR");
+    let (cal, _) =
+        calib_arm::files::read_calibrated(Path::new(&p("calibrated.toml"))).expect("calibrated");
+    let base = calib_arm::vendor::base_frame(&cal.base);
+    for q in [
+        [0.3, -1.2, 1.9, -0.4, 1.1, 2.5],
+        [-2.0, -0.3, -1.0, 2.2, -1.7, 0.2],
+    ] {
+        let a = calib_arm::vendor::arm_flange(&cal, &q);
+        let b = base * calib_arm::vendor::chain_flange(&k.origins, &q);
+        assert!((a.translation.vector - b.translation.vector).norm() < 1e-6);
+    }
+}
+
+#[test]
+fn wrong_units_and_columns_are_named_and_nothing_is_written() {
+    let dir = tempdir("mistakes");
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let o = arm(&[
+        "import",
+        "--ur-yaml",
+        &data("ur10_default_kinematics.yaml"),
+        "--out",
+        &p("nominal.toml"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    // Millimetres read as metres: the row, its line and the column, and the fix.
+    let mut args = tracker("1-60");
+    args.extend(["--length-unit".into(), "m".into()]);
+    let o = run(
+        &[
+            "register",
+            "--robot",
+            &p("nominal.toml"),
+            "--out",
+            &p("never.toml"),
+        ],
+        &args,
+    );
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        err.contains("series_b_joint_configurations.csv")
+            && err.contains("line 2")
+            && err.contains("measurement_x")
+            && err.contains("--length-unit mm"),
+        "{err}"
+    );
+    // A misspelt column: named, with the columns there are.
+    let mut args = tracker("1-60");
+    args[3] = JOINTS.replace("elbow_joint", "elbow");
+    let o = run(
+        &[
+            "register",
+            "--robot",
+            &p("nominal.toml"),
+            "--out",
+            &p("never.toml"),
+        ],
+        &args,
+    );
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        err.contains("no column `elbow`") && err.contains("elbow_joint"),
+        "{err}"
+    );
+    // Radians read as degrees: a note that names the fix.
+    let mut args = tracker("1-60");
+    args.retain(|a| a != "rad" && a != "--joint-unit");
+    let o = run(
+        &[
+            "register",
+            "--robot",
+            &p("nominal.toml"),
+            "--out",
+            &p("deg.toml"),
+        ],
+        &args,
+    );
+    assert!(text(&o).contains("--joint-unit rad"), "{}", text(&o));
+    assert!(!dir.join("never.toml").exists());
+    // A bad UR YAML: file, line and field; nothing written.
+    std::fs::write(
+        p("bad.yaml"),
+        std::fs::read_to_string(data("ur10_default_kinematics.yaml"))
+            .expect("yaml")
+            .replace("z: 0.1273", "z: lots"),
+    )
+    .expect("write");
+    let o = arm(&[
+        "import",
+        "--ur-yaml",
+        &p("bad.yaml"),
+        "--out",
+        &p("never.toml"),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(err.contains("bad.yaml") && err.contains("line 5"), "{err}");
+    assert!(!dir.join("never.toml").exists());
+}
