@@ -18,6 +18,7 @@ pub mod calibrated;
 pub mod certificate;
 pub mod certification;
 pub mod design;
+pub mod error_scale;
 pub mod files;
 pub mod joint_space;
 pub mod model;

@@ -2,8 +2,8 @@
 //! `calib_gough::certification`, `calib_gough::simulate` and `calib_gough::lsq`, and
 //! `calib_gough::design`, `calib_gough::accuracy`, `calib_arm::certification` and `calib_arm::simulate`, so that Python gets
 //! exactly what `gough certify`, `gough simulate`, `gough lsq`, `gough design`, `gough accuracy`,
-//! `arm certify` and
-//! `arm simulate` compute.
+//! `arm certify`, `arm simulate`, `arm import`, `arm export`, `arm register` and
+//! `arm certify --error-scale auto` compute.
 //! Results cross the boundary as JSON text (the CLI's report schema); the Python side turns them
 //! into objects with numpy arrays. Every data error becomes a `ValueError` naming the file, line and field; the long
 //! work runs with the interpreter detached (other Python threads keep running).
@@ -38,7 +38,12 @@ struct Inputs {
 }
 
 /// Certifies and returns the JSON report.
-fn run(py: Python<'_>, inputs: Inputs, options: CertifyOptions) -> PyResult<String> {
+fn run(
+    py: Python<'_>,
+    inputs: Inputs,
+    options: CertifyOptions,
+    write_calibrated: Option<PathBuf>,
+) -> PyResult<String> {
     check_uncertainty(
         &inputs.uncertainty_name,
         &inputs.uncertainty,
@@ -57,7 +62,31 @@ fn run(py: Python<'_>, inputs: Inputs, options: CertifyOptions) -> PyResult<Stri
             )
         })
         .map_err(value_error)?;
-    serde_json::to_string(&report(&results, start.elapsed().as_secs_f64())).map_err(value_error)
+    let seconds = start.elapsed().as_secs_f64();
+    if let Some(path) = write_calibrated {
+        // What `gough certify --write-calibrated` writes: per leg a geometry proved consistent
+        // with every measurement, and the certified set.
+        let cal = py
+            .detach(|| {
+                calib_gough::calibrated::calibrated_robot(
+                    &inputs.robot,
+                    &results,
+                    &inputs.data.configs,
+                    &inputs.uncertainty,
+                    None,
+                )
+            })
+            .map_err(value_error)?;
+        let comment = format!(
+            "calibrated by certicalib {} (Python): per leg a geometry proved consistent with \
+             every measurement, and [leg.certified_set], the certified set",
+            env!("CARGO_PKG_VERSION")
+        );
+        let text = calib_gough::calibrated::robot_toml(&cal.legs, &cal.sets, &comment);
+        calib_pipeline::write_atomically(&path, &text)
+            .map_err(|e| value_error(format!("{}: cannot write: {e}", path.display())))?;
+    }
+    serde_json::to_string(&report(&results, seconds)).map_err(value_error)
 }
 
 /// The options of `certify`, passed from Python as one dict (the keyword arguments of
@@ -73,6 +102,8 @@ struct Options {
     tolerance: f64,
     max_boxes: usize,
     max_seconds: Option<f64>,
+    /// Where to write the calibrated robot file (`--write-calibrated`), if anywhere.
+    write_calibrated: Option<PathBuf>,
 }
 
 impl TryFrom<Options> for CertifyOptions {
@@ -114,7 +145,8 @@ fn certify_files(
         uncertainty: u,
         uncertainty_name: uncertainty,
     };
-    run(py, inputs, options.try_into()?)
+    let write = options.write_calibrated.clone();
+    run(py, inputs, options.try_into()?, write)
 }
 
 /// Certifies from the three inputs as text in the files' formats (TOML, CSV, TOML), each with
@@ -142,7 +174,8 @@ fn certify_text(
         uncertainty: u,
         uncertainty_name: un,
     };
-    run(py, inputs, options.try_into()?)
+    let write = options.write_calibrated.clone();
+    run(py, inputs, options.try_into()?, write)
 }
 
 /// Writes the simulated data set of `gough simulate` into `out`, at random poses or (with
@@ -219,6 +252,8 @@ struct ArmOptions {
     /// A number or `auto`.
     max_outliers: String,
     lsq: bool,
+    /// Where to write the calibrated robot file (`--write-calibrated`), if anywhere.
+    write_calibrated: Option<PathBuf>,
 }
 
 impl TryFrom<ArmOptions> for CertifyRequest {
@@ -249,6 +284,7 @@ fn arm_certify_files(
     uncertainty: PathBuf,
     options: ArmOptions,
 ) -> PyResult<String> {
+    let write = options.write_calibrated.clone();
     let request: CertifyRequest = options.try_into()?;
     let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
     let data = calib_arm::files::read_measurements(&measurements, arm.joints.len())
@@ -264,6 +300,29 @@ fn arm_certify_files(
         file: &file,
         lines: &data.lines,
     };
+    if let Some(path) = write {
+        let joints: Vec<Vec<f64>> = data.readings.iter().map(|r| r.joints_deg.clone()).collect();
+        let cal = py
+            .detach(|| {
+                calib_arm::calibrated::calibrated_arm(
+                    &arm,
+                    &run,
+                    &joints,
+                    calib_arm::calibrated::PointChoice::LeastSquares,
+                )
+            })
+            .map_err(value_error)?;
+        let comment = format!(
+            "# calibrated by certicalib {} (Python): a parameter vector proved consistent with \
+             every measurement, towards the least-squares fit; [certified_set]: the certified set\n",
+            env!("CARGO_PKG_VERSION")
+        );
+        calib_pipeline::write_atomically(
+            &path,
+            &calib_arm::calibrated::calibrated_toml(&cal, &comment),
+        )
+        .map_err(|e| value_error(format!("{}: cannot write: {e}", path.display())))?;
+    }
     Ok(json_report(&run, &names, q))
 }
 
@@ -305,6 +364,216 @@ fn arm_simulate(
     })
     .map_err(|e| value_error(format!("{}: cannot write the data set: {e}", out.display())))?;
     std::fs::read_to_string(out.join("truth.json")).map_err(value_error)
+}
+
+/// Where the measurements are in a tracker's file and in which units (the keyword arguments of
+/// the arm functions: `joint_columns`, `point_columns`, `joint_unit`, `length_unit`, `rows`).
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
+struct Columns {
+    joint_columns: Option<Vec<String>>,
+    point_columns: Option<Vec<String>>,
+    joint_unit: String,
+    length_unit: String,
+    rows: Option<String>,
+}
+
+/// Reads an arm's measurements with `columns` (what `--joint-columns` … do on the command line).
+fn arm_measurements(
+    path: &std::path::Path,
+    joints: usize,
+    c: Columns,
+) -> PyResult<calib_arm::files::Measurements> {
+    use calib_arm::tracker_file::{JointUnit, LengthUnit, MeasurementColumns};
+    let mut m = MeasurementColumns::standard(joints);
+    if let Some(j) = c.joint_columns {
+        m.joints = j;
+    }
+    if let Some(p) = c.point_columns {
+        m.point = <[String; 3]>::try_from(p)
+            .map_err(|p| value_error(format!("point_columns: three names, found {}", p.len())))?;
+    }
+    m.joint_unit = match c.joint_unit.as_str() {
+        "deg" => JointUnit::Deg,
+        "rad" => JointUnit::Rad,
+        other => {
+            return Err(value_error(format!(
+                "joint_unit: `deg` or `rad`, not `{other}`"
+            )))
+        }
+    };
+    m.length_unit = match c.length_unit.as_str() {
+        "mm" => LengthUnit::Mm,
+        "m" => LengthUnit::M,
+        other => {
+            return Err(value_error(format!(
+                "length_unit: `mm` or `m`, not `{other}`"
+            )))
+        }
+    };
+    m.rows = c
+        .rows
+        .map(|r| r.parse())
+        .transpose()
+        .map_err(|e| value_error(format!("rows: {e}")))?;
+    calib_arm::files::read_tracker_measurements(path, joints, &m).map_err(value_error)
+}
+
+/// Imports a vendor's kinematics (`kind`: `ur_yaml` or `urdf`) into the robot file `out`, as
+/// `arm import` does; returns the file's text.
+#[pyfunction]
+#[pyo3(signature = (source, kind, out, base_link=None, tip_link=None, angle_radius=0.1, length_radius=1.0))]
+fn arm_import(
+    source: PathBuf,
+    kind: &str,
+    out: PathBuf,
+    base_link: Option<String>,
+    tip_link: Option<String>,
+    angle_radius: f64,
+    length_radius: f64,
+) -> PyResult<String> {
+    use calib_arm::vendor::{chain_to_arm, ur_yaml, urdf, ImportRadii};
+    for (v, name) in [
+        (angle_radius, "angle_radius"),
+        (length_radius, "length_radius"),
+    ] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(value_error(format!("{name} {v}: a finite half-width >= 0")));
+        }
+    }
+    let text = calib_pipeline::read_text(&source).map_err(value_error)?;
+    let origins = match kind {
+        "ur_yaml" => ur_yaml::parse(&source, &text).map_err(value_error)?.origins,
+        "urdf" => urdf::parse(&source, &text, base_link.as_deref(), tip_link.as_deref())
+            .map_err(value_error)?,
+        other => {
+            return Err(value_error(format!(
+                "kind: `ur_yaml` or `urdf`, not `{other}`"
+            )))
+        }
+    };
+    let radii = ImportRadii {
+        angle_deg: angle_radius,
+        length_mm: length_radius,
+    };
+    let arm = chain_to_arm(&origins, radii)
+        .map_err(|e| value_error(format!("{}: {e}", source.display())))?;
+    let robot = format!(
+        "# imported by certicalib {} from {}\n{}",
+        env!("CARGO_PKG_VERSION"),
+        source.display(),
+        calib_arm::write::robot_toml(&arm)
+    );
+    calib_pipeline::write_atomically(&out, &robot)
+        .map_err(|e| value_error(format!("{}: cannot write: {e}", out.display())))?;
+    Ok(robot)
+}
+
+/// Exports a robot file as UR's kinematics YAML and/or a URDF, as `arm export` does.
+#[pyfunction]
+#[pyo3(signature = (robot, ur_yaml=None, urdf=None, hash=None))]
+fn arm_export(
+    robot: PathBuf,
+    ur_yaml: Option<PathBuf>,
+    urdf: Option<PathBuf>,
+    hash: Option<String>,
+) -> PyResult<()> {
+    let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
+    let chain = calib_arm::vendor::arm_to_chain(&arm)
+        .map_err(|e| value_error(format!("{}: {e}", robot.display())))?;
+    let source = format!("exported by certicalib from {}", robot.display());
+    let yaml = ur_yaml
+        .as_ref()
+        .map(|_| calib_arm::vendor::ur_yaml::write(&chain, hash.as_deref(), &source))
+        .transpose()
+        .map_err(value_error)?;
+    let write = |path: &PathBuf, text: &str| {
+        calib_pipeline::write_atomically(path, text)
+            .map_err(|e| value_error(format!("{}: cannot write: {e}", path.display())))
+    };
+    if let (Some(path), Some(text)) = (&ur_yaml, yaml) {
+        write(path, &text)?;
+    }
+    if let Some(path) = &urdf {
+        write(
+            path,
+            &calib_arm::vendor::urdf::write("robot", &chain, arm.tool),
+        )?;
+    }
+    Ok(())
+}
+
+/// Registers the tracker and the tool point, as `arm register` does: writes `out` and returns
+/// JSON (`base`, `tool`, `rms_mm`, `max_mm`, `start_rms_mm`, `converged`).
+#[pyfunction]
+fn arm_register(
+    py: Python<'_>,
+    robot: PathBuf,
+    measurements: PathBuf,
+    out: PathBuf,
+    columns: Columns,
+    priors: (f64, f64, f64),
+) -> PyResult<String> {
+    let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
+    let data = arm_measurements(&measurements, arm.joints.len(), columns)?;
+    let priors = calib_arm::register::RegistrationPriors {
+        base_mm: priors.0,
+        base_deg: priors.1,
+        tool_mm: priors.2,
+    };
+    let r = py
+        .detach(|| calib_arm::register::register(&arm, &data.readings, priors))
+        .map_err(|e| value_error(format!("{}: {e}", measurements.display())))?;
+    let text = format!(
+        "# registered by certicalib {}\n{}",
+        env!("CARGO_PKG_VERSION"),
+        calib_arm::write::robot_toml(&r.arm)
+    );
+    calib_pipeline::write_atomically(&out, &text)
+        .map_err(|e| value_error(format!("{}: cannot write: {e}", out.display())))?;
+    Ok(serde_json::json!({
+        "base": r.arm.base,
+        "tool": r.arm.tool,
+        "rms_mm": r.rms,
+        "max_mm": r.max_abs,
+        "start_rms_mm": r.start_rms,
+        "converged": r.converged,
+    })
+    .to_string())
+}
+
+/// The smallest consistent factor of the error bounds, as `arm certify --error-scale auto`
+/// finds it: JSON (`bounds`, `s_lo`, `s_hi`, `ratio`, `trials`, …).
+#[pyfunction]
+fn arm_error_scale(
+    py: Python<'_>,
+    robot: PathBuf,
+    measurements: PathBuf,
+    uncertainty: PathBuf,
+    columns: Columns,
+    scale_bounds: &str,
+) -> PyResult<String> {
+    use calib_arm::error_scale::{search, to_json, ScaleBounds};
+    let which = match scale_bounds {
+        "all" => ScaleBounds::All,
+        "pos" => ScaleBounds::Pos,
+        "joint_deg" => ScaleBounds::JointDeg,
+        other => {
+            return Err(value_error(format!(
+                "scale_bounds: `all`, `pos` or `joint_deg`, not `{other}`"
+            )))
+        }
+    };
+    let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
+    let data = arm_measurements(&measurements, arm.joints.len(), columns)?;
+    let u = data
+        .slack
+        .widen(&calib_arm::files::read_uncertainty(&uncertainty).map_err(value_error)?);
+    let started = Instant::now();
+    let found = py
+        .detach(|| search(&arm, &data.readings, &u, which, |_| {}))
+        .map_err(value_error)?;
+    Ok(to_json(&found, which, None, started.elapsed().as_secs_f64()).to_string())
 }
 
 /// Designs the poses to measure, as `gough design` does: writes the poses CSV to `out` and
@@ -445,6 +714,10 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lsq, m)?)?;
     m.add_function(wrap_pyfunction!(arm_certify_files, m)?)?;
     m.add_function(wrap_pyfunction!(arm_simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(arm_import, m)?)?;
+    m.add_function(wrap_pyfunction!(arm_export, m)?)?;
+    m.add_function(wrap_pyfunction!(arm_register, m)?)?;
+    m.add_function(wrap_pyfunction!(arm_error_scale, m)?)?;
     m.add_function(wrap_pyfunction!(design, m)?)?;
     m.add_function(wrap_pyfunction!(accuracy, m)?)?;
     m.add_function(wrap_pyfunction!(parameter_names, m)?)?;

@@ -78,3 +78,26 @@ def test_the_module_examples_run():
 
     result = doctest.testmod(certicalib)
     assert result.attempted >= 10 and result.failed == 0
+
+
+def test_write_calibrated_gives_the_cli_file_and_fits_the_data(tmp_path):
+    simulated(tmp_path)
+    mine = tmp_path / "mine.toml"
+    report = certicalib.certify_arm(*files(tmp_path), write_calibrated=mine)
+    assert report.status == "consistent"
+    cli = tmp_path / "cli.toml"
+    robot, meas, unc = files(tmp_path)
+    subprocess.run([repo_binary("arm"), "certify", "--robot", str(robot), "--measurements",
+                    str(meas), "--uncertainty", str(unc), "--write-calibrated", str(cli)],
+                   check=True, capture_output=True)
+    # The same parameters and set as the command line (its comment lines differ).
+    body = lambda p: [l for l in p.read_text().splitlines() if not l.startswith("#")]
+    assert body(mine) == body(cli)
+    assert "[certified_set]" in mine.read_text()
+    # Every measured point lies within its prediction over the set (the arm predict check).
+    out = tmp_path / "check.json"
+    subprocess.run([repo_binary("arm"), "predict", "--robot", str(mine), "--measurements",
+                    str(meas), "--uncertainty", str(unc), "--json", str(out)], check=True,
+                   capture_output=True)
+    check = json.loads(out.read_text())
+    assert check["over"] == "certified set" and check["refuting"] == []

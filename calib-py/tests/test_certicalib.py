@@ -180,3 +180,20 @@ def test_simulate_at_given_poses_matches_the_cli(tmp_path):
         certicalib.simulate(tmp_path / "never", poses=poses)
     assert not (tmp_path / "never").exists()
 
+
+
+def test_write_calibrated_carries_the_set_that_accuracy_works_over(tmp_path):
+    certicalib.simulate(tmp_path, configs=21, seed=3)
+    cal = tmp_path / "calibrated.toml"
+    report = certicalib.certify(*files(tmp_path), write_calibrated=cal)
+    assert all(leg.status == "consistent" for leg in report.legs)
+    text = cal.read_text()
+    tables = [line for line in text.splitlines() if line.strip() == "[leg.certified_set]"]
+    assert len(tables) == 6, text[:400]
+    ws = tmp_path / "workspace.toml"
+    ws.write_text("x = [-1, 1]\ny = [-1, 1]\nz = [59, 61]\ntilt_deg = 2\n")
+    acc = certicalib.accuracy(cal, ws, uncertainty=tmp_path / "uncertainty.toml",
+                              pose_seconds=1, max_set_boxes=100)
+    assert acc["over"] == "certified set"
+    for leg in acc["leg_length"]:
+        assert 0 < leg["lower"] <= leg["upper"]

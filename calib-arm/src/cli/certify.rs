@@ -6,11 +6,11 @@ use super::output::{
 use super::DataFiles;
 use calib_arm::calibrated::{calibrated_arm, calibrated_toml, PointChoice};
 use calib_arm::certificate::ArmCertificate;
-use calib_arm::certification::{certify_request, verdict_only, CertifyRequest};
+use calib_arm::certification::{certify_request, CertifyRequest};
+use calib_arm::error_scale::{search, to_json, ScaleBounds};
 use calib_arm::files::{parse_robot, parse_uncertainty};
 use calib_arm::simulate::Uncertainty;
 use calib_core::Status;
-use calib_pipeline::error_scale::{find_error_scale, ScaleSearch};
 use calib_pipeline::html::{command_line, now, Input};
 use calib_pipeline::verdict::{self, ConfigurationNames};
 use calib_pipeline::{read_text, write_atomically};
@@ -95,47 +95,6 @@ enum ErrorScaleMode {
     Auto,
 }
 
-/// Which error bounds `--error-scale` multiplies.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-enum ScaleBounds {
-    /// Every bound.
-    All,
-    /// The tracked point's (`pos`).
-    Pos,
-    /// The joint readings' (`joint_deg`).
-    #[value(name = "joint_deg")]
-    JointDeg,
-}
-
-impl ScaleBounds {
-    /// `u` with the chosen bounds multiplied by `s` (rounded up).
-    fn scale(self, u: &Uncertainty, s: f64) -> Uncertainty {
-        let times =
-            |v: f64| (calib_core::Interval::point(v) * calib_core::Interval::point(s)).sup();
-        Uncertainty {
-            joint_deg: if self == ScaleBounds::Pos {
-                u.joint_deg
-            } else {
-                times(u.joint_deg)
-            },
-            pos: if self == ScaleBounds::JointDeg {
-                u.pos
-            } else {
-                times(u.pos)
-            },
-        }
-    }
-
-    /// The name used in the JSON and messages.
-    fn name(self) -> &'static str {
-        match self {
-            ScaleBounds::All => "all",
-            ScaleBounds::Pos => "pos",
-            ScaleBounds::JointDeg => "joint_deg",
-        }
-    }
-}
-
 /// Finds the smallest consistent scale of `u`'s bounds, prints it in words, and returns the
 /// bracket's JSON and the bounds to certify with.
 fn error_scale(
@@ -150,31 +109,14 @@ fn error_scale(
     let which = a.scale_bounds;
     let started = std::time::Instant::now();
     let bar = spinner("finding the smallest consistent error bounds");
-    let mut failure = None;
-    let found = find_error_scale(&ScaleSearch::default(), |s| {
-        bar.set_message(format!("certifying with the error bounds × {s:.4}"));
-        match verdict_only(arm, readings, &which.scale(u, s)) {
-            Ok(status) => status,
-            Err(e) => {
-                failure.get_or_insert(e);
-                Status::Undecided
-            }
-        }
+    let found = search(arm, readings, u, which, |s| {
+        bar.set_message(format!("certifying with the error bounds × {s:.4}"))
     });
     bar.finish_and_clear();
-    if let Some(e) = failure {
-        return Err(e.into());
-    }
+    let found = found?;
     let seconds = started.elapsed().as_secs_f64();
     let show = |s: Option<f64>| s.map_or("—".to_string(), |v| format!("{v:.4}"));
-    let describe = |s: f64| {
-        let b = which.scale(u, s);
-        match which {
-            ScaleBounds::All => format!("pos {:.4} mm and joints {:.5}°", b.pos, b.joint_deg),
-            ScaleBounds::Pos => format!("pos {:.4} mm", b.pos),
-            ScaleBounds::JointDeg => format!("joints {:.5}°", b.joint_deg),
-        }
-    };
+    let describe = |s: f64| which.describe(u, s);
     println!(
         "error scale ({} bounds, {} certifications, {seconds:.1} s): proved inconsistent at × {}, certified consistent at × {}",
         which.name(),
@@ -216,19 +158,7 @@ fn error_scale(
             String::new()
         }
     );
-    let json = serde_json::json!({
-        "bounds": which.name(),
-        "s_lo": found.s_lo,
-        "s_hi": found.s_hi,
-        "ratio": found.ratio(),
-        "certified_at": certify_at,
-        "certifications": found.trials.len(),
-        "seconds": seconds,
-        "trials": found.trials.iter().map(|t| serde_json::json!({
-            "scale": t.scale,
-            "verdict": format!("{:?}", t.status).to_lowercase(),
-        })).collect::<Vec<_>>(),
-    });
+    let json = to_json(&found, which, Some(certify_at), seconds);
     Ok((json, which.scale(u, certify_at)))
 }
 

@@ -45,6 +45,7 @@ from . import _native
 
 __all__ = ["certify", "simulate", "lsq", "Report", "LegResult", "LeastSquaresFit",
            "certify_arm", "simulate_arm", "ArmReport", "design", "DesignPlan", "accuracy",
+           "import_arm", "export_arm", "register_arm", "error_scale_arm",
            "PARAMETER_NAMES", "__version__"]
 
 __version__: str = _native.version()
@@ -149,11 +150,14 @@ class Report:
 
 def _options(legs: Optional[Sequence[int]], sweep: bool, max_outliers: Union[int, str],
              fast: bool, tolerance: float, max_boxes: int,
-             max_seconds: Optional[float]) -> Dict[str, Any]:
+             max_seconds: Optional[float],
+             write_calibrated: Optional[PathLike] = None) -> Dict[str, Any]:
     return dict(legs=None if legs is None else [int(v) for v in legs], sweep=bool(sweep),
                 max_outliers=str(max_outliers) if isinstance(max_outliers, str)
                 else str(int(max_outliers)), fast=bool(fast), tolerance=float(tolerance),
-                max_boxes=int(max_boxes), max_seconds=max_seconds)
+                max_boxes=int(max_boxes), max_seconds=max_seconds,
+                write_calibrated=None if write_calibrated is None
+                else os.fspath(write_calibrated))
 
 
 def _is_path(value: Any) -> bool:
@@ -239,7 +243,8 @@ def certify(robot: Union[PathLike, RobotData],
             legs: Optional[Sequence[int]] = None, sweep: bool = False,
             max_outliers: Union[int, str] = 0,
             fast: bool = False, tolerance: float = 0.05, max_boxes: int = 200_000,
-            max_seconds: Optional[float] = None) -> Report:
+            max_seconds: Optional[float] = None,
+            write_calibrated: Optional[PathLike] = None) -> Report:
     """Certify every leg (or ``legs``, 1-based) of a Gough platform, as ``gough certify`` does.
 
     Each input is either a path (``str`` or ``os.PathLike``) to the file ``gough certify`` reads,
@@ -257,10 +262,13 @@ def certify(robot: Union[PathLike, RobotData],
     configurations per leg (``"auto"``: per leg, the smallest number not proved empty, in
     ``LegResult.outliers_tolerated``); ``fast`` computes only the paper's fixed point x1 (reported as
     ``outer``); ``tolerance``, ``max_boxes`` and ``max_seconds`` are the tight hull's stop rule.
-    The interpreter is released while the work runs. Malformed input raises ``ValueError`` naming
+    ``write_calibrated``: write the calibrated robot file there, as ``--write-calibrated`` does
+    (per leg a geometry proved consistent with every measurement, and the certified set that
+    :func:`accuracy` works over). The interpreter is released while the work runs. Malformed input raises ``ValueError`` naming
     the file (or in-memory input), the line and the field.
     """
-    opts = _options(legs, sweep, max_outliers, fast, tolerance, max_boxes, max_seconds)
+    opts = _options(legs, sweep, max_outliers, fast, tolerance, max_boxes, max_seconds,
+                    write_calibrated)
     if _is_path(robot) and _is_path(measurements) and _is_path(uncertainty):
         return Report(_native.certify_files(os.fspath(robot), os.fspath(measurements),
                                             os.fspath(uncertainty), opts))
@@ -385,7 +393,8 @@ def design(out: PathLike, *, robot: Optional[PathLike] = None,
 
 def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike] = None,
              uncertainty: Optional[PathLike] = None, tolerance: float = 0.04,
-             max_boxes: int = 300_000, pose_seconds: float = 30.0) -> Dict[str, Any]:
+             max_boxes: int = 300_000, pose_seconds: float = 30.0,
+             max_set_boxes: int = 1000) -> Dict[str, Any]:
     r"""Bracket, per leg, how far the leg length the controller commands (from ``robot``'s values)
     can be from the length the real leg needs, over every pose of ``workspace`` (a
     ``workspace.toml``) and every geometry in ``robot``'s boxes — as ``gough accuracy`` does.
@@ -400,7 +409,8 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
     ``improvement`` (per leg) and ``pose_improvement`` (``position``, ``orientation``: proved
     factors, ``None`` where not proved). ``tolerance`` stops every bracket at ``upper <= (1 + tolerance) lower``;
     ``max_boxes`` bounds each leg-length bracket's boxes of poses, ``pose_seconds`` the time spent
-    per robot on the pose errors' upper bounds (they stay proved, only less tight).
+    per robot on the pose errors' upper bounds (they stay proved, only less tight),
+    ``max_set_boxes`` each leg's boxes of poses over a certified set.
 
     >>> import os, tempfile
     >>> d = tempfile.mkdtemp()
@@ -418,7 +428,7 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
         return None if p is None else os.fspath(p)
     return json.loads(_native.accuracy(os.fspath(robot), os.fspath(workspace), opt(before),
                                        opt(uncertainty), float(tolerance), int(max_boxes),
-                                       float(pose_seconds)))
+                                       float(pose_seconds), int(max_set_boxes)))
 
 
 class ArmReport:
@@ -493,17 +503,22 @@ class ArmReport:
 def certify_arm(robot: PathLike, measurements: PathLike, uncertainty: PathLike, *,
                 hull: bool = False, tolerance: float = 0.10, max_boxes: int = 10_000,
                 max_seconds: Optional[float] = None, max_outliers: Union[int, str] = 0,
-                lsq: bool = False) -> ArmReport:
+                lsq: bool = False,
+                write_calibrated: Optional[PathLike] = None) -> ArmReport:
     """Certify a serial arm from the files ``arm certify`` reads (``robot.toml``,
     ``measurements.csv``, ``uncertainty.toml``; mm and degrees), with the same options: ``hull``
     refines to the tight hull (``tolerance``, ``max_boxes``, ``max_seconds``), ``max_outliers``
     tolerates bad configurations (``"auto"``: the smallest number not proved empty), ``lsq`` adds
-    the least-squares fit. The interpreter is released while the work runs. Malformed input raises
-    ``ValueError`` naming the file, the line and the field."""
+    the least-squares fit. ``write_calibrated``: write the calibrated robot file there, as
+    ``--write-calibrated`` does (a parameter vector proved consistent with every measurement,
+    towards the least-squares fit, and the certified set). The interpreter is released while the
+    work runs. Malformed input raises ``ValueError`` naming the file, the line and the field."""
     opts = dict(hull=bool(hull), tolerance=float(tolerance), max_boxes=int(max_boxes),
                 max_seconds=max_seconds,
                 max_outliers=str(max_outliers) if isinstance(max_outliers, str)
-                else str(int(max_outliers)), lsq=bool(lsq))
+                else str(int(max_outliers)), lsq=bool(lsq),
+                write_calibrated=None if write_calibrated is None
+                else os.fspath(write_calibrated))
     return ArmReport(_native.arm_certify_files(os.fspath(robot), os.fspath(measurements),
                                                os.fspath(uncertainty), opts))
 
@@ -520,3 +535,64 @@ def simulate_arm(out: PathLike, *, configs: int = 50, seed: int = 1,
                                 [(int(c), float(d)) for c, d in outliers])
     return json.loads(text)
 
+
+
+def _columns(joint_columns, point_columns, joint_unit, length_unit, rows) -> Dict[str, Any]:
+    """The tracker-file options as the native functions take them."""
+    return dict(joint_columns=None if joint_columns is None else [str(c) for c in joint_columns],
+                point_columns=None if point_columns is None else [str(c) for c in point_columns],
+                joint_unit=str(joint_unit), length_unit=str(length_unit),
+                rows=None if rows is None else str(rows))
+
+
+def import_arm(source: PathLike, out: PathLike, *, kind: str = "ur_yaml",
+               base_link: Optional[str] = None, tip_link: Optional[str] = None,
+               angle_radius: float = 0.1, length_radius: float = 1.0) -> str:
+    """Import a vendor's kinematics into the robot file ``out``, as ``arm import`` does:
+    ``kind="ur_yaml"`` (UR's ``kinematics:`` YAML) or ``"urdf"`` (the chain from ``base_link`` to
+    ``tip_link``). Exact Denavit–Hartenberg/Hayati parameters, the identifiable ones free with
+    priors ``angle_radius`` (°) and ``length_radius`` (mm). Returns the file's text."""
+    return _native.arm_import(os.fspath(source), str(kind), os.fspath(out), base_link, tip_link,
+                              float(angle_radius), float(length_radius))
+
+
+def export_arm(robot: PathLike, *, ur_yaml: Optional[PathLike] = None,
+               urdf: Optional[PathLike] = None, hash: Optional[str] = None) -> None:
+    """Write the arm of ``robot`` as UR's kinematics YAML (``ur_yaml``, for the UR driver; its
+    ``hash`` is the file's own unless given) and/or a URDF, as ``arm export`` does."""
+    if ur_yaml is None and urdf is None:
+        raise ValueError("export_arm: give ur_yaml, urdf or both")
+    _native.arm_export(os.fspath(robot), None if ur_yaml is None else os.fspath(ur_yaml),
+                       None if urdf is None else os.fspath(urdf), hash)
+
+
+def register_arm(robot: PathLike, measurements: PathLike, out: PathLike, *,
+                 joint_columns: Optional[Sequence[str]] = None,
+                 point_columns: Optional[Sequence[str]] = None, joint_unit: str = "deg",
+                 length_unit: str = "mm", rows: Optional[str] = None,
+                 base_radius: Tuple[float, float] = (2.0, 0.1),
+                 tool_radius: float = 2.0) -> Dict[str, Any]:
+    """Find the tracker-to-base transform and the tool point from scratch, as ``arm register``
+    does, and write the robot file ``out`` with them and their priors (``base_radius``: mm and
+    degrees; ``tool_radius``: mm). The measurement file is read as the command line reads it
+    (``joint_columns``, ``point_columns``, ``joint_unit`` ``"deg"|"rad"``, ``length_unit``
+    ``"mm"|"m"``, ``rows`` such as ``"1-60"``). Returns ``base`` (x, y, z mm, rx, ry, rz °),
+    ``tool`` (mm), ``rms_mm``, ``max_mm``, ``start_rms_mm`` and ``converged``."""
+    cols = _columns(joint_columns, point_columns, joint_unit, length_unit, rows)
+    text = _native.arm_register(os.fspath(robot), os.fspath(measurements), os.fspath(out), cols,
+                                (float(base_radius[0]), float(base_radius[1]),
+                                 float(tool_radius)))
+    return json.loads(text)
+
+
+def error_scale_arm(robot: PathLike, measurements: PathLike, uncertainty: PathLike, *,
+                    scale_bounds: str = "all", joint_columns: Optional[Sequence[str]] = None,
+                    point_columns: Optional[Sequence[str]] = None, joint_unit: str = "deg",
+                    length_unit: str = "mm", rows: Optional[str] = None) -> Dict[str, Any]:
+    """How much error must the data be allowed? The smallest factor of the uncertainty file's
+    bounds (``scale_bounds``: ``"all"``, ``"pos"`` or ``"joint_deg"``) for which the data are
+    consistent, as ``arm certify --error-scale auto`` finds it: ``s_lo`` proved inconsistent,
+    ``s_hi`` certified consistent, with every certification tried (``trials``)."""
+    cols = _columns(joint_columns, point_columns, joint_unit, length_unit, rows)
+    return json.loads(_native.arm_error_scale(os.fspath(robot), os.fspath(measurements),
+                                              os.fspath(uncertainty), cols, str(scale_bounds)))

@@ -13,6 +13,7 @@ class _Options(TypedDict):
     tolerance: float
     max_boxes: int
     max_seconds: Optional[float]
+    write_calibrated: Optional[str]
 
 def certify_files(robot: _Path, measurements: _Path, uncertainty: _Path, options: _Options) -> str: ...
 def certify_text(
@@ -30,6 +31,7 @@ def lsq(robot: _Path, measurements: _Path) -> str: ...
 def accuracy(
     robot: _Path, workspace: _Path, before: Optional[_Path] = ..., uncertainty: Optional[_Path] = ...,
     tolerance: float = ..., max_boxes: int = ..., pose_seconds: float = ...,
+    max_set_boxes: int = ...,
 ) -> str: ...
 def design(
     out: _Path, robot: Optional[_Path] = ..., uncertainty: Optional[_Path] = ...,
@@ -46,9 +48,33 @@ class _ArmOptions(TypedDict):
     max_seconds: Optional[float]
     max_outliers: str  # a number or "auto"
     lsq: bool
+    write_calibrated: Optional[str]
 
 def arm_certify_files(robot: _Path, measurements: _Path, uncertainty: _Path, options: _ArmOptions) -> str: ...
 def arm_simulate(
     out: _Path, configs: int = ..., seed: int = ..., robot: Optional[_Path] = ...,
     outliers: Sequence[Tuple[int, float]] = ...,
+) -> str: ...
+
+class _Columns(TypedDict):
+    joint_columns: Optional[List[str]]
+    point_columns: Optional[List[str]]
+    joint_unit: str  # "deg" or "rad"
+    length_unit: str  # "mm" or "m"
+    rows: Optional[str]  # "A-B", "A-" or "A"
+
+def arm_import(
+    source: _Path, kind: str, out: _Path, base_link: Optional[str] = ...,
+    tip_link: Optional[str] = ..., angle_radius: float = ..., length_radius: float = ...,
+) -> str: ...
+def arm_export(
+    robot: _Path, ur_yaml: Optional[_Path] = ..., urdf: Optional[_Path] = ...,
+    hash: Optional[str] = ...,
+) -> None: ...
+def arm_register(
+    robot: _Path, measurements: _Path, out: _Path, columns: _Columns,
+    priors: Tuple[float, float, float],
+) -> str: ...
+def arm_error_scale(
+    robot: _Path, measurements: _Path, uncertainty: _Path, columns: _Columns, scale_bounds: str,
 ) -> str: ...

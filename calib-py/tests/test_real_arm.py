@@ -1,0 +1,60 @@
+"""The real UR10 (docs/data/ur10_ipa) through the Python package: UR's YAML in, the tracker
+registered from its own file, the smallest consistent error bound bracketed with proofs, the
+kinematics out — the same as the arm commands, and file mistakes raised as ValueError."""
+
+import subprocess
+
+import pytest
+
+import certicalib
+from cli_binaries import REPO, repo_binary
+
+DATA = REPO / "docs" / "data" / "ur10_ipa"
+SERIES = DATA / "series_b_joint_configurations.csv"
+JOINTS = ["shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint", "wrist_1_joint",
+          "wrist_2_joint", "wrist_3_joint"]
+POINT = ["measurement_x", "measurement_y", "measurement_z"]
+TRACKER = dict(joint_columns=JOINTS, point_columns=POINT, joint_unit="rad")
+
+
+def test_import_register_error_scale_export(tmp_path):
+    nominal = tmp_path / "nominal.toml"
+    text = certicalib.import_arm(DATA / "ur10_default_kinematics.yaml", nominal)
+    assert "d = 127.3" in text and nominal.exists()
+    robot = tmp_path / "robot.toml"
+    reg = certicalib.register_arm(nominal, SERIES, robot, rows="1-40", **TRACKER)
+    assert reg["converged"] and reg["rms_mm"] < 1.5
+    assert abs(reg["tool"][2] - 93.0) < 2.0
+    # The command line registers the same.
+    cli = tmp_path / "cli.toml"
+    subprocess.run([repo_binary("arm"), "register", "--robot", str(nominal), "--measurements",
+                    str(SERIES), "--joint-columns", ",".join(JOINTS), "--point-columns",
+                    ",".join(POINT), "--joint-unit", "rad", "--rows", "1-40", "--out", str(cli)],
+                   check=True, capture_output=True)
+    assert robot.read_text().split("\n", 1)[1] == cli.read_text().split("\n", 1)[1]
+    u = tmp_path / "u.toml"
+    u.write_text("joint_deg = 0.001\npos = 0.05\n")
+    scale = certicalib.error_scale_arm(robot, SERIES, u, scale_bounds="pos", rows="1-40",
+                                       **TRACKER)
+    # Both ends are proofs of their kind, and the tracker's 0.05 mm is far too small.
+    verdict = {t["scale"]: t["verdict"] for t in scale["trials"]}
+    assert verdict[scale["s_lo"]] == "empty" and verdict[scale["s_hi"]] == "consistent"
+    assert 1.0 < scale["s_lo"] < scale["s_hi"] and scale["bounds"] == "pos"
+    yaml = tmp_path / "out.yaml"
+    certicalib.export_arm(robot, ur_yaml=yaml)
+    assert yaml.read_text().count("roll:") == 6 and "hash: certicalib_" in yaml.read_text()
+
+
+def test_mistakes_raise_value_errors_naming_the_file(tmp_path):
+    nominal = tmp_path / "nominal.toml"
+    certicalib.import_arm(DATA / "ur10_default_kinematics.yaml", nominal)
+    with pytest.raises(ValueError, match=r"line 2.*measurement_x.*--length-unit mm"):
+        certicalib.register_arm(nominal, SERIES, tmp_path / "x.toml", rows="1-40",
+                                length_unit="m", **TRACKER)
+    with pytest.raises(ValueError, match="joint_unit"):
+        certicalib.register_arm(nominal, SERIES, tmp_path / "x.toml", joint_columns=JOINTS,
+                                point_columns=POINT, joint_unit="grad")
+    with pytest.raises(ValueError, match="kind"):
+        certicalib.import_arm(DATA / "ur10_default_kinematics.yaml", tmp_path / "y.toml",
+                              kind="dh")
+    assert not (tmp_path / "x.toml").exists() and not (tmp_path / "y.toml").exists()
