@@ -576,6 +576,84 @@ fn arm_error_scale(
     Ok(to_json(&found, which, None, started.elapsed().as_secs_f64()).to_string())
 }
 
+/// Predicts the leg readings at `poses` (a poses CSV) or at the poses of `measurements` (whose
+/// readings are then checked) over the robot file's certified set, as `gough predict` does;
+/// returns the JSON of `gough predict --json`.
+#[pyfunction]
+#[pyo3(signature = (robot, uncertainty, poses=None, measurements=None))]
+fn predict(
+    py: Python<'_>,
+    robot: PathBuf,
+    uncertainty: PathBuf,
+    poses: Option<PathBuf>,
+    measurements: Option<PathBuf>,
+) -> PyResult<String> {
+    use calib_gough::files::{
+        leg_sets, parse_measurements_at_least, parse_poses_at_least, read_robot_file,
+    };
+    use calib_gough::measurement::{Configuration, Orientation};
+    let file = read_robot_file(&robot).map_err(value_error)?;
+    let sets = leg_sets(&robot, &file).map_err(value_error)?;
+    let u = read_uncertainty(&uncertainty).map_err(value_error)?;
+    let text = |p: &PathBuf| calib_pipeline::read_text(p).map_err(value_error);
+    let (configs, lines, measured) = match (&measurements, &poses) {
+        (Some(path), None) => {
+            let m = parse_measurements_at_least(path, &text(path)?, file.legs.len(), 1)
+                .map_err(value_error)?;
+            (m.configs, Some(m.lines), true)
+        }
+        (None, Some(path)) => {
+            let poses = parse_poses_at_least(path, &text(path)?, 1).map_err(value_error)?;
+            let configs = poses
+                .iter()
+                .map(|p| Configuration {
+                    p: p.p,
+                    orientation: Orientation::AxisAngle {
+                        axis: p.axis,
+                        angle_deg: p.angle_deg,
+                    },
+                    lengths: Vec::new(),
+                })
+                .collect();
+            (configs, None, false)
+        }
+        _ => return Err(value_error("give poses or measurements (one of them)")),
+    };
+    let predictions =
+        py.detach(|| calib_gough::predict::predict(&file.legs, &sets, &configs, &u, measured));
+    let over_set: Vec<bool> = sets.iter().map(Option::is_some).collect();
+    Ok(
+        calib_gough::predict::predictions_json(&predictions, &over_set, lines.as_deref())
+            .to_string(),
+    )
+}
+
+/// Predicts the tracked point at the joint readings of `measurements` (read with `columns`, the
+/// points then checked) over the robot file's certified set, as `arm predict --measurements`
+/// does; returns the JSON of `arm predict --json`.
+#[pyfunction]
+fn arm_predict(
+    py: Python<'_>,
+    robot: PathBuf,
+    uncertainty: PathBuf,
+    measurements: PathBuf,
+    columns: Columns,
+) -> PyResult<String> {
+    let (arm, set) = calib_arm::files::read_calibrated(&robot).map_err(value_error)?;
+    let data = arm_measurements(&measurements, arm.joints.len(), columns)?;
+    let u = data
+        .slack
+        .widen(&calib_arm::files::read_uncertainty(&uncertainty).map_err(value_error)?);
+    let joints: Vec<Vec<f64>> = data.readings.iter().map(|r| r.joints_deg.clone()).collect();
+    let points: Vec<[f64; 3]> = data.readings.iter().map(|r| r.point).collect();
+    let predictions =
+        py.detach(|| calib_arm::predict::predict(&arm, set.as_ref(), &joints, &u, Some(&points)));
+    Ok(
+        calib_arm::predict::predictions_json(&predictions, set.is_some(), Some(&data.lines))
+            .to_string(),
+    )
+}
+
 /// Designs the poses to measure, as `gough design` does: writes the poses CSV to `out` and
 /// returns the JSON of `gough design --json`. Without `robot`, the built-in hexapod (± 0.1 cm);
 /// without `uncertainty`, the paper's bounds; without `workspace`, the simulator's.
@@ -718,6 +796,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(arm_export, m)?)?;
     m.add_function(wrap_pyfunction!(arm_register, m)?)?;
     m.add_function(wrap_pyfunction!(arm_error_scale, m)?)?;
+    m.add_function(wrap_pyfunction!(predict, m)?)?;
+    m.add_function(wrap_pyfunction!(arm_predict, m)?)?;
     m.add_function(wrap_pyfunction!(design, m)?)?;
     m.add_function(wrap_pyfunction!(accuracy, m)?)?;
     m.add_function(wrap_pyfunction!(parameter_names, m)?)?;

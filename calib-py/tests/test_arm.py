@@ -101,3 +101,5 @@ def test_write_calibrated_gives_the_cli_file_and_fits_the_data(tmp_path):
                    capture_output=True)
     check = json.loads(out.read_text())
     assert check["over"] == "certified set" and check["refuting"] == []
+    # The package's predict_arm gives the command line's JSON.
+    assert certicalib.predict_arm(mine, unc, meas) == check

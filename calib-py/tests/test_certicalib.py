@@ -197,3 +197,18 @@ def test_write_calibrated_carries_the_set_that_accuracy_works_over(tmp_path):
     assert acc["over"] == "certified set"
     for leg in acc["leg_length"]:
         assert 0 < leg["lower"] <= leg["upper"]
+    # Held-out readings (a second simulation of the same robot: its truth is the same) lie in
+    # their predictions over the set; the package gives the command line's JSON.
+    held = tmp_path / "held"
+    certicalib.simulate(held, configs=8, seed=3)
+    mine = certicalib.predict(cal, tmp_path / "uncertainty.toml",
+                              measurements=held / "measurements.csv")
+    assert mine["refuting"] == [] and len(mine["rows"]) == 8
+    out = tmp_path / "predict.json"
+    subprocess.run([repo_binary("gough"), "predict", "--robot", str(cal), "--measurements",
+                    str(held / "measurements.csv"), "--uncertainty",
+                    str(tmp_path / "uncertainty.toml"), "--json", str(out)], check=True,
+                   capture_output=True)
+    assert json.loads(out.read_text()) == mine
+    with pytest.raises(ValueError, match="poses or measurements"):
+        certicalib.predict(cal, tmp_path / "uncertainty.toml")

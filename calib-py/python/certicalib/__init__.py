@@ -45,7 +45,8 @@ from . import _native
 
 __all__ = ["certify", "simulate", "lsq", "Report", "LegResult", "LeastSquaresFit",
            "certify_arm", "simulate_arm", "ArmReport", "design", "DesignPlan", "accuracy",
-           "import_arm", "export_arm", "register_arm", "error_scale_arm",
+           "import_arm", "export_arm", "register_arm", "error_scale_arm", "predict",
+           "predict_arm",
            "PARAMETER_NAMES", "__version__"]
 
 __version__: str = _native.version()
@@ -596,3 +597,33 @@ def error_scale_arm(robot: PathLike, measurements: PathLike, uncertainty: PathLi
     cols = _columns(joint_columns, point_columns, joint_unit, length_unit, rows)
     return json.loads(_native.arm_error_scale(os.fspath(robot), os.fspath(measurements),
                                               os.fspath(uncertainty), cols, str(scale_bounds)))
+
+
+def predict(robot: PathLike, uncertainty: PathLike, *, poses: Optional[PathLike] = None,
+            measurements: Optional[PathLike] = None) -> Dict[str, Any]:
+    """Predict a Gough platform's leg readings, as ``gough predict`` does: at the poses of
+    ``poses`` (a poses CSV) or of ``measurements`` (then each reading is checked), the certified
+    range of every leg's reading over the geometries ``robot``'s certified set allows (its boxes
+    for a file without one), and the same widened by the error bounds. Returns the JSON of
+    ``gough predict --json``: ``rows`` (per pose and leg ``range``, ``with_errors``, ``inside``)
+    and ``refuting`` (the readings outside: the model or the bounds are wrong there)."""
+    if (poses is None) == (measurements is None):
+        raise ValueError("predict: give poses or measurements (one of them)")
+    return json.loads(_native.predict(os.fspath(robot), os.fspath(uncertainty),
+                                      None if poses is None else os.fspath(poses),
+                                      None if measurements is None
+                                      else os.fspath(measurements)))
+
+
+def predict_arm(robot: PathLike, uncertainty: PathLike, measurements: PathLike, *,
+                joint_columns: Optional[Sequence[str]] = None,
+                point_columns: Optional[Sequence[str]] = None, joint_unit: str = "deg",
+                length_unit: str = "mm", rows: Optional[str] = None) -> Dict[str, Any]:
+    """Check held-out measurements of an arm, as ``arm predict --measurements`` does: per
+    configuration the certified range of each tool-point coordinate over ``robot``'s certified
+    set, the same widened by the error bounds, whether the measured point lies inside, and the
+    robot file's own residuals (``residuals``: ``rms_mm``, ``max_mm``). The file is read with the
+    same column and unit options as :func:`register_arm`."""
+    cols = _columns(joint_columns, point_columns, joint_unit, length_unit, rows)
+    return json.loads(_native.arm_predict(os.fspath(robot), os.fspath(uncertainty),
+                                          os.fspath(measurements), cols))
