@@ -38,6 +38,9 @@ pub struct ArmCertificate<'a> {
     pub tolerated: usize,
     /// The true parameters, when the data were simulated (shown beside the certified boxes).
     pub truth: Option<&'a [f64]>,
+    /// How the error bounds were found (`--error-scale auto`), in words; empty when they were
+    /// the uncertainty file's.
+    pub error_scale: Vec<String>,
 }
 
 impl ArmCertificate<'_> {
@@ -79,6 +82,13 @@ impl ArmCertificate<'_> {
         }
         for s in &sentences {
             let _ = writeln!(h, "<p class=\"evidence\">{}</p>", escape(s));
+        }
+        for s in &self.error_scale {
+            let _ = writeln!(
+                h,
+                "<p class=\"evidence\">Error scale: {}</p>",
+                escape(s.trim())
+            );
         }
         h.push_str("<ul>\n");
         let free = self.free();
@@ -416,6 +426,7 @@ mod tests {
             },
             tolerated: 0,
             truth: None,
+            error_scale: vec!["certified consistent at × 7.69 <here>".into()],
         }
         .to_html()
     }
@@ -427,6 +438,7 @@ mod tests {
         assert!(inside.contains("[-0.50000, 0.50000]") && inside.contains("[-0.25000, 0.25000]"));
         assert!(inside.contains("lies inside the certified outer box"));
         assert!(inside.contains("Largest outer/inner width ratio: <b>2.000</b>"));
+        assert!(inside.contains("Error scale: certified consistent at × 7.69 &lt;here&gt;"));
         let refuted = page(&run(0.75));
         assert!(refuted.contains("proved not to fit"), "{refuted}");
         assert!(refuted.contains("0.75000 (outside outer)"));

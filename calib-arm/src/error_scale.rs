@@ -3,10 +3,11 @@
 //! ([`calib_pipeline::error_scale`]), each trial a verdict-only certification
 //! ([`crate::certification::verdict_only`]).
 
-use crate::certification::verdict_only;
+use crate::certification::{padded_box, verdict_only, MAX_JOINTS, NM};
 use crate::robot::Arm;
-use crate::simulate::{Reading, Uncertainty};
-use calib_core::{Interval, Status};
+use crate::simulate::{measurement_box, Reading, Uncertainty};
+use crate::Arm7Point;
+use calib_core::{is_consistent_point, smallest_scale, Interval, Status};
 use calib_pipeline::error_scale::{find_error_scale, ErrorScale, ScaleSearch};
 
 /// Which error bounds the factor multiplies.
@@ -39,6 +40,19 @@ impl ScaleBounds {
         }
     }
 
+    /// Which of the padded model's measured quantities ([`crate::certification::NM`]: the joint
+    /// readings, then the tracked point) an arm of `joints` joints scales.
+    pub fn mask(self, joints: usize) -> [bool; NM] {
+        core::array::from_fn(|i| {
+            let joint = i < MAX_JOINTS;
+            match self {
+                ScaleBounds::All => !joint || i < joints,
+                ScaleBounds::Pos => !joint,
+                ScaleBounds::JointDeg => joint && i < joints,
+            }
+        })
+    }
+
     /// The name used in the JSON, the messages and the command line.
     pub fn name(self) -> &'static str {
         match self {
@@ -61,6 +75,12 @@ impl ScaleBounds {
 
 /// Searches the smallest consistent factor of `which` bounds of `u` for `arm` on `readings`;
 /// `on_trial` hears each factor before it is tried (for a progress display).
+///
+/// The search starts from the Chebyshev fit ([`calib_core::smallest_scale`]), the first-order
+/// smallest factor, and tries that fit's point first at every factor: a point certified
+/// consistent ([`calib_core::is_consistent_point`]) against the widened boxes proves the factor
+/// consistent at once. Otherwise, and below the estimate, the trial is a verdict-only
+/// certification.
 pub fn search(
     arm: &Arm,
     readings: &[Reading],
@@ -68,9 +88,35 @@ pub fn search(
     which: ScaleBounds,
     mut on_trial: impl FnMut(f64),
 ) -> Result<ErrorScale, String> {
+    let boxes = |s: f64| -> Vec<[Interval; NM]> {
+        let scaled = which.scale(u, s);
+        readings
+            .iter()
+            .filter_map(|r| measurement_box(r, &scaled))
+            .collect()
+    };
+    let joints = arm.joints.len();
+    let well_formed =
+        (3..=MAX_JOINTS).contains(&joints) && readings.iter().all(|r| r.joints_deg.len() == joints);
+    let estimate = well_formed.then(|| {
+        smallest_scale(
+            &Arm7Point,
+            &padded_box(arm),
+            &boxes(1.0),
+            &which.mask(joints),
+        )
+    });
+    let search = estimate.map_or_else(ScaleSearch::default, |e| {
+        ScaleSearch::from_estimate(e.scale)
+    });
     let mut failure = None;
-    let found = find_error_scale(&ScaleSearch::default(), |s| {
+    let mut found = find_error_scale(&search, |s| {
         on_trial(s);
+        if let Some(e) = &estimate {
+            if s >= e.scale && is_consistent_point(&Arm7Point, &e.point, &boxes(s)) {
+                return Status::Consistent;
+            }
+        }
         match verdict_only(arm, readings, &which.scale(u, s)) {
             Ok(status) => status,
             Err(e) => {
@@ -79,6 +125,7 @@ pub fn search(
             }
         }
     });
+    found.estimate = estimate.map(|e| e.scale);
     match failure {
         Some(e) => Err(e),
         None => Ok(found),
@@ -86,6 +133,7 @@ pub fn search(
 }
 
 /// The bracket as JSON (the report's `error_scale`): `bounds`, `s_lo`, `s_hi`, `ratio`,
+/// `estimate` (the first-order Chebyshev fit's factor, not a proof),
 /// `certified_at` (the factor the certification then used), `seconds` and every trial's factor
 /// and verdict.
 pub fn to_json(
@@ -99,6 +147,7 @@ pub fn to_json(
         "s_lo": found.s_lo,
         "s_hi": found.s_hi,
         "ratio": found.ratio(),
+        "estimate": found.estimate,
         "certified_at": certified_at,
         "certifications": found.trials.len(),
         "seconds": seconds,
@@ -128,5 +177,66 @@ mod tests {
         let a = ScaleBounds::All.scale(&u, 0.1);
         assert!(a.pos >= 0.005 && a.joint_deg >= 0.0001);
         assert_eq!(ScaleBounds::Pos.describe(&u, 2.0), "pos 0.1000 mm");
+    }
+
+    #[test]
+    fn the_bracket_holds_the_truth_and_starts_at_the_chebyshev_witness() {
+        let arm = crate::builtin_arm();
+        let sim = crate::simulate::simulate(&arm, 30, 5, Uncertainty::TRACKER, 1.0, &[]);
+        // Bounds four times too tight for the noise: the truth fits at × 4.
+        let u = Uncertainty {
+            pos: sim.uncertainty.pos / 4.0,
+            joint_deg: sim.uncertainty.joint_deg / 4.0,
+        };
+        let found = search(&arm, &sim.readings, &u, ScaleBounds::All, |_| {}).expect("search");
+        let (lo, hi) = (found.s_lo.expect("s_lo"), found.s_hi.expect("s_hi"));
+        assert!(lo < hi && lo < 4.0, "{lo} {hi}: the truth fits at × 4");
+        // The first trial is just above the Chebyshev estimate; its point proves the upper end
+        // within 1%.
+        let boxes: Vec<[Interval; NM]> = sim
+            .readings
+            .iter()
+            .filter_map(|r| measurement_box(r, &u))
+            .collect();
+        let e = smallest_scale(
+            &Arm7Point,
+            &padded_box(&arm),
+            &boxes,
+            &ScaleBounds::All.mask(6),
+        );
+        let first = found.trials[0];
+        assert!(
+            first.scale > e.scale && first.scale <= 1.006 * e.scale,
+            "{first:?}"
+        );
+        assert!(
+            hi <= 1.011 * e.scale,
+            "{hi} against the estimate {}",
+            e.scale
+        );
+        let widened: Vec<[Interval; NM]> = sim
+            .readings
+            .iter()
+            .filter_map(|r| measurement_box(r, &ScaleBounds::All.scale(&u, hi)))
+            .collect();
+        assert!(is_consistent_point(&Arm7Point, &e.point, &widened));
+        // Below the first-order estimate the Chebyshev point itself does not fit.
+        let narrowed: Vec<[Interval; NM]> = sim
+            .readings
+            .iter()
+            .filter_map(|r| measurement_box(r, &ScaleBounds::All.scale(&u, 0.97 * e.scale)))
+            .collect();
+        assert!(!is_consistent_point(&Arm7Point, &e.point, &narrowed));
+    }
+
+    #[test]
+    fn masks_select_the_scaled_quantities() {
+        let joints: Vec<usize> = (0..NM)
+            .filter(|&i| ScaleBounds::JointDeg.mask(6)[i])
+            .collect();
+        assert_eq!(joints, vec![0, 1, 2, 3, 4, 5]);
+        let pos: Vec<usize> = (0..NM).filter(|&i| ScaleBounds::Pos.mask(6)[i]).collect();
+        assert_eq!(pos, vec![MAX_JOINTS, MAX_JOINTS + 1, MAX_JOINTS + 2]);
+        assert_eq!(ScaleBounds::All.mask(6).iter().filter(|&&b| b).count(), 9);
     }
 }

@@ -22,7 +22,8 @@
 //! Every point returned is proved consistent ([`crate::is_consistent_point`]) with the narrowed
 //! boxes, hence with the measurement boxes themselves.
 
-use crate::certificate::{least_squares_point, minimax_point, normalised_misfit};
+use crate::certificate::least_squares_point;
+use crate::chebyshev::{minimax_point, normalised_misfit};
 use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
 use crate::{is_consistent_point, CertifiedSet, Interval, VectorModel};
 
@@ -110,7 +111,7 @@ where
         .map(|&s| {
             let kept = set.subset_measurements(s);
             let lsq = least_squares_point(model, &region, &kept);
-            let c = minimax_point(model, &region, &kept, lsq, false);
+            let c = minimax_point(model, &region, &kept, &[true; NM], lsq, false);
             (normalised_misfit(model, &c, &kept), c, s)
         })
         .min_by(|a, b| a.0.total_cmp(&b.0))?;

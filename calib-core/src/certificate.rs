@@ -17,10 +17,9 @@
 //! of each parameter: the hull of `S(M)` lies between the hull of certified points and the outer
 //! box.
 
-use crate::coupling::for_each_linearised_row;
+use crate::chebyshev::minimax_point;
 use crate::existence::configuration_fits;
 use crate::linalg::gauss_jordan_inverse;
-use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
 use crate::{Interval, Model, VectorModel};
 
 /// Whether every `x` in the box `x` (a point when the box is degenerate) is consistent with every
@@ -221,112 +220,6 @@ where
     p
 }
 
-/// The largest normalised residual at `p`: `max_k |f_k(p, mid M_k)| / w_k`, where `w_k` is the
-/// first-order half-range of `f(p, ·)` over `M_k` (and, for vector models, of every coupling
-/// combination, [`crate::coupling`]): to first order, the factor by which every error bound must
-/// be multiplied for `p` to fit all measurements (`+∞` where a half-range is 0 and the residual
-/// is not).
-pub(crate) fn normalised_misfit<M, const NX: usize, const NM: usize, const NR: usize>(
-    model: &M,
-    p: &[f64; NX],
-    measurements: &[[Interval; NM]],
-) -> f64
-where
-    M: VectorModel<NX, NM, NR>,
-{
-    let mut worst = 0.0f64;
-    for m in measurements {
-        let mm = m.map(|v| v.mid());
-        let rad = m.map(|v| v.rad());
-        let e = model.evaluate_rows(p, &mm);
-        for_each_linearised_row(&e, &rad, |value, _, w| {
-            let r = if value == 0.0 { 0.0 } else { value.abs() / w };
-            worst = worst.max(if r.is_nan() { f64::INFINITY } else { r });
-        });
-    }
-    worst
-}
-
-/// A point of the box that minimises the largest normalised residual
-/// `max_k |f_k(p, mid M_k)| / w_k` ([`normalised_misfit`]), a Chebyshev (minimax) fit by
-/// successive linearisation and an LP in `(δ, t)`: the point most likely to pass the sign test,
-/// since the sign test needs `|f(p, mid M_k)| <= ~w_k` for every `k`. With `until_consistent`,
-/// it stops at the first certified consistent point (a witness search); otherwise it runs all
-/// its steps (the deepest point of the set). Returns the point with the smallest misfit met.
-pub(crate) fn minimax_point<M, const NX: usize, const NM: usize, const NR: usize>(
-    model: &M,
-    x: &[Interval; NX],
-    measurements: &[[Interval; NM]],
-    start: [f64; NX],
-    until_consistent: bool,
-) -> [f64; NX]
-where
-    M: VectorModel<NX, NM, NR>,
-{
-    let mut p = start;
-    let mut best = (normalised_misfit(model, &p, measurements), p);
-    let mut poly = Polyhedron::default();
-    let mut lp = DenseSimplex::default();
-    let mut dual = vec![0.0; 2 * measurements.len()];
-    let mut primal = vec![0.0; NX + 1];
-    let mut objective = vec![0.0; NX + 1];
-    objective[NX] = 1.0;
-    let mut row = vec![0.0; NX + 1];
-    for _ in 0..if until_consistent { 6 } else { 12 } {
-        if until_consistent && is_consistent_point(model, &p, measurements) {
-            return p;
-        }
-        let lo: Vec<f64> = (0..NX).map(|j| x[j].inf() - p[j]).chain([0.0]).collect();
-        let hi: Vec<f64> = (0..NX).map(|j| x[j].sup() - p[j]).chain([1e6]).collect();
-        if lo
-            .iter()
-            .zip(&hi)
-            .any(|(l, h)| l > h || !l.is_finite() || !h.is_finite())
-        {
-            break;
-        }
-        poly.reset(&lo, &hi);
-        for m in measurements {
-            let mm = m.map(|v| v.mid());
-            let rad = m.map(|v| v.rad());
-            let e = model.evaluate_rows(&p, &mm);
-            for_each_linearised_row(&e, &rad, |value, dx, w| {
-                let w = w.max(1e-300);
-                // f + J δ <= w t  and  -(f + J δ) <= w t
-                row[..NX].copy_from_slice(dx);
-                row[NX] = -w;
-                poly.push_row(&row, -value);
-                row[..NX].iter_mut().for_each(|v| *v = -*v);
-                poly.push_row(&row, value);
-            });
-        }
-        dual.resize(poly.rows(), 0.0);
-        if lp.minimize(&poly, &objective, &mut dual, &mut primal) != LpStatus::Optimal {
-            break;
-        }
-        let next: [f64; NX] =
-            core::array::from_fn(|j| (p[j] + primal[j]).clamp(x[j].inf(), x[j].sup()));
-        let misfit = normalised_misfit(model, &next, measurements);
-        if until_consistent || misfit < best.0 {
-            p = next;
-        }
-        if misfit < best.0 {
-            let gain = best.0 - misfit;
-            best = (misfit, next);
-            if !until_consistent && gain <= 1e-9 * misfit {
-                break;
-            }
-        } else if !until_consistent {
-            break;
-        }
-    }
-    if until_consistent {
-        p
-    } else {
-        best.1
-    }
-}
-
 /// A certified consistent point of the box, if one of the candidates passes: the least-squares
 /// point, its Chebyshev refinement, the centre, and the given extra candidates.
 pub(crate) fn find_witness<M, const NX: usize, const NM: usize, const NR: usize>(
@@ -340,7 +233,7 @@ where
 {
     let lsq = least_squares_point(model, x, measurements);
     let centre = x.map(|v| v.mid());
-    let chebyshev = minimax_point(model, x, measurements, lsq, true);
+    let chebyshev = minimax_point(model, x, measurements, &[true; NM], lsq, true);
     [lsq, chebyshev, centre]
         .iter()
         .chain(extra)

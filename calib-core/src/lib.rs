@@ -44,6 +44,7 @@ pub mod calibrated_point;
 pub mod certificate;
 pub mod certified_set;
 mod certify;
+pub mod chebyshev;
 pub mod contract;
 pub mod coupling;
 mod dual;
@@ -71,6 +72,7 @@ pub use certified_set::{
     SetMaximumSettings, SetObjective, SetPiece, SetQuery,
 };
 pub use certify::{certify, certify_with, Certification, Status};
+pub use chebyshev::{smallest_scale, ScaleEstimate};
 pub use contract::{contract, is_fixed, Contraction, EmptinessProof, Workspace};
 pub use dual::Dual;
 pub use hull::{hull, hull_with, Hull};

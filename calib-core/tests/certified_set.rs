@@ -239,3 +239,39 @@ fn the_calibrated_point_fits_every_measurement_with_room_to_spare() {
         );
     }
 }
+
+/// The measurements with the half-widths of `y` multiplied by `s`.
+fn widen_y(m: &[[Interval; 2]], s: f64) -> Vec<[Interval; 2]> {
+    m.iter()
+        .map(|b| [b[0], Interval::mid_rad(b[1].mid(), b[1].rad() * s)])
+        .collect()
+}
+
+#[test]
+fn the_chebyshev_scale_is_the_smallest_consistent_one() {
+    for seed in 0..10 {
+        let m = data(&mut StdRng::seed_from_u64(seed), 12);
+        let e = calib_core::smallest_scale(&Line, &x0(), &m, &[false, true]);
+        // The noise is within the bounds: the truth fits at × 1.
+        assert!(e.scale <= 1.0 + 1e-9, "seed {seed}: {}", e.scale);
+        // Its point fits just above the scale and not just below (the exhaustive corner test).
+        assert!(is_consistent_by_corners(
+            &Line,
+            &e.point,
+            &widen_y(&m, 1.001 * e.scale)
+        ));
+        assert!(!is_consistent_by_corners(
+            &Line,
+            &e.point,
+            &widen_y(&m, 0.999 * e.scale)
+        ));
+        // No point fits 2% below it: the kernel proves it.
+        let c = calib_core::certify(
+            &Line,
+            &x0(),
+            &widen_y(&m, 0.98 * e.scale),
+            &Settings::default(),
+        );
+        assert_eq!(c.status, calib_core::Status::Empty, "seed {seed}");
+    }
+}

@@ -4,8 +4,9 @@
 //! consistent** (a certified witness). Consistency is monotone in `s` (wider bounds admit every
 //! parameter vector narrower ones do), so the smallest consistent factor lies in `(s_lo, s_hi]`.
 //!
-//! The search is a geometric bisection on the verdicts of whole certifications: from `s = 1`,
-//! halve or double until both kinds of proof are in hand, then bisect until
+//! The search is a geometric bisection on the verdicts of whole certifications: from `s = 1`
+//! (or from an estimate, in small then growing steps), halve or double until both kinds of
+//! proof are in hand, then bisect until
 //! `s_hi / s_lo <= 1 + tolerance`. An undecided verdict proves nothing; the search then tries
 //! between it and each end (closer to `s_lo` an emptiness proof is easier, closer to `s_hi` a
 //! witness), and the bracket it reports is only ever made of proofs.
@@ -30,6 +31,9 @@ pub struct ErrorScale {
     pub s_hi: Option<f64>,
     /// Every certification, in the order run.
     pub trials: Vec<ScaleTrial>,
+    /// The first-order estimate the search started from (a Chebyshev fit,
+    /// [`calib_core::smallest_scale`]; not a proof), when it had one.
+    pub estimate: Option<f64>,
 }
 
 impl ErrorScale {
@@ -39,7 +43,7 @@ impl ErrorScale {
     }
 }
 
-/// The search's limits.
+/// The search's limits and where it starts.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScaleSearch {
     /// Stop at `s_hi / s_lo <= 1 + tolerance`.
@@ -48,15 +52,43 @@ pub struct ScaleSearch {
     pub max_trials: usize,
     /// Search factors within `[1 / range, range]`.
     pub range: f64,
+    /// The first factor tried: 1, or an estimate of the smallest consistent factor (a Chebyshev
+    /// fit, [`calib_core::smallest_scale`]).
+    pub start: f64,
+    /// The first bracketing step: the factor moves by `step`, then `step²`, … (at most 2) until
+    /// both kinds of proof are in hand. 2 from a blind start; from an estimate, `1 + tolerance / 2`
+    /// brackets it within the tolerance in two trials when the estimate is right.
+    pub step: f64,
 }
 
 impl Default for ScaleSearch {
-    /// Within 2%, at most 24 certifications, factors from 1/1000 to 1000.
+    /// Within 2%, at most 24 certifications, factors from 1/1000 to 1000, from 1 by doubling or
+    /// halving.
     fn default() -> Self {
         ScaleSearch {
             tolerance: 0.02,
             max_trials: 24,
             range: 1000.0,
+            start: 1.0,
+            step: 2.0,
+        }
+    }
+}
+
+impl ScaleSearch {
+    /// The default search started just above the estimate `s` (at `s (1 + tolerance / 4)`, where
+    /// a witness is expected; when `s` is a positive finite number within the range) with steps
+    /// of `1 + tolerance / 2`.
+    pub fn from_estimate(s: f64) -> Self {
+        let d = ScaleSearch::default();
+        if s.is_finite() && s > 0.0 && (1.0 / d.range..=d.range).contains(&s) {
+            ScaleSearch {
+                start: s * (1.0 + d.tolerance / 4.0),
+                step: 1.0 + d.tolerance / 2.0,
+                ..d
+            }
+        } else {
+            d
         }
     }
 }
@@ -79,6 +111,7 @@ pub fn find_error_scale(search: &ScaleSearch, mut decide: impl FnMut(f64) -> Sta
         s_lo: None,
         s_hi: None,
         trials: Vec::new(),
+        estimate: None,
     };
     let mut run = |s: f64, out: &mut ErrorScale| {
         let status = decide(s);
@@ -92,27 +125,29 @@ pub fn find_error_scale(search: &ScaleSearch, mut decide: impl FnMut(f64) -> Sta
     };
     // Undecided factors strictly inside the bracket: (lowest, highest).
     let mut undecided: Option<(f64, f64)> = None;
-    let mut s = 1.0;
-    // Bracketing: halve or double.
+    let mut s = search.start;
+    let mut step = search.step.clamp(1.0 + 1e-9, 2.0);
+    // Bracketing: down or up by `step`, the step growing to a halving or doubling.
     while out.trials.len() < search.max_trials && (out.s_lo.is_none() || out.s_hi.is_none()) {
         let status = run(s, &mut out);
         if status == Status::Undecided {
             undecided = Some(undecided.map_or((s, s), |(a, b)| (a.min(s), b.max(s))));
         }
         s = match (out.s_lo, out.s_hi) {
-            (None, Some(h)) => h.min(undecided.map_or(h, |u| u.0)) / 2.0,
-            (Some(l), None) => l.max(undecided.map_or(l, |u| u.1)) * 2.0,
-            // Nothing proved yet (undecided at 1): alternate below and above.
+            (None, Some(h)) => h.min(undecided.map_or(h, |u| u.0)) / step,
+            (Some(l), None) => l.max(undecided.map_or(l, |u| u.1)) * step,
+            // Nothing proved yet (undecided at the start): alternate below and above.
             (None, None) => {
-                let (a, b) = undecided.unwrap_or((1.0, 1.0));
+                let (a, b) = undecided.unwrap_or((search.start, search.start));
                 if out.trials.len() % 2 == 1 {
-                    a / 2.0
+                    a / step
                 } else {
-                    b * 2.0
+                    b * step
                 }
             }
             (Some(_), Some(_)) => break,
         };
+        step = (step * step).min(2.0);
         if !(1.0 / search.range..=search.range).contains(&s) {
             break;
         }
@@ -177,6 +212,25 @@ mod tests {
             assert!(proved(lo, Status::Empty) && proved(hi, Status::Consistent));
             assert!(s.trials.len() <= 24);
         }
+    }
+
+    #[test]
+    fn an_estimate_brackets_in_few_trials_and_a_wrong_one_still_brackets() {
+        for (t, estimate) in [(0.547, 0.546), (0.547, 0.549), (0.547, 0.3), (0.547, 3.0)] {
+            let s = find_error_scale(&ScaleSearch::from_estimate(estimate), threshold(t));
+            let (lo, hi) = (s.s_lo.unwrap(), s.s_hi.unwrap());
+            assert!(
+                lo < t && t <= hi && hi / lo <= 1.02,
+                "{t} from {estimate}: {lo} {hi}"
+            );
+            if (estimate / t - 1.0f64).abs() < 0.005 {
+                assert!(s.trials.len() <= 3, "{estimate}: {:?}", s.trials);
+            }
+            assert!(s.trials.len() <= 24);
+        }
+        // No usable estimate: the blind default.
+        assert_eq!(ScaleSearch::from_estimate(f64::NAN), ScaleSearch::default());
+        assert_eq!(ScaleSearch::from_estimate(0.0), ScaleSearch::default());
     }
 
     #[test]

@@ -96,13 +96,13 @@ enum ErrorScaleMode {
 }
 
 /// Finds the smallest consistent scale of `u`'s bounds, prints it in words, and returns the
-/// bracket's JSON and the bounds to certify with.
+/// bracket's JSON, the bounds to certify with and the words (for the certificate).
 fn error_scale(
     a: &Args,
     arm: &calib_arm::Arm,
     readings: &[calib_arm::simulate::Reading],
     u: &Uncertainty,
-) -> Result<(serde_json::Value, Uncertainty), Box<dyn std::error::Error>> {
+) -> Result<(serde_json::Value, Uncertainty, Vec<String>), Box<dyn std::error::Error>> {
     if !(a.scale_margin.is_finite() && a.scale_margin >= 1.0) {
         return Err(format!("--scale-margin {}: expected a factor >= 1", a.scale_margin).into());
     }
@@ -117,13 +117,18 @@ fn error_scale(
     let seconds = started.elapsed().as_secs_f64();
     let show = |s: Option<f64>| s.map_or("—".to_string(), |v| format!("{v:.4}"));
     let describe = |s: f64| which.describe(u, s);
-    println!(
+    let mut words = Vec::new();
+    let mut say = |line: String| {
+        println!("{line}");
+        words.push(line);
+    };
+    say(format!(
         "error scale ({} bounds, {} certifications, {seconds:.1} s): proved inconsistent at × {}, certified consistent at × {}",
         which.name(),
         found.trials.len(),
         show(found.s_lo),
         show(found.s_hi)
-    );
+    ));
     let Some(hi) = found.s_hi else {
         return Err(format!(
             "the data are not consistent with the model even with the error bounds × {}: a model error, or outliers (try --max-outliers auto)",
@@ -132,24 +137,31 @@ fn error_scale(
         .into());
     };
     match found.s_lo {
-        Some(lo) if hi > 1.0 => println!(
+        Some(lo) if hi > 1.0 => say(format!(
             "these data fit the model only if the error bounds are {} (× {lo:.4} to × {hi:.4}: {} is proved too small); the uncertainty file says {}: the rest is the model's (errors it does not describe: compliance, gears, temperature)",
             describe(hi),
             describe(lo),
             describe(1.0)
-        ),
-        Some(lo) => println!(
+        )),
+        Some(lo) => say(format!(
             "these data fit the model with error bounds of {} (× {hi:.4}; × {lo:.4} is proved too small): the uncertainty file's {} are conservative",
             describe(hi),
             describe(1.0)
-        ),
-        None => println!(
+        )),
+        None => say(format!(
             "these data fit the model with error bounds of {} (× {hi:.4}); no smaller factor was proved inconsistent",
             describe(hi)
-        ),
+        )),
+    }
+    if let (Some(lo), Some(e)) = (found.s_lo, found.estimate) {
+        if found.ratio().is_some_and(|r| r > 1.02) && (lo..=hi).contains(&e) {
+            say(format!(
+                "  the first-order minimax fit needs × {e:.4}, where the smallest consistent bound most likely is; below it, down to × {lo:.4}, the kernel could not decide: its relaxation over the prior box is too loose this close to the threshold (see benches/README.md)"
+            ));
+        }
     }
     let certify_at = hi * a.scale_margin;
-    println!(
+    say(format!(
         "certifying at × {certify_at:.4} ({}){}",
         describe(certify_at),
         if a.scale_margin > 1.0 {
@@ -157,9 +169,9 @@ fn error_scale(
         } else {
             String::new()
         }
-    );
+    ));
     let json = to_json(&found, which, Some(certify_at), seconds);
-    Ok((json, which.scale(u, certify_at)))
+    Ok((json, which.scale(u, certify_at), words))
 }
 
 fn parse_choice(s: &str) -> Result<PointChoice, String> {
@@ -183,12 +195,12 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let u = data
         .slack
         .widen(&parse_uncertainty(&a.uncertainty, &u_text)?);
-    let (scale_json, u) = match a.error_scale {
+    let (scale_json, u, scale_words) = match a.error_scale {
         Some(ErrorScaleMode::Auto) => {
-            let (json, scaled) = error_scale(&a, &arm, &data.readings, &u)?;
-            (Some(json), scaled)
+            let (json, scaled, words) = error_scale(&a, &arm, &data.readings, &u)?;
+            (Some(json), scaled, words)
         }
-        None => (None, u),
+        None => (None, u, Vec::new()),
     };
     let request = CertifyRequest {
         depth: if a.hull { Depth::Hull } else { Depth::Fast },
@@ -276,6 +288,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             names,
             tolerated: q,
             truth: None,
+            error_scale: scale_words,
         };
         write_certificate(path, &page)?;
     }

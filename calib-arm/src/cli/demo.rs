@@ -134,6 +134,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             names,
             tolerated: 0,
             truth: Some(&sim.truth),
+            error_scale: Vec::new(),
         };
         for path in &pages {
             write_certificate(path, &page)?;
