@@ -7,8 +7,8 @@ use crate::certification::{padded_box, verdict_only, MAX_JOINTS, NM};
 use crate::robot::Arm;
 use crate::simulate::{measurement_box, Reading, Uncertainty};
 use crate::Arm7Point;
-use calib_core::{is_consistent_point, smallest_scale, Interval, Status};
-use calib_pipeline::error_scale::{find_error_scale, ErrorScale, ScaleSearch};
+use calib_core::Interval;
+use calib_pipeline::error_scale::{search_from_estimate, ErrorScale, ScaledProblem};
 
 /// Which error bounds the factor multiplies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -73,21 +73,23 @@ impl ScaleBounds {
     }
 }
 
-/// Searches the smallest consistent factor of `which` bounds of `u` for `arm` on `readings`;
-/// `on_trial` hears each factor before it is tried (for a progress display).
-///
-/// The search starts from the Chebyshev fit ([`calib_core::smallest_scale`]), the first-order
-/// smallest factor, and tries that fit's point first at every factor: a point certified
-/// consistent ([`calib_core::is_consistent_point`]) against the widened boxes proves the factor
-/// consistent at once. Otherwise, and below the estimate, the trial is a verdict-only
-/// certification.
+/// Searches the smallest consistent factor of `which` bounds of `u` for `arm` on `readings`
+/// ([`calib_pipeline::error_scale::search_from_estimate`]: from the Chebyshev fit, whose point is
+/// tried first at every factor, then a verdict-only certification); `on_trial` hears each factor
+/// before it is tried (for a progress display).
 pub fn search(
     arm: &Arm,
     readings: &[Reading],
     u: &Uncertainty,
     which: ScaleBounds,
-    mut on_trial: impl FnMut(f64),
+    on_trial: impl FnMut(f64),
 ) -> Result<ErrorScale, String> {
+    let joints = arm.joints.len();
+    if !(3..=MAX_JOINTS).contains(&joints) || readings.iter().any(|r| r.joints_deg.len() != joints)
+    {
+        // The certification names what is wrong.
+        verdict_only(arm, readings, u)?;
+    }
     let boxes = |s: f64| -> Vec<[Interval; NM]> {
         let scaled = which.scale(u, s);
         readings
@@ -95,72 +97,23 @@ pub fn search(
             .filter_map(|r| measurement_box(r, &scaled))
             .collect()
     };
-    let joints = arm.joints.len();
-    let well_formed =
-        (3..=MAX_JOINTS).contains(&joints) && readings.iter().all(|r| r.joints_deg.len() == joints);
-    let estimate = well_formed.then(|| {
-        smallest_scale(
-            &Arm7Point,
-            &padded_box(arm),
-            &boxes(1.0),
-            &which.mask(joints),
-        )
-    });
-    let search = estimate.map_or_else(ScaleSearch::default, |e| {
-        ScaleSearch::from_estimate(e.scale)
-    });
-    let mut failure = None;
-    let mut found = find_error_scale(&search, |s| {
-        on_trial(s);
-        if let Some(e) = &estimate {
-            if s >= e.scale && is_consistent_point(&Arm7Point, &e.point, &boxes(s)) {
-                return Status::Consistent;
-            }
-        }
-        match verdict_only(arm, readings, &which.scale(u, s)) {
-            Ok(status) => status,
-            Err(e) => {
-                failure.get_or_insert(e);
-                Status::Undecided
-            }
-        }
-    });
-    found.estimate = estimate.map(|e| e.scale);
-    match failure {
-        Some(e) => Err(e),
-        None => Ok(found),
-    }
-}
-
-/// The bracket as JSON (the report's `error_scale`): `bounds`, `s_lo`, `s_hi`, `ratio`,
-/// `estimate` (the first-order Chebyshev fit's factor, not a proof),
-/// `certified_at` (the factor the certification then used), `seconds` and every trial's factor
-/// and verdict.
-pub fn to_json(
-    found: &ErrorScale,
-    which: ScaleBounds,
-    certified_at: Option<f64>,
-    seconds: f64,
-) -> serde_json::Value {
-    serde_json::json!({
-        "bounds": which.name(),
-        "s_lo": found.s_lo,
-        "s_hi": found.s_hi,
-        "ratio": found.ratio(),
-        "estimate": found.estimate,
-        "certified_at": certified_at,
-        "certifications": found.trials.len(),
-        "seconds": seconds,
-        "trials": found.trials.iter().map(|t| serde_json::json!({
-            "scale": t.scale,
-            "verdict": format!("{:?}", t.status).to_lowercase(),
-        })).collect::<Vec<_>>(),
-    })
+    let problem = ScaledProblem {
+        model: &Arm7Point,
+        x0: padded_box(arm),
+        boxes: &boxes,
+        scaled: which.mask(joints),
+    };
+    search_from_estimate(
+        &[problem],
+        |_, s| verdict_only(arm, readings, &which.scale(u, s)),
+        on_trial,
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use calib_core::{is_consistent_point, smallest_scale};
 
     #[test]
     fn only_the_chosen_bounds_scale_and_they_round_up() {

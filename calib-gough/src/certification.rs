@@ -222,11 +222,17 @@ pub fn identifiability(
     u: &Uncertainty,
 ) -> Vec<String> {
     let nominal = spec.nominal.params();
-    let x0: [Interval; 7] = core::array::from_fn(|j| measured(nominal[j], spec.radius[j]));
+    let x0 = leg_prior(spec);
     let boxes = leg_boxes(configs, u, leg);
     let (free, jacobian) = identification_jacobian(&GoughLeg, &nominal, &x0, &boxes);
     let names: Vec<String> = PARAMETER_NAMES.iter().map(|s| s.to_string()).collect();
     analyse(&free, jacobian).sentences(&names)
+}
+
+/// The prior box of a leg: its nominal ± its radii, outward rounded.
+pub fn leg_prior(spec: &LegSpec) -> [Interval; 7] {
+    let nominal = spec.nominal.params();
+    core::array::from_fn(|j| measured(nominal[j], spec.radius[j]))
 }
 
 /// Certifies one leg (0-based) of `spec` against the configurations.
@@ -239,8 +245,7 @@ pub fn certify_leg(
     settings: &Settings,
 ) -> LegResult {
     let t = Instant::now();
-    let nominal = spec.nominal.params();
-    let x0: [Interval; 7] = core::array::from_fn(|j| measured(nominal[j], spec.radius[j]));
+    let x0 = leg_prior(spec);
     let boxes = leg_boxes(configs, u, leg);
     let mut r = if options.fast {
         let c = certify(&GoughLeg, &x0, &boxes, settings);

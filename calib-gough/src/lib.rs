@@ -13,6 +13,7 @@ pub mod calibrated;
 pub mod certificate;
 pub mod certification;
 pub mod design;
+pub mod error_scale;
 pub mod files;
 pub mod geometry;
 pub mod lsq;

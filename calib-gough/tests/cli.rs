@@ -78,6 +78,37 @@ fn fast_reports_the_papers_x1_as_the_outer_box() {
 }
 
 #[test]
+fn error_scale_brackets_the_needed_bounds_and_certifies_there() {
+    let dir = tempdir("error_scale");
+    simulate(&dir, 8, &[]);
+    let out = certify(
+        &dir,
+        &["--fast", "--error-scale", "auto", "--scale-margin", "1.05"],
+    );
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let scale = &report(&dir)["error_scale"];
+    let (lo, hi) = (
+        scale["s_lo"].as_f64().unwrap(),
+        scale["s_hi"].as_f64().unwrap(),
+    );
+    // The noise is within the simulator's bounds: at most × 1 is needed.
+    assert!(lo < hi && hi / lo <= 1.02 && lo < 1.0, "{scale}");
+    assert!((scale["certified_at"].as_f64().unwrap() - 1.05 * hi).abs() < 1e-12 * hi);
+    let legs = report(&dir)["legs"].as_array().unwrap().clone();
+    assert!(legs.iter().all(|l| l["status"] == "consistent"), "{legs:?}");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("proved too small") && stdout.contains("a margin of × 1.05"));
+    let bad = certify(&dir, &["--error-scale", "auto", "--scale-margin", "0.5"]);
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--scale-margin 0.5"));
+}
+
+#[test]
 fn a_spent_budget_is_reported_and_the_boxes_stay_certified() {
     let dir = tempdir("budget");
     simulate(&dir, 6, &[]);

@@ -10,8 +10,16 @@
 //! `s_hi / s_lo <= 1 + tolerance`. An undecided verdict proves nothing; the search then tries
 //! between it and each end (closer to `s_lo` an emptiness proof is easier, closer to `s_hi` a
 //! witness), and the bracket it reports is only ever made of proofs.
+//!
+//! [`search_from_estimate`] runs it for a robot made of sub-problems (an arm: one; a Gough
+//! platform: one per leg). It starts from the first-order estimate of each
+//! ([`calib_core::smallest_scale`], a Chebyshev fit) and, at every factor, first tries each
+//! estimate's point: certified consistent against the widened boxes
+//! ([`calib_core::is_consistent_point`]), it is the sub-problem's witness without a certification.
 
-use calib_core::Status;
+use calib_core::{
+    is_consistent_point, smallest_scale, Interval, ScaleEstimate, Status, VectorModel,
+};
 
 /// One certification the search ran.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -97,7 +105,7 @@ impl ScaleSearch {
 /// with every scaled bound multiplied by `s` (see the module documentation).
 ///
 /// ```
-/// use calib_core::Status;
+/// use calib_core::{is_consistent_point, smallest_scale, Interval, ScaleEstimate, Status, VectorModel};
 /// use calib_pipeline::error_scale::{find_error_scale, ScaleSearch};
 /// // Consistent from 0.547 on, undecided within 3% below it.
 /// let s = find_error_scale(&ScaleSearch::default(), |s| {
@@ -187,6 +195,150 @@ pub fn find_error_scale(search: &ScaleSearch, mut decide: impl FnMut(f64) -> Sta
     out
 }
 
+/// One sub-problem of [`search_from_estimate`]: its model, prior box, measurement boxes at a
+/// factor `s`, and which measured quantities the factor scales (for the estimate).
+pub struct ScaledProblem<'a, M, const NX: usize, const NM: usize> {
+    /// The model.
+    pub model: &'a M,
+    /// The prior box.
+    pub x0: [Interval; NX],
+    /// The measurement boxes with the chosen error bounds multiplied by `s`.
+    pub boxes: &'a dyn Fn(f64) -> Vec<[Interval; NM]>,
+    /// The measured quantities whose half-widths the factor multiplies.
+    pub scaled: [bool; NM],
+}
+
+/// The smallest consistent factor of a robot made of independent `problems` (consistent when
+/// every one is): the search of [`find_error_scale`] started from the largest first-order estimate,
+/// each trial first trying every estimate's point (see the module documentation), then
+/// `certify(i, s)` for the sub-problems it did not prove; `on_trial` hears each factor first.
+/// The first error of `certify` ends the search.
+pub fn search_from_estimate<M, const NX: usize, const NM: usize, const NR: usize>(
+    problems: &[ScaledProblem<'_, M, NX, NM>],
+    mut certify: impl FnMut(usize, f64) -> Result<Status, String>,
+    mut on_trial: impl FnMut(f64),
+) -> Result<ErrorScale, String>
+where
+    M: VectorModel<NX, NM, NR>,
+{
+    let estimates: Vec<ScaleEstimate<NX>> = problems
+        .iter()
+        .map(|p| smallest_scale(p.model, &p.x0, &(p.boxes)(1.0), &p.scaled))
+        .collect();
+    let estimate = estimates.iter().map(|e| e.scale).fold(0.0, f64::max);
+    let mut failure = None;
+    let mut found = find_error_scale(&ScaleSearch::from_estimate(estimate), |s| {
+        on_trial(s);
+        let mut all = true;
+        for (i, (p, e)) in problems.iter().zip(&estimates).enumerate() {
+            if s >= e.scale && is_consistent_point(p.model, &e.point, &(p.boxes)(s)) {
+                continue;
+            }
+            match certify(i, s) {
+                Ok(Status::Empty) => return Status::Empty,
+                Ok(Status::Consistent) => {}
+                Ok(Status::Undecided) => all = false,
+                Err(e) => {
+                    failure.get_or_insert(e);
+                    return Status::Undecided;
+                }
+            }
+        }
+        if all {
+            Status::Consistent
+        } else {
+            Status::Undecided
+        }
+    });
+    found.estimate = (estimate.is_finite() && estimate > 0.0).then_some(estimate);
+    match failure {
+        Some(e) => Err(e),
+        None => Ok(found),
+    }
+}
+
+/// The bracket as JSON (the report's `error_scale`): `bounds` (which were scaled), `s_lo`,
+/// `s_hi`, `ratio`, `estimate` (the first-order Chebyshev fit's factor, not a proof),
+/// `certified_at` (the factor the certification then used), `seconds` and every trial's factor
+/// and verdict.
+pub fn to_json(
+    found: &ErrorScale,
+    bounds: &str,
+    certified_at: Option<f64>,
+    seconds: f64,
+) -> serde_json::Value {
+    serde_json::json!({
+        "bounds": bounds,
+        "s_lo": found.s_lo,
+        "s_hi": found.s_hi,
+        "ratio": found.ratio(),
+        "estimate": found.estimate,
+        "certified_at": certified_at,
+        "certifications": found.trials.len(),
+        "seconds": seconds,
+        "trials": found.trials.iter().map(|t| serde_json::json!({
+            "scale": t.scale,
+            "verdict": format!("{:?}", t.status).to_lowercase(),
+        })).collect::<Vec<_>>(),
+    })
+}
+
+/// The bracket in words, one line each, for the terminal and the certificate: what was proved,
+/// the bounds the data need against the uncertainty file's (`describe(s)`: the scaled bounds in
+/// words, e.g. `pos 0.3846 mm`), the estimate when the bracket is wider than 2%, and the factor
+/// certified next (`s_hi × margin`). `None` when no factor was proved consistent.
+pub fn in_words(
+    found: &ErrorScale,
+    bounds: &str,
+    seconds: f64,
+    margin: f64,
+    describe: &dyn Fn(f64) -> String,
+) -> Option<(Vec<String>, f64)> {
+    let show = |s: Option<f64>| s.map_or("—".to_string(), |v| format!("{v:.4}"));
+    let mut words = vec![format!(
+        "error scale ({bounds} bounds, {} certifications, {seconds:.1} s): proved inconsistent at × {}, certified consistent at × {}",
+        found.trials.len(),
+        show(found.s_lo),
+        show(found.s_hi)
+    )];
+    let hi = found.s_hi?;
+    words.push(match found.s_lo {
+        Some(lo) if hi > 1.0 => format!(
+            "these data fit the model only if the error bounds are {} (× {lo:.4} to × {hi:.4}: {} is proved too small); the uncertainty file says {}: the rest is the model's (errors it does not describe: compliance, gears, temperature)",
+            describe(hi),
+            describe(lo),
+            describe(1.0)
+        ),
+        Some(lo) => format!(
+            "these data fit the model with error bounds of {} (× {hi:.4}; × {lo:.4} is proved too small): the uncertainty file's {} are conservative",
+            describe(hi),
+            describe(1.0)
+        ),
+        None => format!(
+            "these data fit the model with error bounds of {} (× {hi:.4}); no smaller factor was proved inconsistent",
+            describe(hi)
+        ),
+    });
+    if let (Some(lo), Some(e)) = (found.s_lo, found.estimate) {
+        if found.ratio().is_some_and(|r| r > 1.02) && (lo..=hi).contains(&e) {
+            words.push(format!(
+                "  the first-order minimax fit needs × {e:.4}, where the smallest consistent bound most likely is; below it, down to × {lo:.4}, the kernel could not decide: its relaxation over the prior box is too loose this close to the threshold (see benches/README.md)"
+            ));
+        }
+    }
+    let at = hi * margin;
+    words.push(format!(
+        "certifying at × {at:.4} ({}){}",
+        describe(at),
+        if margin > 1.0 {
+            format!(", a margin of × {margin} over s_hi")
+        } else {
+            String::new()
+        }
+    ));
+    Some((words, at))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -231,6 +383,34 @@ mod tests {
         // No usable estimate: the blind default.
         assert_eq!(ScaleSearch::from_estimate(f64::NAN), ScaleSearch::default());
         assert_eq!(ScaleSearch::from_estimate(0.0), ScaleSearch::default());
+    }
+
+    #[test]
+    fn words_say_what_was_proved_and_what_is_certified_next() {
+        let found = ErrorScale {
+            s_lo: Some(5.88),
+            s_hi: Some(7.69),
+            trials: Vec::new(),
+            estimate: Some(7.6),
+        };
+        let describe = |s: f64| format!("pos {:.3} mm", 0.05 * s);
+        let (words, at) = in_words(&found, "pos", 3.0, 1.1, &describe).expect("proved");
+        assert!((at - 7.69 * 1.1).abs() < 1e-12);
+        assert!(
+            words[1].contains("only if the error bounds are pos 0.385 mm"),
+            "{words:?}"
+        );
+        assert!(
+            words[1].contains("pos 0.294 mm is proved too small"),
+            "{words:?}"
+        );
+        assert!(words[2].contains("minimax fit needs × 7.6000"), "{words:?}");
+        assert!(words[3].contains("a margin of × 1.1"), "{words:?}");
+        let none = ErrorScale {
+            s_hi: None,
+            ..found
+        };
+        assert!(in_words(&none, "pos", 3.0, 1.0, &describe).is_none());
     }
 
     #[test]

@@ -553,7 +553,8 @@ fn arm_error_scale(
     columns: Columns,
     scale_bounds: &str,
 ) -> PyResult<String> {
-    use calib_arm::error_scale::{search, to_json, ScaleBounds};
+    use calib_arm::error_scale::{search, ScaleBounds};
+    use calib_pipeline::error_scale::to_json;
     let which = match scale_bounds {
         "all" => ScaleBounds::All,
         "pos" => ScaleBounds::Pos,
@@ -573,7 +574,49 @@ fn arm_error_scale(
     let found = py
         .detach(|| search(&arm, &data.readings, &u, which, |_| {}))
         .map_err(value_error)?;
-    Ok(to_json(&found, which, None, started.elapsed().as_secs_f64()).to_string())
+    Ok(to_json(&found, which.name(), None, started.elapsed().as_secs_f64()).to_string())
+}
+
+/// The smallest consistent factor of a Gough platform's error bounds, as `gough certify
+/// --error-scale auto` finds it: JSON (`bounds`, `s_lo`, `s_hi`, `ratio`, `trials`, …).
+#[pyfunction]
+#[pyo3(signature = (robot, measurements, uncertainty, scale_bounds, legs=None))]
+fn error_scale_files(
+    py: Python<'_>,
+    robot: PathBuf,
+    measurements: PathBuf,
+    uncertainty: PathBuf,
+    scale_bounds: &str,
+    legs: Option<Vec<usize>>,
+) -> PyResult<String> {
+    use calib_gough::error_scale::{search, ScaleBounds};
+    use calib_pipeline::error_scale::to_json;
+    let which = match scale_bounds {
+        "all" => ScaleBounds::All,
+        "pos" => ScaleBounds::Pos,
+        "len" => ScaleBounds::Len,
+        "orientation" => ScaleBounds::Orientation,
+        other => {
+            return Err(value_error(format!(
+                "scale_bounds: `all`, `pos`, `len` or `orientation`, not `{other}`"
+            )))
+        }
+    };
+    let spec = read_robot(&robot).map_err(value_error)?;
+    let data = read_measurements(&measurements, spec.len()).map_err(value_error)?;
+    let u = read_uncertainty(&uncertainty).map_err(value_error)?;
+    check_uncertainty(&uncertainty, &u, data.rodrigues).map_err(value_error)?;
+    let (legs, _) = CertifyOptions {
+        legs,
+        ..CertifyOptions::default()
+    }
+    .validate(spec.len(), data.configs.len())
+    .map_err(value_error)?;
+    let started = Instant::now();
+    let found = py
+        .detach(|| search(&spec, &legs, &data.configs, &u, which, |_| {}))
+        .map_err(value_error)?;
+    Ok(to_json(&found, which.name(), None, started.elapsed().as_secs_f64()).to_string())
 }
 
 /// Predicts the leg readings at `poses` (a poses CSV) or at the poses of `measurements` (whose
@@ -796,6 +839,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(arm_export, m)?)?;
     m.add_function(wrap_pyfunction!(arm_register, m)?)?;
     m.add_function(wrap_pyfunction!(arm_error_scale, m)?)?;
+    m.add_function(wrap_pyfunction!(error_scale_files, m)?)?;
     m.add_function(wrap_pyfunction!(predict, m)?)?;
     m.add_function(wrap_pyfunction!(arm_predict, m)?)?;
     m.add_function(wrap_pyfunction!(design, m)?)?;

@@ -212,3 +212,16 @@ def test_write_calibrated_carries_the_set_that_accuracy_works_over(tmp_path):
     assert json.loads(out.read_text()) == mine
     with pytest.raises(ValueError, match="poses or measurements"):
         certicalib.predict(cal, tmp_path / "uncertainty.toml")
+
+
+def test_error_scale_matches_the_cli_and_brackets_within_two_per_cent(data):
+    # Legs 1 and 4 are clean (leg 3's configuration 6 was moved 0.3 cm, far beyond any bound).
+    found = certicalib.error_scale(*files(data), scale_bounds="all", legs=[1, 4])
+    assert found["bounds"] == "all" and found["s_lo"] < found["s_hi"]
+    assert found["s_hi"] / found["s_lo"] <= 1.02
+    assert found["s_lo"] < found["estimate"] <= found["s_hi"] * (1 + 1e-9)
+    cli = cli_report(data, "--fast", "--legs", "1,4", "--error-scale", "auto",
+                     "--scale-bounds", "all")["error_scale"]
+    assert (cli["s_lo"], cli["s_hi"]) == (found["s_lo"], found["s_hi"])
+    with pytest.raises(ValueError, match="scale_bounds"):
+        certicalib.error_scale(*files(data), scale_bounds="joint_deg")

@@ -7,10 +7,11 @@ use super::DataFiles;
 use calib_arm::calibrated::{calibrated_arm, calibrated_toml, PointChoice};
 use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{certify_request, CertifyRequest};
-use calib_arm::error_scale::{search, to_json, ScaleBounds};
+use calib_arm::error_scale::{search, ScaleBounds};
 use calib_arm::files::{parse_robot, parse_uncertainty};
 use calib_arm::simulate::Uncertainty;
 use calib_core::Status;
+use calib_pipeline::error_scale::{in_words, to_json};
 use calib_pipeline::html::{command_line, now, Input};
 use calib_pipeline::verdict::{self, ConfigurationNames};
 use calib_pipeline::{read_text, write_atomically};
@@ -74,8 +75,10 @@ pub struct Args {
     calibrated_point: PointChoice,
     /// `auto`: first find how much error the data need — the smallest factor by which the
     /// uncertainty file's bounds (--scale-bounds) must be multiplied for the data to be
-    /// consistent, as a proved bracket (s_lo proved inconsistent, s_hi certified consistent,
-    /// within 2%) — then certify at s_hi × --scale-margin. A few certifications of this size.
+    /// consistent, as a proved bracket (s_lo proved inconsistent, s_hi certified consistent;
+    /// within 2% where the kernel decides, else the ratio reached and the first-order minimax
+    /// estimate are printed) — then certify at s_hi × --scale-margin. A few certifications of
+    /// this size.
     #[arg(long, value_name = "auto", value_enum)]
     error_scale: Option<ErrorScaleMode>,
     /// With --error-scale: which bounds to scale: `all`, `pos` (the tracker's) or `joint_deg`
@@ -115,62 +118,18 @@ fn error_scale(
     bar.finish_and_clear();
     let found = found?;
     let seconds = started.elapsed().as_secs_f64();
-    let show = |s: Option<f64>| s.map_or("—".to_string(), |v| format!("{v:.4}"));
     let describe = |s: f64| which.describe(u, s);
-    let mut words = Vec::new();
-    let mut say = |line: String| {
-        println!("{line}");
-        words.push(line);
-    };
-    say(format!(
-        "error scale ({} bounds, {} certifications, {seconds:.1} s): proved inconsistent at × {}, certified consistent at × {}",
-        which.name(),
-        found.trials.len(),
-        show(found.s_lo),
-        show(found.s_hi)
-    ));
-    let Some(hi) = found.s_hi else {
+    let Some((words, certify_at)) =
+        in_words(&found, which.name(), seconds, a.scale_margin, &describe)
+    else {
         return Err(format!(
             "the data are not consistent with the model even with the error bounds × {}: a model error, or outliers (try --max-outliers auto)",
             found.trials.iter().map(|t| t.scale).fold(0.0, f64::max)
         )
         .into());
     };
-    match found.s_lo {
-        Some(lo) if hi > 1.0 => say(format!(
-            "these data fit the model only if the error bounds are {} (× {lo:.4} to × {hi:.4}: {} is proved too small); the uncertainty file says {}: the rest is the model's (errors it does not describe: compliance, gears, temperature)",
-            describe(hi),
-            describe(lo),
-            describe(1.0)
-        )),
-        Some(lo) => say(format!(
-            "these data fit the model with error bounds of {} (× {hi:.4}; × {lo:.4} is proved too small): the uncertainty file's {} are conservative",
-            describe(hi),
-            describe(1.0)
-        )),
-        None => say(format!(
-            "these data fit the model with error bounds of {} (× {hi:.4}); no smaller factor was proved inconsistent",
-            describe(hi)
-        )),
-    }
-    if let (Some(lo), Some(e)) = (found.s_lo, found.estimate) {
-        if found.ratio().is_some_and(|r| r > 1.02) && (lo..=hi).contains(&e) {
-            say(format!(
-                "  the first-order minimax fit needs × {e:.4}, where the smallest consistent bound most likely is; below it, down to × {lo:.4}, the kernel could not decide: its relaxation over the prior box is too loose this close to the threshold (see benches/README.md)"
-            ));
-        }
-    }
-    let certify_at = hi * a.scale_margin;
-    say(format!(
-        "certifying at × {certify_at:.4} ({}){}",
-        describe(certify_at),
-        if a.scale_margin > 1.0 {
-            format!(", a margin of × {} over s_hi", a.scale_margin)
-        } else {
-            String::new()
-        }
-    ));
-    let json = to_json(&found, which, Some(certify_at), seconds);
+    words.iter().for_each(|w| println!("{w}"));
+    let json = to_json(&found, which.name(), Some(certify_at), seconds);
     Ok((json, which.scale(u, certify_at), words))
 }
 

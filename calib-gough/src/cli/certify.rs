@@ -8,15 +8,18 @@ use calib_gough::certificate::{self, Certificate, Input, LegEntry};
 use calib_gough::certification::{
     certify_legs, identifiability, report, CertifyOptions, LegResult,
 };
+use calib_gough::error_scale::{search, ScaleBounds};
 use calib_gough::files::{
     check_uncertainty, parse_measurements, parse_robot, parse_uncertainty, read_text,
 };
 use calib_gough::lsq::fit_legs;
+use calib_gough::measurement::Uncertainty;
 use calib_gough::plot;
 use calib_gough::report::{ratios, table, write_atomically};
 use calib_gough::verdict::{self, ConfigurationNames};
 use calib_gough::workspace::read_workspace;
 use calib_gough::PARAMETER_NAMES;
+use calib_pipeline::error_scale::{in_words, to_json};
 use calib_pipeline::OutlierBudget;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -93,6 +96,59 @@ pub struct Args {
     /// projections (ax, ay), (bx, by) and (az, l).
     #[arg(long, value_name = "DIR")]
     plots: Option<PathBuf>,
+    /// `auto`: first find how much error the data need — the smallest factor by which the
+    /// uncertainty file's bounds (--scale-bounds) must be multiplied for every leg's data to be
+    /// consistent, as a proved bracket (s_lo proved inconsistent, s_hi certified consistent;
+    /// within 2% where the kernel decides, the ratio reached is printed and in the JSON's
+    /// `error_scale`) — then certify at s_hi × --scale-margin. Starts from each leg's first-order
+    /// minimax fit; a few fast certifications per leg.
+    #[arg(long, value_name = "auto", value_parser = ["auto"])]
+    error_scale: Option<String>,
+    /// With --error-scale: which bounds to scale: `all`, `pos` (the platform positions'), `len`
+    /// (the leg readings') or `orientation` (axis and angle, or q).
+    #[arg(long, value_name = "WHICH", value_enum, default_value = "all")]
+    scale_bounds: ScaleBounds,
+    /// With --error-scale: certify at s_hi times this factor (>= 1: a margin over the smallest
+    /// consistent bounds).
+    #[arg(long, value_name = "F", default_value_t = 1.0)]
+    scale_margin: f64,
+}
+
+/// With --error-scale auto: finds the smallest consistent factor of `u`'s bounds for the `legs`,
+/// prints it in words, and returns the bracket's JSON, the bounds to certify with, and the words.
+fn error_scale(
+    a: &Args,
+    robot: &[calib_gough::files::LegSpec],
+    legs: &[usize],
+    configs: &[calib_gough::measurement::Configuration],
+    u: &Uncertainty,
+) -> Result<(serde_json::Value, Uncertainty, Vec<String>), Box<dyn std::error::Error>> {
+    if !(a.scale_margin.is_finite() && a.scale_margin >= 1.0) {
+        return Err(format!("--scale-margin {}: expected a factor >= 1", a.scale_margin).into());
+    }
+    let which = a.scale_bounds;
+    let started = Instant::now();
+    let bar = indicatif::ProgressBar::new_spinner();
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    let found = search(robot, legs, configs, u, which, |s| {
+        bar.set_message(format!("certifying with the error bounds × {s:.4}"))
+    });
+    bar.finish_and_clear();
+    let found = found?;
+    let seconds = started.elapsed().as_secs_f64();
+    let describe = |s: f64| which.describe(u, s);
+    let Some((words, at)) = in_words(&found, which.name(), seconds, a.scale_margin, &describe)
+    else {
+        return Err(format!(
+            "the data are not consistent with the model even with the error bounds × {}: a model error, or outliers (try --max-outliers auto)",
+            found.trials.iter().map(|t| t.scale).fold(0.0, f64::max)
+        )
+        .into());
+    };
+    words.iter().for_each(|w| println!("{w}"));
+    println!();
+    let json = to_json(&found, which.name(), Some(at), seconds);
+    Ok((json, which.scale(u, at), words))
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
@@ -104,8 +160,6 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let data = parse_measurements(&a.files.measurements, &data_text, robot.len())?;
     let u = parse_uncertainty(&a.uncertainty, &u_text)?;
     check_uncertainty(&a.uncertainty, &u, data.rodrigues)?;
-    let workspace = a.workspace.as_deref().map(read_workspace).transpose()?;
-    let pose_seconds = super::accuracy::checked_pose_seconds(a.pose_seconds)?;
     let options = CertifyOptions {
         legs: a.legs.clone(),
         fast: a.fast,
@@ -118,6 +172,15 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     };
     // Option errors before any work (certify_legs checks them again).
     let (legs, _) = options.validate(robot.len(), data.configs.len())?;
+    let (scale_json, u, scale_words) = match a.error_scale {
+        Some(_) => {
+            let (json, scaled, words) = error_scale(&a, &robot, &legs, &data.configs, &u)?;
+            (Some(json), scaled, words)
+        }
+        None => (None, u, Vec::new()),
+    };
+    let workspace = a.workspace.as_deref().map(read_workspace).transpose()?;
+    let pose_seconds = super::accuracy::checked_pose_seconds(a.pose_seconds)?;
     let start = Instant::now();
     // Progress on a terminal only (indicatif draws nothing when stderr is not a terminal).
     let bar = indicatif::ProgressBar::new(legs.len() as u64);
@@ -260,7 +323,13 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             date: certificate::now(),
             inputs,
             configurations: data.configs.len(),
-            error_bounds: certificate::error_bounds(&u, data.rodrigues),
+            error_bounds: certificate::error_bounds(&u, data.rodrigues)
+                .into_iter()
+                .chain(
+                    (!scale_words.is_empty())
+                        .then(|| ("found by --error-scale auto".into(), scale_words.join(" "))),
+                )
+                .collect(),
             settings: settings(&a),
             seconds: total,
             legs: results
@@ -282,7 +351,11 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("certificate written to {}", path.display());
     }
     if let Some(path) = &a.json {
-        let text = serde_json::to_string_pretty(&report(&results, total))?;
+        let mut value = serde_json::to_value(report(&results, total))?;
+        if let Some(scale) = scale_json {
+            value["error_scale"] = scale;
+        }
+        let text = serde_json::to_string_pretty(&value)?;
         write_atomically(path, &text)
             .map_err(|e| format!("{}: cannot write the report: {e}", path.display()))?;
         println!("report written to {}", path.display());

@@ -45,7 +45,7 @@ from . import _native
 
 __all__ = ["certify", "simulate", "lsq", "Report", "LegResult", "LeastSquaresFit",
            "certify_arm", "simulate_arm", "ArmReport", "design", "DesignPlan", "accuracy",
-           "import_arm", "export_arm", "register_arm", "error_scale_arm", "predict",
+           "import_arm", "export_arm", "register_arm", "error_scale", "error_scale_arm", "predict",
            "predict_arm",
            "PARAMETER_NAMES", "__version__"]
 
@@ -584,6 +584,19 @@ def register_arm(robot: PathLike, measurements: PathLike, out: PathLike, *,
                                 (float(base_radius[0]), float(base_radius[1]),
                                  float(tool_radius)))
     return json.loads(text)
+
+
+def error_scale(robot: PathLike, measurements: PathLike, uncertainty: PathLike, *,
+                scale_bounds: str = "all", legs: Optional[Sequence[int]] = None) -> Dict[str, Any]:
+    """How much error must a Gough platform's data be allowed? The smallest factor of the
+    uncertainty file's bounds (``scale_bounds``: ``"all"``, ``"pos"``, ``"len"`` or
+    ``"orientation"``) for which every leg (or ``legs``, 1-based) is consistent, as ``gough certify
+    --error-scale auto`` finds it: ``s_lo`` proved inconsistent, ``s_hi`` certified consistent,
+    ``estimate`` (the first-order minimax fit, not a proof) and every certification tried
+    (``trials``)."""
+    return json.loads(_native.error_scale_files(os.fspath(robot), os.fspath(measurements),
+                                                os.fspath(uncertainty), str(scale_bounds),
+                                                None if legs is None else list(legs)))
 
 
 def error_scale_arm(robot: PathLike, measurements: PathLike, uncertainty: PathLike, *,

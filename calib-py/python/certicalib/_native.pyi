@@ -78,6 +78,10 @@ def arm_register(
 def arm_error_scale(
     robot: _Path, measurements: _Path, uncertainty: _Path, columns: _Columns, scale_bounds: str,
 ) -> str: ...
+def error_scale_files(
+    robot: _Path, measurements: _Path, uncertainty: _Path, scale_bounds: str,
+    legs: Optional[Sequence[int]] = ...,
+) -> str: ...
 def predict(
     robot: _Path, uncertainty: _Path, poses: Optional[_Path] = ...,
     measurements: Optional[_Path] = ...,

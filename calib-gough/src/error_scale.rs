@@ -1,0 +1,181 @@
+//! `--error-scale auto` for the Gough platform: the smallest factor of the uncertainty file's
+//! bounds (all of them, the positions', the leg readings' or the orientations') for which every
+//! leg's data are consistent, as a proved bracket
+//! ([`calib_pipeline::error_scale::search_from_estimate`]: each leg one sub-problem, started from
+//! its Chebyshev fit, each trial the leg's witness or a verdict-only certification).
+
+use crate::certification::leg_prior;
+use crate::files::LegSpec;
+use crate::measurement::{leg_boxes, Configuration, Uncertainty};
+use crate::GoughLeg;
+use calib_core::{hull, Interval, Settings, Status};
+use calib_pipeline::error_scale::{search_from_estimate, ErrorScale, ScaledProblem};
+
+/// Which error bounds the factor multiplies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ScaleBounds {
+    /// Every bound.
+    All,
+    /// The platform positions' (`pos`).
+    Pos,
+    /// The leg readings' (`len`).
+    Len,
+    /// The platform orientations' (`axis` and `angle_deg`, or `q`).
+    Orientation,
+}
+
+impl ScaleBounds {
+    /// `u` with the chosen bounds multiplied by `s` (rounded up).
+    pub fn scale(self, u: &Uncertainty, s: f64) -> Uncertainty {
+        let times = |v: f64| {
+            if v.is_nan() {
+                v
+            } else {
+                (Interval::point(v) * Interval::point(s)).sup()
+            }
+        };
+        let pick = |on: bool, v: f64| if on { times(v) } else { v };
+        let all = self == ScaleBounds::All;
+        let orientation = all || self == ScaleBounds::Orientation;
+        Uncertainty {
+            pos: pick(all || self == ScaleBounds::Pos, u.pos),
+            len: pick(all || self == ScaleBounds::Len, u.len),
+            axis: pick(orientation, u.axis),
+            angle_deg: pick(orientation, u.angle_deg),
+            q: pick(orientation, u.q),
+        }
+    }
+
+    /// Which measured quantities of a leg (`P`, the Rodrigues vector, the reading;
+    /// [`crate::measurement::leg_boxes`]) the factor widens.
+    pub fn mask(self) -> [bool; 7] {
+        core::array::from_fn(|i| match self {
+            ScaleBounds::All => true,
+            ScaleBounds::Pos => i < 3,
+            ScaleBounds::Orientation => (3..6).contains(&i),
+            ScaleBounds::Len => i == 6,
+        })
+    }
+
+    /// The name used in the JSON, the messages and the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            ScaleBounds::All => "all",
+            ScaleBounds::Pos => "pos",
+            ScaleBounds::Len => "len",
+            ScaleBounds::Orientation => "orientation",
+        }
+    }
+
+    /// The bounds scaled by `s`, in words (the robot file's length unit): `len 0.00120`.
+    pub fn describe(self, u: &Uncertainty, s: f64) -> String {
+        let b = self.scale(u, s);
+        let orientation = if b.q.is_nan() {
+            format!("axis {:.3e} and angle {:.3e}°", b.axis, b.angle_deg)
+        } else {
+            format!("q {:.3e}", b.q)
+        };
+        match self {
+            ScaleBounds::All => format!("pos {:.3e}, len {:.3e}, {orientation}", b.pos, b.len),
+            ScaleBounds::Pos => format!("pos {:.3e}", b.pos),
+            ScaleBounds::Len => format!("len {:.3e}", b.len),
+            ScaleBounds::Orientation => orientation,
+        }
+    }
+}
+
+/// Boxes a leg's hull may contract per trial of the search.
+pub const HULL_BOXES: usize = 2_000;
+
+/// Searches the smallest consistent factor of `which` bounds of `u` for the `legs` (0-based) of
+/// `robot` on `configs`; `on_trial` hears each factor before it is tried.
+pub fn search(
+    robot: &[LegSpec],
+    legs: &[usize],
+    configs: &[Configuration],
+    u: &Uncertainty,
+    which: ScaleBounds,
+    on_trial: impl FnMut(f64),
+) -> Result<ErrorScale, String> {
+    let boxes: Vec<_> = legs
+        .iter()
+        .map(|&leg| move |s: f64| leg_boxes(configs, &which.scale(u, s), leg))
+        .collect();
+    let problems: Vec<ScaledProblem<'_, GoughLeg, 7, 7>> = legs
+        .iter()
+        .zip(&boxes)
+        .map(|(&leg, b)| ScaledProblem {
+            model: &GoughLeg,
+            x0: leg_prior(&robot[leg]),
+            boxes: b,
+            scaled: which.mask(),
+        })
+        .collect();
+    // A leg has 7 parameters: the hull's subdivision decides where one contraction cannot, in
+    // a fraction of a second.
+    let settings = Settings::default()
+        .with_conflict_sets(false)
+        .with_hull_budget(HULL_BOXES, None);
+    search_from_estimate(
+        &problems,
+        |i, s| {
+            Ok::<Status, String>(
+                hull(
+                    &GoughLeg,
+                    &problems[i].x0,
+                    &(problems[i].boxes)(s),
+                    &settings,
+                )
+                .status,
+            )
+        },
+        on_trial,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simulate::{builtin_hexapod, simulate};
+
+    #[test]
+    fn only_the_chosen_bounds_scale() {
+        let u = Uncertainty::PAPER;
+        let p = ScaleBounds::Pos.scale(&u, 3.0);
+        assert!(p.pos >= 3.0 * u.pos && p.len == u.len && p.axis == u.axis);
+        let o = ScaleBounds::Orientation.scale(&u, 2.0);
+        assert!(o.axis >= 2.0 * u.axis && o.angle_deg >= 2.0 * u.angle_deg && o.pos == u.pos);
+        assert_eq!(
+            ScaleBounds::Len.mask(),
+            [false, false, false, false, false, false, true]
+        );
+    }
+
+    #[test]
+    fn the_bracket_holds_the_truth_within_two_per_cent() {
+        // Noise within the paper's bounds, declared four times too tight: the truth fits at × 4.
+        let sim = simulate(&builtin_hexapod(), 21, 3, Uncertainty::PAPER, 1.0, 0.1);
+        let robot: Vec<LegSpec> = sim
+            .nominal
+            .iter()
+            .map(|&nominal| LegSpec {
+                nominal,
+                radius: [0.1; 7],
+            })
+            .collect();
+        let u = ScaleBounds::All.scale(&Uncertainty::PAPER, 0.25);
+        let legs: Vec<usize> = (0..6).collect();
+        let found =
+            search(&robot, &legs, &sim.measured, &u, ScaleBounds::All, |_| {}).expect("search");
+        let (lo, hi) = (found.s_lo.expect("s_lo"), found.s_hi.expect("s_hi"));
+        assert!(lo < 4.0, "{lo}: the truth fits at × 4");
+        assert!(hi / lo <= 1.02, "{lo} {hi}: {:?}", found.trials);
+        // The upper end is proved independently: every leg certified consistent there.
+        let settings = Settings::default();
+        for &leg in &legs {
+            let boxes = leg_boxes(&sim.measured, &ScaleBounds::All.scale(&u, hi), leg);
+            let c = calib_core::certify(&GoughLeg, &leg_prior(&robot[leg]), &boxes, &settings);
+            assert_ne!(c.status, Status::Empty, "leg {leg} at × {hi}");
+        }
+    }
+}
