@@ -283,6 +283,48 @@ pub fn to_json(
     })
 }
 
+/// `--scale-margin`'s check: a finite factor of at least 1.
+pub fn check_margin(margin: f64) -> Result<(), String> {
+    if margin.is_finite() && margin >= 1.0 {
+        Ok(())
+    } else {
+        Err(format!("--scale-margin {margin}: expected a factor >= 1"))
+    }
+}
+
+/// What `--error-scale auto` reports once the search is done.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScaleReport {
+    /// The bracket in words ([`in_words`]).
+    pub words: Vec<String>,
+    /// The factor to certify with: `s_hi × margin`.
+    pub certify_at: f64,
+    /// The JSON ([`to_json`]).
+    pub json: serde_json::Value,
+}
+
+/// The report of a search that took `seconds`, to certify next at `s_hi × margin`; an error
+/// (model error or outliers) when no factor was proved consistent.
+pub fn report(
+    found: &ErrorScale,
+    bounds: &str,
+    seconds: f64,
+    margin: f64,
+    describe: &dyn Fn(f64) -> String,
+) -> Result<ScaleReport, String> {
+    let Some((words, certify_at)) = in_words(found, bounds, seconds, margin, describe) else {
+        return Err(format!(
+            "the data are not consistent with the model even with the error bounds × {}: a model error, or outliers (try --max-outliers auto)",
+            found.trials.iter().map(|t| t.scale).fold(0.0, f64::max)
+        ));
+    };
+    Ok(ScaleReport {
+        json: to_json(found, bounds, Some(certify_at), seconds),
+        words,
+        certify_at,
+    })
+}
+
 /// The bracket in words, one line each, for the terminal and the certificate: what was proved,
 /// the bounds the data need against the uncertainty file's (`describe(s)`: the scaled bounds in
 /// words, e.g. `pos 0.3846 mm`), the estimate when the bracket is wider than 2%, and the factor

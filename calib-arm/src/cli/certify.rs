@@ -11,7 +11,7 @@ use calib_arm::error_scale::{search, ScaleBounds};
 use calib_arm::files::{parse_robot, parse_uncertainty};
 use calib_arm::simulate::Uncertainty;
 use calib_core::Status;
-use calib_pipeline::error_scale::{in_words, to_json};
+use calib_pipeline::error_scale::{check_margin, report as scale_report};
 use calib_pipeline::html::{command_line, now, Input};
 use calib_pipeline::verdict::{self, ConfigurationNames};
 use calib_pipeline::{read_text, write_atomically};
@@ -106,9 +106,7 @@ fn error_scale(
     readings: &[calib_arm::simulate::Reading],
     u: &Uncertainty,
 ) -> Result<(serde_json::Value, Uncertainty, Vec<String>), Box<dyn std::error::Error>> {
-    if !(a.scale_margin.is_finite() && a.scale_margin >= 1.0) {
-        return Err(format!("--scale-margin {}: expected a factor >= 1", a.scale_margin).into());
-    }
+    check_margin(a.scale_margin)?;
     let which = a.scale_bounds;
     let started = std::time::Instant::now();
     let bar = spinner("finding the smallest consistent error bounds");
@@ -119,18 +117,9 @@ fn error_scale(
     let found = found?;
     let seconds = started.elapsed().as_secs_f64();
     let describe = |s: f64| which.describe(u, s);
-    let Some((words, certify_at)) =
-        in_words(&found, which.name(), seconds, a.scale_margin, &describe)
-    else {
-        return Err(format!(
-            "the data are not consistent with the model even with the error bounds × {}: a model error, or outliers (try --max-outliers auto)",
-            found.trials.iter().map(|t| t.scale).fold(0.0, f64::max)
-        )
-        .into());
-    };
-    words.iter().for_each(|w| println!("{w}"));
-    let json = to_json(&found, which.name(), Some(certify_at), seconds);
-    Ok((json, which.scale(u, certify_at), words))
+    let done = scale_report(&found, which.name(), seconds, a.scale_margin, &describe)?;
+    done.words.iter().for_each(|w| println!("{w}"));
+    Ok((done.json, which.scale(u, done.certify_at), done.words))
 }
 
 fn parse_choice(s: &str) -> Result<PointChoice, String> {

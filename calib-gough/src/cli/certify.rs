@@ -19,7 +19,7 @@ use calib_gough::report::{ratios, table, write_atomically};
 use calib_gough::verdict::{self, ConfigurationNames};
 use calib_gough::workspace::read_workspace;
 use calib_gough::PARAMETER_NAMES;
-use calib_pipeline::error_scale::{in_words, to_json};
+use calib_pipeline::error_scale::{check_margin, report as scale_report};
 use calib_pipeline::OutlierBudget;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -123,9 +123,7 @@ fn error_scale(
     configs: &[calib_gough::measurement::Configuration],
     u: &Uncertainty,
 ) -> Result<(serde_json::Value, Uncertainty, Vec<String>), Box<dyn std::error::Error>> {
-    if !(a.scale_margin.is_finite() && a.scale_margin >= 1.0) {
-        return Err(format!("--scale-margin {}: expected a factor >= 1", a.scale_margin).into());
-    }
+    check_margin(a.scale_margin)?;
     let which = a.scale_bounds;
     let started = Instant::now();
     let bar = indicatif::ProgressBar::new_spinner();
@@ -137,18 +135,9 @@ fn error_scale(
     let found = found?;
     let seconds = started.elapsed().as_secs_f64();
     let describe = |s: f64| which.describe(u, s);
-    let Some((words, at)) = in_words(&found, which.name(), seconds, a.scale_margin, &describe)
-    else {
-        return Err(format!(
-            "the data are not consistent with the model even with the error bounds × {}: a model error, or outliers (try --max-outliers auto)",
-            found.trials.iter().map(|t| t.scale).fold(0.0, f64::max)
-        )
-        .into());
-    };
-    words.iter().for_each(|w| println!("{w}"));
-    println!();
-    let json = to_json(&found, which.name(), Some(at), seconds);
-    Ok((json, which.scale(u, at), words))
+    let done = scale_report(&found, which.name(), seconds, a.scale_margin, &describe)?;
+    done.words.iter().for_each(|w| println!("{w}"));
+    Ok((done.json, which.scale(u, done.certify_at), done.words))
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
@@ -175,6 +164,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let (scale_json, u, scale_words) = match a.error_scale {
         Some(_) => {
             let (json, scaled, words) = error_scale(&a, &robot, &legs, &data.configs, &u)?;
+            println!();
             (Some(json), scaled, words)
         }
         None => (None, u, Vec::new()),
