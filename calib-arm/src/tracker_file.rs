@@ -89,6 +89,52 @@ impl MeasurementColumns {
             rows: None,
         }
     }
+
+    /// The standard layout with the given joint and point columns (the command line's
+    /// `--joint-columns`, `--point-columns`; the Python package's `joint_columns`,
+    /// `point_columns`) where given: an error (to be prefixed with the option's name) when the
+    /// point columns are not three names.
+    pub fn with_names(
+        joints: usize,
+        joint_columns: Option<Vec<String>>,
+        point_columns: Option<Vec<String>>,
+    ) -> Result<Self, String> {
+        let mut c = MeasurementColumns::standard(joints);
+        if let Some(j) = joint_columns {
+            c.joints = j;
+        }
+        if let Some(p) = point_columns {
+            c.point = <[String; 3]>::try_from(p)
+                .map_err(|p| format!("expected three names x,y,z, found {}", p.len()))?;
+        }
+        Ok(c)
+    }
+}
+
+impl std::str::FromStr for JointUnit {
+    type Err = String;
+
+    /// `deg` or `rad`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "deg" => Ok(JointUnit::Deg),
+            "rad" => Ok(JointUnit::Rad),
+            other => Err(format!("`deg` or `rad`, not `{other}`")),
+        }
+    }
+}
+
+impl std::str::FromStr for LengthUnit {
+    type Err = String;
+
+    /// `mm` or `m`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "mm" => Ok(LengthUnit::Mm),
+            "m" => Ok(LengthUnit::M),
+            other => Err(format!("`mm` or `m`, not `{other}`")),
+        }
+    }
 }
 
 /// Joint readings larger than this (radians, a little over a turn) are not radians.
@@ -353,5 +399,19 @@ mod tests {
         let e = parse_tracker_measurements(f, deg, 3, &c).unwrap_err();
         assert!(e.message.contains("1 data rows"), "{e}");
         assert!("3-1".parse::<RowRange>().is_err() && "0-".parse::<RowRange>().is_err());
+    }
+
+    #[test]
+    fn layouts_and_units_from_names() {
+        let c = MeasurementColumns::with_names(2, Some(vec!["a".into(), "b".into()]), None)
+            .expect("layout");
+        assert_eq!(c.joints, ["a", "b"]);
+        assert_eq!(c.point, ["px", "py", "pz"]);
+        let e = MeasurementColumns::with_names(2, None, Some(vec!["x".into()])).unwrap_err();
+        assert!(e.contains("three names") && e.contains("found 1"), "{e}");
+        assert_eq!("rad".parse::<JointUnit>(), Ok(JointUnit::Rad));
+        assert_eq!("m".parse::<LengthUnit>(), Ok(LengthUnit::M));
+        assert!("grad".parse::<JointUnit>().unwrap_err().contains("`grad`"));
+        assert!("ft".parse::<LengthUnit>().unwrap_err().contains("`ft`"));
     }
 }

@@ -437,6 +437,45 @@ pub fn parse_poses(file: &Path, text: &str) -> Result<Vec<Pose>, DataError> {
     parse_poses_at_least(file, text, MIN_CONFIGURATIONS)
 }
 
+/// Where `gough predict` predicts: the poses of a measurement file (whose readings are then
+/// checked) or of a poses file.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PredictAt<'a> {
+    /// A measurement file (`measurements.csv`'s layout).
+    Measurements(&'a Path),
+    /// A poses file (`gough design`'s layout).
+    Poses(&'a Path),
+}
+
+/// The configurations to predict at `at` for a robot of `legs` legs (at least one), and, for a
+/// measurement file, each configuration's line: a poses file's configurations carry no readings.
+pub fn prediction_configurations(
+    at: PredictAt<'_>,
+    legs: usize,
+) -> Result<(Vec<Configuration>, Option<Vec<usize>>), DataError> {
+    match at {
+        PredictAt::Measurements(path) => {
+            let m = parse_measurements_at_least(path, &read_text(path)?, legs, 1)?;
+            Ok((m.configs, Some(m.lines)))
+        }
+        PredictAt::Poses(path) => {
+            let poses = parse_poses_at_least(path, &read_text(path)?, 1)?;
+            let configs = poses
+                .iter()
+                .map(|p| Configuration {
+                    p: p.p,
+                    orientation: Orientation::AxisAngle {
+                        axis: p.axis,
+                        angle_deg: p.angle_deg,
+                    },
+                    lengths: Vec::new(),
+                })
+                .collect();
+            Ok((configs, None))
+        }
+    }
+}
+
 /// [`parse_poses`] with at least `least` poses.
 pub fn parse_poses_at_least(file: &Path, text: &str, least: usize) -> Result<Vec<Pose>, DataError> {
     let header: Vec<String> = POSE_COLUMNS.iter().map(|c| c.to_string()).collect();

@@ -384,33 +384,13 @@ fn arm_measurements(
     joints: usize,
     c: Columns,
 ) -> PyResult<calib_arm::files::Measurements> {
-    use calib_arm::tracker_file::{JointUnit, LengthUnit, MeasurementColumns};
-    let mut m = MeasurementColumns::standard(joints);
-    if let Some(j) = c.joint_columns {
-        m.joints = j;
-    }
-    if let Some(p) = c.point_columns {
-        m.point = <[String; 3]>::try_from(p)
-            .map_err(|p| value_error(format!("point_columns: three names, found {}", p.len())))?;
-    }
-    m.joint_unit = match c.joint_unit.as_str() {
-        "deg" => JointUnit::Deg,
-        "rad" => JointUnit::Rad,
-        other => {
-            return Err(value_error(format!(
-                "joint_unit: `deg` or `rad`, not `{other}`"
-            )))
-        }
-    };
-    m.length_unit = match c.length_unit.as_str() {
-        "mm" => LengthUnit::Mm,
-        "m" => LengthUnit::M,
-        other => {
-            return Err(value_error(format!(
-                "length_unit: `mm` or `m`, not `{other}`"
-            )))
-        }
-    };
+    use calib_arm::tracker_file::MeasurementColumns;
+    let mut m = MeasurementColumns::with_names(joints, c.joint_columns, c.point_columns)
+        .map_err(|e| value_error(format!("point_columns: {e}")))?;
+    m.joint_unit =
+        (c.joint_unit.parse()).map_err(|e: String| value_error(format!("joint_unit: {e}")))?;
+    m.length_unit =
+        (c.length_unit.parse()).map_err(|e: String| value_error(format!("length_unit: {e}")))?;
     m.rows = c
         .rows
         .map(|r| r.parse())
@@ -631,37 +611,17 @@ fn predict(
     poses: Option<PathBuf>,
     measurements: Option<PathBuf>,
 ) -> PyResult<String> {
-    use calib_gough::files::{
-        leg_sets, parse_measurements_at_least, parse_poses_at_least, read_robot_file,
-    };
-    use calib_gough::measurement::{Configuration, Orientation};
+    use calib_gough::files::{leg_sets, prediction_configurations, read_robot_file, PredictAt};
     let file = read_robot_file(&robot).map_err(value_error)?;
     let sets = leg_sets(&robot, &file).map_err(value_error)?;
     let u = read_uncertainty(&uncertainty).map_err(value_error)?;
-    let text = |p: &PathBuf| calib_pipeline::read_text(p).map_err(value_error);
-    let (configs, lines, measured) = match (&measurements, &poses) {
-        (Some(path), None) => {
-            let m = parse_measurements_at_least(path, &text(path)?, file.legs.len(), 1)
-                .map_err(value_error)?;
-            (m.configs, Some(m.lines), true)
-        }
-        (None, Some(path)) => {
-            let poses = parse_poses_at_least(path, &text(path)?, 1).map_err(value_error)?;
-            let configs = poses
-                .iter()
-                .map(|p| Configuration {
-                    p: p.p,
-                    orientation: Orientation::AxisAngle {
-                        axis: p.axis,
-                        angle_deg: p.angle_deg,
-                    },
-                    lengths: Vec::new(),
-                })
-                .collect();
-            (configs, None, false)
-        }
+    let at = match (&measurements, &poses) {
+        (Some(path), None) => PredictAt::Measurements(path),
+        (None, Some(path)) => PredictAt::Poses(path),
         _ => return Err(value_error("give poses or measurements (one of them)")),
     };
+    let measured = measurements.is_some();
+    let (configs, lines) = prediction_configurations(at, file.legs.len()).map_err(value_error)?;
     let predictions =
         py.detach(|| calib_gough::predict::predict(&file.legs, &sets, &configs, &u, measured));
     let over_set: Vec<bool> = sets.iter().map(Option::is_some).collect();

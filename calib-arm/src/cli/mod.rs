@@ -192,18 +192,12 @@ impl ColumnArgs {
         &self,
         joints: usize,
     ) -> Result<calib_arm::tracker_file::MeasurementColumns, String> {
-        let mut c = calib_arm::tracker_file::MeasurementColumns::standard(joints);
-        if let Some(j) = &self.joint_columns {
-            c.joints = j.clone();
-        }
-        if let Some(p) = &self.point_columns {
-            c.point = <[String; 3]>::try_from(p.clone()).map_err(|p| {
-                format!(
-                    "--point-columns: expected three names x,y,z, found {}",
-                    p.len()
-                )
-            })?;
-        }
+        let mut c = calib_arm::tracker_file::MeasurementColumns::with_names(
+            joints,
+            self.joint_columns.clone(),
+            self.point_columns.clone(),
+        )
+        .map_err(|e| format!("--point-columns: {e}"))?;
         c.joint_unit = self.joint_unit;
         c.length_unit = self.length_unit;
         c.rows = self.rows;

@@ -1,10 +1,8 @@
 //! `gough predict`.
 
 use calib_gough::files::{
-    leg_sets, parse_measurements_at_least, parse_poses_at_least, read_robot_file, read_text,
-    read_uncertainty,
+    leg_sets, prediction_configurations, read_robot_file, read_uncertainty, PredictAt,
 };
-use calib_gough::measurement::{Configuration, Orientation};
 use calib_gough::predict::{predict, predictions_csv, predictions_json, refuting};
 use calib_gough::report::write_atomically;
 use std::path::PathBuf;
@@ -40,28 +38,12 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let sets = leg_sets(&a.robot, &file)?;
     let u = read_uncertainty(&a.uncertainty)?;
     let legs = file.legs.len();
-    let (configs, lines, source) = match (&a.measurements, &a.poses) {
-        (Some(path), _) => {
-            let m = parse_measurements_at_least(path, &read_text(path)?, legs, 1)?;
-            (m.configs, Some(m.lines), path)
-        }
-        (None, Some(path)) => {
-            let poses = parse_poses_at_least(path, &read_text(path)?, 1)?;
-            let configs = poses
-                .iter()
-                .map(|p| Configuration {
-                    p: p.p,
-                    orientation: Orientation::AxisAngle {
-                        axis: p.axis,
-                        angle_deg: p.angle_deg,
-                    },
-                    lengths: Vec::new(),
-                })
-                .collect();
-            (configs, None, path)
-        }
+    let (at, source) = match (&a.measurements, &a.poses) {
+        (Some(path), _) => (PredictAt::Measurements(path), path),
+        (None, Some(path)) => (PredictAt::Poses(path), path),
         (None, None) => return Err("--poses or --measurements: which poses to predict".into()),
     };
+    let (configs, lines) = prediction_configurations(at, legs)?;
     let measured = a.measurements.is_some();
     let over_set: Vec<bool> = sets.iter().map(Option::is_some).collect();
     if !over_set.iter().any(|o| *o) {
