@@ -32,7 +32,8 @@ status=0
 # 2 = some held-out measurement refutes the model at these bounds: named, not an error here.
 [ "$status" -eq 0 ] || [ "$status" -eq 2 ]
 # 5. Least squares, for comparison, on the same 60 configurations.
-"$arm" lsq --robot robot.toml --measurements "$series" "${columns[@]}" --rows 1-60 --out lsq.toml
+"$arm" lsq --robot robot.toml --measurements "$series" "${columns[@]}" --rows 1-60 --out lsq.toml \
+          --uncertainty held_out_bounds.toml
 # 6. The calibrated kinematics for the UR driver.
 "$arm" export --robot calibrated.toml --ur-yaml calibrated_kinematics.yaml --urdf calibrated.urdf
 echo "tutorial done in $work"

@@ -108,6 +108,23 @@ pub fn fit_arm(arm: &Arm, readings: &[Reading]) -> Result<Fit, String> {
         .ok_or_else(|| "no fit was made".to_string())
 }
 
+/// Whether the arm's nominal values — one parameter vector — are proved consistent with every
+/// reading within the error bounds `u` ([`calib_core::is_consistent_point`] on the padded model:
+/// for each configuration, one joint reading and tracked point within their bounds that fit all
+/// three coordinates). `false` means *not proved*; the prior box plays no part.
+pub fn is_consistent_arm(arm: &Arm, readings: &[Reading], u: &Uncertainty) -> bool {
+    let joints = arm.joints.len();
+    if !(3..=MAX_JOINTS).contains(&joints) || readings.iter().any(|r| r.joints_deg.len() != joints)
+    {
+        return false;
+    }
+    let boxes: Vec<[Interval; NM]> = readings
+        .iter()
+        .filter_map(|r| measurement_box(r, u))
+        .collect();
+    calib_core::is_consistent_point(&Arm7Point, &padded_nominal(arm), &boxes)
+}
+
 /// What `arm certify` computes, as options (the command line's, and the Python package's).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CertifyRequest {

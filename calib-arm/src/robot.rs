@@ -49,6 +49,20 @@ impl Arm {
         self
     }
 
+    /// The same arm (priors' half-widths, fixed parameters) with the nominal values `x`, in model
+    /// order and the files' units (degrees and mm, see [`params::names`]); `x` has
+    /// [`params::count`] values.
+    pub fn with_nominal(&self, x: &[f64]) -> Arm {
+        let mut out = self.clone();
+        let n = self.joints.len();
+        for (i, j) in out.joints.iter_mut().enumerate() {
+            j.nominal.copy_from_slice(&x[5 * i..5 * i + 5]);
+        }
+        out.base.copy_from_slice(&x[5 * n..5 * n + 6]);
+        out.tool.copy_from_slice(&x[5 * n + 6..5 * n + 9]);
+        out
+    }
+
     /// Every parameter's nominal value in model order (degrees and mm), see [`params::names`].
     pub fn nominal(&self) -> Vec<f64> {
         self.collect(|j| j.nominal, self.base, self.tool)

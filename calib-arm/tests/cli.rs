@@ -246,6 +246,48 @@ fn least_squares_runs_on_the_files() {
     ]);
     assert!(o.status.success(), "{}", text(&o));
     assert!(text(&o).contains("residuals: rms"), "{}", text(&o));
+    // Checked against error bounds: proved consistent with generous bounds, not with bounds far
+    // below the noise; the verdict is printed, in the JSON and in the written file's header.
+    for (pos, proved) in [(5.0, true), (1e-4, false)] {
+        std::fs::write(p("u.toml"), format!("joint_deg = 0.001\npos = {pos}\n")).expect("write");
+        let o = arm(&[
+            "lsq",
+            "--robot",
+            &p("robot.toml"),
+            "--measurements",
+            &p("measurements.csv"),
+            "--uncertainty",
+            &p("u.toml"),
+            "--json",
+            &p("lsq.json"),
+            "--out",
+            &p("lsq.toml"),
+        ]);
+        assert!(o.status.success(), "{}", text(&o));
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(p("lsq.json")).expect("json"))
+                .expect("json");
+        assert_eq!(json["consistent"], proved, "pos {pos}: {}", text(&o));
+        let header = std::fs::read_to_string(p("lsq.toml")).expect("toml");
+        let says = if proved {
+            "# proved consistent"
+        } else {
+            "# NOT proved consistent"
+        };
+        assert!(header.contains(says), "{header}");
+        // The written file is the fit: checked again from the file, the same verdict.
+        let fitted = calib_arm::files::read_robot(Path::new(&p("lsq.toml"))).expect("robot");
+        let data = calib_arm::files::read_measurements(Path::new(&p("measurements.csv")), 3)
+            .expect("measurements");
+        let u = calib_arm::simulate::Uncertainty {
+            joint_deg: 0.001,
+            pos,
+        };
+        assert_eq!(
+            calib_arm::certification::is_consistent_arm(&fitted, &data.readings, &u),
+            proved
+        );
+    }
 }
 
 /// A stream whose reading end is closed: every write to it fails (EPIPE), as under

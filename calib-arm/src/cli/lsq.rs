@@ -1,8 +1,8 @@
 //! `arm lsq`.
 
 use super::DataFiles;
-use calib_arm::certification::{fit_arm, names, units};
-use calib_arm::files::read_robot;
+use calib_arm::certification::{fit_arm, is_consistent_arm, names, units};
+use calib_arm::files::{read_robot, read_uncertainty};
 use calib_pipeline::write_atomically;
 use std::path::PathBuf;
 
@@ -15,9 +15,15 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
     /// Write a robot file with the fitted values (priors as in --robot): e.g. to compare its
-    /// predictions on held-out data with `arm predict`.
+    /// predictions on held-out data with `arm predict`. Its header says whether the fit was
+    /// proved consistent with the measurements (--uncertainty) or not.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
+    /// Check the fit against these error bounds (uncertainty.toml): is it proved consistent with
+    /// every measurement? Least squares minimises the sum of squares, not the largest misfit, so
+    /// it often is not; `arm certify --write-calibrated` writes a vector that is.
+    #[arg(long, value_name = "FILE")]
+    uncertainty: Option<PathBuf>,
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
@@ -85,9 +91,35 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             list.join(", ")
         );
     }
+    let fitted = arm.with_nominal(&fit.x);
+    let consistent = match &a.uncertainty {
+        Some(path) => {
+            let u = data.slack.widen(&read_uncertainty(path)?);
+            let proved = is_consistent_arm(&fitted, &data.readings, &u);
+            println!(
+                "{}",
+                if proved {
+                    format!(
+                        "the fit is proved consistent with every measurement within {}",
+                        path.display()
+                    )
+                } else {
+                    format!(
+                        "the fit is NOT proved consistent with the measurements within {}: a \
+                         comparison, not a calibration (`arm certify --write-calibrated` writes \
+                         one that is)",
+                        path.display()
+                    )
+                }
+            );
+            Some(proved)
+        }
+        None => None,
+    };
     if let Some(path) = &a.json {
         let json = serde_json::json!({
             "version": 1,
+            "consistent": consistent,
             "converged": fit.converged,
             "evaluations": fit.evaluations,
             "rms_mm": fit.rms,
@@ -109,15 +141,20 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("JSON written to {}", path.display());
     }
     if let Some(path) = &a.out {
-        let mut fitted = arm.clone();
-        let n = arm.joints.len();
-        for (i, j) in fitted.joints.iter_mut().enumerate() {
-            j.nominal.copy_from_slice(&fit.x[5 * i..5 * i + 5]);
-        }
-        fitted.base.copy_from_slice(&fit.x[5 * n..5 * n + 6]);
-        fitted.tool.copy_from_slice(&fit.x[5 * n + 6..5 * n + 9]);
+        let status = match (consistent, &a.uncertainty) {
+            (Some(true), Some(u)) => format!(
+                "proved consistent with every measurement within {}; not certified: no set",
+                u.display()
+            ),
+            (Some(false), Some(u)) => format!(
+                "NOT proved consistent with the measurements within {}: a comparison, not a \
+                 calibration",
+                u.display()
+            ),
+            _ => "not checked against error bounds, not certified: a comparison".to_string(),
+        };
         let text = format!(
-            "# least-squares fit by certicalib {} of {} to {} (not certified)\n{}",
+            "# least-squares fit by certicalib {} of {} to {}\n# {status}\n{}",
             env!("CARGO_PKG_VERSION"),
             a.files.robot.display(),
             a.files.measurements.display(),
