@@ -138,6 +138,8 @@ where
             return p;
         }
         let lo: Vec<f64> = (0..NX).map(|j| x[j].inf() - p[j]).chain([0.0]).collect();
+        // t at most 1e6 (the dense simplex answered a wrong "optimal" with a 1e12 bound; the
+        // answer is a hint either way, and no error scale beyond 1e6 is searched).
         let hi: Vec<f64> = (0..NX).map(|j| x[j].sup() - p[j]).chain([1e6]).collect();
         if lo
             .iter()

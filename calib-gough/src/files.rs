@@ -460,18 +460,7 @@ pub fn prediction_configurations(
         }
         PredictAt::Poses(path) => {
             let poses = parse_poses_at_least(path, &read_text(path)?, 1)?;
-            let configs = poses
-                .iter()
-                .map(|p| Configuration {
-                    p: p.p,
-                    orientation: Orientation::AxisAngle {
-                        axis: p.axis,
-                        angle_deg: p.angle_deg,
-                    },
-                    lengths: Vec::new(),
-                })
-                .collect();
-            Ok((configs, None))
+            Ok((poses.iter().map(Configuration::at_pose).collect(), None))
         }
     }
 }

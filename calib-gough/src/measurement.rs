@@ -1,6 +1,6 @@
 //! Measured configurations, their error bounds, and the measurement boxes `M_k` of one leg.
 
-use crate::geometry::rodrigues_box;
+use crate::geometry::{rodrigues_box, Pose};
 use calib_core::Interval;
 
 /// How a configuration's orientation was measured.
@@ -26,6 +26,20 @@ pub struct Configuration {
     pub orientation: Orientation,
     /// Leg readings (cm), one per leg.
     pub lengths: Vec<f64>,
+}
+
+impl Configuration {
+    /// The platform at `pose` with no leg readings (a pose to predict at).
+    pub fn at_pose(pose: &Pose) -> Configuration {
+        Configuration {
+            p: pose.p,
+            orientation: Orientation::AxisAngle {
+                axis: pose.axis,
+                angle_deg: pose.angle_deg,
+            },
+            lengths: Vec::new(),
+        }
+    }
 }
 
 /// Half-widths of the measurement errors (cm, unitless, degrees).

@@ -8,7 +8,7 @@ use calib_core::{is_consistent_by_corners, Model};
 use calib_gough::accuracy::LegReading;
 use calib_gough::calibrated::calibrated_robot;
 use calib_gough::certification::{certify_legs, CertifyOptions};
-use calib_gough::measurement::{Configuration, Orientation};
+use calib_gough::measurement::Configuration;
 use calib_gough::predict::{predict, refuting};
 use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Uncertainty};
 
@@ -35,17 +35,7 @@ fn held_out_readings_lie_in_their_certified_predictions() {
     .expect("options");
     let robot = calibrated_robot(&nominal, &results, cal, &sim.uncertainty, None).expect("set");
     // At the exact held-out poses: the true readings.
-    let exact: Vec<Configuration> = sim.poses[21..]
-        .iter()
-        .map(|p| Configuration {
-            p: p.p,
-            orientation: Orientation::AxisAngle {
-                axis: p.axis,
-                angle_deg: p.angle_deg,
-            },
-            lengths: vec![],
-        })
-        .collect();
+    let exact: Vec<Configuration> = sim.poses[21..].iter().map(Configuration::at_pose).collect();
     let at_truth = predict(&robot.legs, &robot.sets, &exact, &sim.uncertainty, false);
     let mut worst_ratio = 0.0f64;
     let mut sets = robot.sets.clone();
