@@ -2,14 +2,17 @@
 //! 7-joint model): the hull of a small 3-joint arm (12 configurations, tight priors) limited to 20
 //! contracted boxes, and one contraction to x1 of the built-in 6-axis arm (10 configurations, the
 //! issue's priors and error bounds; 50 configurations take ~7 s, see `arm demo` and
-//! `benches/README.md`).
+//! `benches/README.md`). And the error-scale search's first step: the Chebyshev fit of the
+//! built-in arm to 50 configurations (`calib_core::smallest_scale`, every bound scaled) and the
+//! certificate of its point (`calib_core::is_consistent_point`) just above the fit's factor.
 //!
 //! `cargo bench -p calib-arm --bench arm_hull`.
 
-use calib_arm::certification::{certify_arm, RunOptions};
-use calib_arm::simulate::{simulate, Uncertainty};
-use calib_arm::{builtin_arm, Arm, Joint};
-use calib_core::Settings;
+use calib_arm::certification::{certify_arm, padded_box, RunOptions, NM};
+use calib_arm::error_scale::ScaleBounds;
+use calib_arm::simulate::{measurement_box, simulate, Uncertainty};
+use calib_arm::{builtin_arm, Arm, Arm7Point, Joint};
+use calib_core::{is_consistent_point, smallest_scale, Interval, Settings};
 use calib_pipeline::Depth;
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
@@ -68,6 +71,24 @@ fn bench(c: &mut Criterion) {
             })
         });
     }
+    let arm = builtin_arm();
+    let sim = simulate(&arm, 50, 3, Uncertainty::TRACKER, 1.0, &[]);
+    let boxes = |u: &Uncertainty| -> Vec<[Interval; NM]> {
+        sim.readings
+            .iter()
+            .filter_map(|r| measurement_box(r, u))
+            .collect()
+    };
+    let (x0, mask) = (padded_box(&arm), ScaleBounds::All.mask(6));
+    let at_one = boxes(&sim.uncertainty);
+    g.bench_function("built-in Chebyshev fit, 50 configurations", |b| {
+        b.iter(|| black_box(smallest_scale(&Arm7Point, &x0, &at_one, &mask)))
+    });
+    let e = smallest_scale(&Arm7Point, &x0, &at_one, &mask);
+    let widened = boxes(&ScaleBounds::All.scale(&sim.uncertainty, 1.005 * e.scale));
+    g.bench_function("built-in witness check at 1.005 x the fit", |b| {
+        b.iter(|| black_box(is_consistent_point(&Arm7Point, &e.point, &widened)))
+    });
     g.finish();
 }
 
