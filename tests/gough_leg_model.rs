@@ -1,8 +1,7 @@
 //! The Gough leg residual (paper eq. 3): generated evaluators enclose point values over random boxes
 //! around realistic configurations, and its Jacobians agree with finite differences and dual numbers.
 
-#[path = "../calib-core/tests/support/mod.rs"]
-mod support;
+use crate::core_support as support;
 
 use calib_core::{Dual, Interval, Model};
 use calib_gough::{gough_leg, GoughLeg};

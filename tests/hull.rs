@@ -2,7 +2,7 @@
 //! bound made of rechecked solutions, tight on the paper's setting, and able to start from large
 //! prior boxes.
 
-mod support;
+use crate::support;
 
 use calib_core::{
     certify, hull, is_consistent_by_corners, EmptinessProof, Interval, Settings, Status,

@@ -12,7 +12,7 @@ use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Uncertainty};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-mod support;
+use crate::support;
 
 use support::{contains, random_problem, x0_of};
 

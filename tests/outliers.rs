@@ -2,7 +2,7 @@
 //! `hull`, `sweep`) that keeps the truth whenever at most q measurements are bad and names the
 //! bad ones.
 
-mod support;
+use crate::support;
 
 use calib_core::{certify, hull, sweep, Interval, Settings, Status};
 use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Simulation, Uncertainty};

@@ -160,7 +160,8 @@ fn with_point(arm: &Arm, outer: &[Interval], x: &[f64; NX]) -> Arm {
 
 /// The padded model's box of the values a controller reads from `arm` (each decimal in degrees
 /// enclosed in radians).
-fn read_back(arm: &Arm) -> [Interval; NX] {
+#[doc(hidden)]
+pub fn read_back(arm: &Arm) -> [Interval; NX] {
     let joints = arm.joints.len();
     let units: Vec<Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
     let mut x = [Interval::ZERO; NX];
@@ -222,56 +223,5 @@ fn with_parameters(joints: usize, value: &[f64], radius: &[f64]) -> Arm {
         base_radius: core::array::from_fn(|k| base_r[k]),
         tool: core::array::from_fn(|k| tool[k]),
         tool_radius: core::array::from_fn(|k| tool_r[k]),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::certification::{certify_arm, RunOptions};
-    use crate::simulate::{measurement_box, simulate, Uncertainty};
-    use calib_pipeline::Depth;
-
-    #[test]
-    fn the_calibrated_arm_fits_every_measurement_and_its_box_contains_the_certified_one() {
-        let arm = crate::builtin_arm();
-        let sim = simulate(&arm, 30, 5, Uncertainty::TRACKER, 1.0, &[]);
-        let run = certify_arm(
-            &arm,
-            &sim.readings,
-            &sim.uncertainty,
-            RunOptions {
-                depth: Depth::Fast,
-                lsq: false,
-            },
-            &crate::certification::arm_settings(),
-        )
-        .expect("an arm");
-        let joints: Vec<Vec<f64>> = sim.readings.iter().map(|r| r.joints_deg.clone()).collect();
-        let c = calibrated_arm(&arm, &run, &joints, PointChoice::LeastSquares).expect("consistent");
-        let boxes: Vec<[Interval; NM]> = sim
-            .readings
-            .iter()
-            .filter_map(|r| measurement_box(r, &sim.uncertainty))
-            .collect();
-        assert!(is_certified_consistent(
-            &Arm7Point,
-            &read_back(&c.arm),
-            &boxes
-        ));
-        let outer = run.outcome.outer.as_ref().expect("outer");
-        for ((v, r), (o, r0)) in c
-            .arm
-            .nominal()
-            .iter()
-            .zip(c.arm.radius())
-            .zip(outer.iter().zip(arm.radius()))
-        {
-            if r0 == 0.0 {
-                assert_eq!(r, 0.0);
-            } else {
-                assert!(v - r <= o.inf() && o.sup() <= v + r);
-            }
-        }
     }
 }

@@ -32,19 +32,3 @@ pub fn to_deg(rad: f64) -> f64 {
 pub fn to_rad(deg: f64) -> f64 {
     deg.to_radians()
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn conversions_enclose_and_round_trip_outward() {
-        for d in [-180.0, -90.0, -0.001, 0.0, 0.05, 25.0, 90.0, 179.999] {
-            let b = Interval::mid_rad(d, 1e-3);
-            let r = deg_to_rad(b);
-            assert!(r.contains(to_rad(d)));
-            assert!(b.is_subset_of(rad_to_deg(r)));
-            assert!(rad_to_deg(r).wid() < b.wid() * (1.0 + 1e-12) + 1e-12);
-        }
-    }
-}

@@ -9,7 +9,7 @@ use calib_arm::{builtin_arm, Arm};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-mod common;
+use crate::common;
 use common::forward;
 
 /// Parameters in the model's units (radians for angles).

@@ -4,8 +4,7 @@
 //! independent search for that reading; a shifted configuration is named.
 #![allow(clippy::needless_range_loop)]
 
-#[path = "../../calib-core/tests/support/mod.rs"]
-mod support;
+use crate::core_support as support;
 
 use calib_arm::simulate::{measurement_box, Uncertainty};
 use calib_arm::{params, simulate, Arm, Arm3Point, Joint};

@@ -6,7 +6,7 @@ use calib_core::{Interval, VectorModel};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-mod common;
+use crate::common;
 use common::forward;
 
 /// A UR5-like geometry (mm, radians) perturbed at random.

@@ -1,7 +1,7 @@
 //! Models written in a crate that depends only on `calib-core`: their generated evaluators enclose
 //! the point values, and their Jacobians agree with finite differences and dual numbers.
 
-mod support;
+use crate::support;
 
 use calib_core::{interval_model, Dual, Interval, Model, Scalar};
 use rand::rngs::StdRng;

@@ -7,7 +7,7 @@
 //! that only fit the rows with different readings are rejected.
 #![allow(clippy::needless_range_loop)]
 
-mod support;
+use crate::support;
 
 use calib_core::{
     certify, hull, interval_model, is_consistent_point, pave, sweep, Interval, Scalar, Settings,

@@ -114,34 +114,3 @@ pub fn fit_legs(robot: &[crate::files::LegSpec], configs: &[crate::Configuration
         })
         .collect()
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::measurement::leg_boxes;
-    use crate::{builtin_hexapod, simulate, Uncertainty};
-
-    #[test]
-    fn recovers_the_truth_from_exact_data() {
-        let truth = builtin_hexapod();
-        let sim = simulate(&truth, 21, 9, Uncertainty::uniform(0.0), 0.0, 0.1);
-        for leg in 0..6 {
-            let m: Vec<[f64; 7]> = leg_boxes(&sim.measured, &sim.uncertainty, leg)
-                .iter()
-                .map(|b| b.map(|v| v.mid()))
-                .collect();
-            let fit = fit_leg(&sim.nominal[leg].params(), &m);
-            let t = truth[leg].params();
-            assert!(fit.converged);
-            for j in 0..7 {
-                assert!(
-                    (fit.x[j] - t[j]).abs() < 1e-6,
-                    "leg {leg} param {j}: {} vs {}",
-                    fit.x[j],
-                    t[j]
-                );
-            }
-            assert!(fit.max_length_error < 1e-9);
-        }
-    }
-}

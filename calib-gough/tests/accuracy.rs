@@ -4,7 +4,7 @@
 //! workspace, its geometry in the box, its error at least the lower bound), and the bracket meets
 //! its tolerance.
 
-mod support;
+use crate::support;
 
 use calib_gough::accuracy::{axis_angle, certify_accuracy, AccuracyProblem, AccuracySettings};
 use calib_gough::files::LegSpec;

@@ -2,7 +2,7 @@
 //! well-formed, self-contained page that holds every leg's verdict, the input hashes and the
 //! figures; it is written atomically, and never on bad input.
 
-mod support;
+use crate::support;
 
 use calib_gough::certificate::sha256_hex;
 use std::path::Path;

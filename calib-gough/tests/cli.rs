@@ -1,7 +1,7 @@
 //! End-to-end tests of the `gough` binary on simulated data: truth containment, outliers proved
 //! inconsistent (exit 2), every malformed input rejected with file/line/field (exit 1), reproduce.
 
-mod support;
+use crate::support;
 
 use std::path::Path;
 use support::{certify, gough, report, simulate, tempdir, truth_values};

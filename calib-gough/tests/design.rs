@@ -3,7 +3,7 @@
 //! random poses on a fixed seed, `--extend` keeps the measured data, and bad files are errors
 //! naming file, line and field with nothing written.
 
-mod support;
+use crate::support;
 
 use calib_gough::certification::{certify_legs, CertifyOptions};
 use calib_gough::design::{design, geometric_mean, predict, DesignRequest};

@@ -5,7 +5,7 @@
 //! their bound, the reached pose inside the proved enclosure, and its errors at least the lower
 //! bounds. The search beats random sampling; a workspace at a singular pose proves nothing.
 
-mod support;
+use crate::support;
 
 use calib_core::{Interval, Model};
 use calib_gough::accuracy::{
@@ -35,7 +35,7 @@ fn robot(radius: f64) -> Vec<LegSpec> {
 /// The built-in hexapod (the geometry of `sample21`) with the boxes 21 poses of the simulator's
 /// workspace leave: `a_z` and `l` known only to ± 0.1 cm, which its nearly vertical legs turn
 /// into centimetres and degrees at the platform.
-fn centimetre_robot() -> Vec<LegSpec> {
+pub(crate) fn centimetre_robot() -> Vec<LegSpec> {
     builtin_hexapod()
         .into_iter()
         .map(|nominal| LegSpec {

@@ -23,11 +23,11 @@ use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
 
 /// An affine form over a box of joints: one noise symbol per joint.
-pub(super) type JointForm = Affine<MAX_JOINTS>;
+pub type JointForm = Affine<MAX_JOINTS>;
 
 /// Joint boxes at most this wide (radians, every joint) get the affine enclosures: wider, the
 /// affine remainders of sines and cosines exceed the interval widths.
-const AFFINE_WIDTH: f64 = 0.35;
+pub const AFFINE_WIDTH: f64 = 0.35;
 
 /// Joint boxes wider than this keep the interval bound too (the smaller of the two is taken).
 const INTERVAL_WIDTH: f64 = 0.1;
@@ -47,11 +47,11 @@ const ROUNDING: f64 = 1e-12;
 
 /// One Jacobian column `∂p/∂θ_j` over a joint box as three affine forms in the joints, unpacked.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Column {
+pub struct Column {
     /// Centres.
-    c: [f64; 3],
+    pub c: [f64; 3],
     /// Coefficients of the joints' noise symbols.
-    a: [[f64; MAX_JOINTS]; 3],
+    pub a: [[f64; MAX_JOINTS]; 3],
     /// Error radii.
     e: [f64; 3],
     /// Radii `Σ|a| + e`, rounded up.
@@ -66,7 +66,7 @@ impl Column {
         r: [0.0; 3],
     };
 
-    fn new(rows: [JointForm; 3]) -> Self {
+    pub fn new(rows: [JointForm; 3]) -> Self {
         Column {
             c: rows.map(|f| f.centre()),
             a: rows.map(|f| *f.coefficients()),
@@ -77,7 +77,7 @@ impl Column {
 }
 
 /// The enclosures `g_j` of one joint box and the half-widths `m_j` (module documentation).
-pub(super) struct Sensitivities {
+pub struct Sensitivities {
     /// How many parameters have a spread (the first `count` entries below are used).
     count: usize,
     /// `m_j`, rounded up.
@@ -85,14 +85,14 @@ pub(super) struct Sensitivities {
     /// The interval Jacobian's columns, when the box is wide enough for them to matter.
     interval: Option<[[Interval; 3]; NX]>,
     /// The affine forms of the same columns, on small boxes.
-    affine: Option<[Column; NX]>,
+    pub affine: Option<[Column; NX]>,
 }
 
 impl Sensitivities {
     /// The enclosures over the joint box `q` of the `count` parameters with a spread (their
     /// half-widths `weight`), from the interval Jacobian `interval` and, on small boxes, the
     /// affine one of `model` (parameters `theta`, seeded as `seeds` says).
-    pub(super) fn new<F>(
+    pub fn new<F>(
         q: &[Interval; MAX_JOINTS],
         (count, weight): (usize, [f64; NX]),
         interval: [[Interval; 3]; NX],
@@ -134,7 +134,7 @@ impl Sensitivities {
     }
 
     /// A rigorous bound of `h(u)` over the box of directions `d`: `+∞` on failure.
-    fn bound(&self, d: &DirectionBox) -> f64 {
+    pub fn bound(&self, d: &DirectionBox) -> f64 {
         let mut best = f64::INFINITY;
         if let Some(columns) = &self.interval {
             let u = &d.interval;
@@ -160,7 +160,7 @@ impl Sensitivities {
     /// `u_r g_jr = ū_r ḡ_jr + ū_r (g_jr - ḡ_jr) + ḡ_jr (u_r - ū_r)` plus the remainder
     /// `|ū_r| e_g + |ḡ_jr| e_u + r_u r_g` (the product of [`Affine`]), summed in floating point
     /// and widened by [`ROUNDING`] of the terms' magnitudes.
-    fn affine_bound(&self, columns: &[Column; NX], d: &DirectionBox) -> f64 {
+    pub fn affine_bound(&self, columns: &[Column; NX], d: &DirectionBox) -> f64 {
         // The signed sum: centre, joint and direction coefficients, error; the rest; magnitudes.
         let (mut sc, mut sa, mut sb, mut se) = (0.0, [0.0; MAX_JOINTS], [0.0; 2], 0.0);
         let (mut rest, mut magnitude) = (0.0, 0.0);
@@ -214,19 +214,19 @@ impl Sensitivities {
 /// `u·g` of a box of directions `u` and a column `g`, as an affine form in the joints' noise
 /// symbols and the direction's two, computed in floating point (see [`Sensitivities::
 /// affine_bound`] for the rounding): `c + a·ε + b·η ± e`.
-struct Directional {
-    c: f64,
-    a: [f64; MAX_JOINTS],
-    b: [f64; 2],
-    e: f64,
+pub struct Directional {
+    pub c: f64,
+    pub a: [f64; MAX_JOINTS],
+    pub b: [f64; 2],
+    pub e: f64,
     /// The sum of the magnitudes of the products summed into `c`, `a` and `b`.
-    mag: f64,
+    pub mag: f64,
 }
 
 impl Directional {
     /// `u_r g_r = ū_r ḡ_r + ū_r (g_r - ḡ_r) + ḡ_r (u_r - ū_r)` plus the remainder
     /// `|ū_r| e_g + |ḡ_r| e_u + r_u r_g`, summed over the three rows.
-    fn new(g: &Column, d: &DirectionBox) -> Self {
+    pub fn new(g: &Column, d: &DirectionBox) -> Self {
         let (uc, ub, ue, ur) = (d.c, d.b, d.e, d.r);
         let (mut c, mut a, mut b, mut e, mut mag) = (0.0, [0.0; MAX_JOINTS], [0.0; 2], 0.0, 0.0);
         for r in 0..3 {
@@ -249,7 +249,7 @@ impl Directional {
 /// A box of directions `u(φ, λ) = (cos λ cos φ, cos λ sin φ, sin λ)`, enclosed once: in
 /// intervals, and as affine forms in the two noise symbols of `φ` and `λ`, unpacked.
 #[derive(Clone, Copy, Debug)]
-struct DirectionBox {
+pub struct DirectionBox {
     interval: [Interval; 3],
     c: [f64; 3],
     b: [[f64; 2]; 3],
@@ -260,7 +260,7 @@ struct DirectionBox {
 }
 
 impl DirectionBox {
-    fn new(phi: Interval, lambda: Interval) -> Self {
+    pub fn new(phi: Interval, lambda: Interval) -> Self {
         let c = lambda.cos();
         let interval = [c * phi.cos(), c * phi.sin(), lambda.sin()];
         let (p, l) = (Affine::<2>::input(phi, 0), Affine::<2>::input(lambda, 1));
@@ -279,9 +279,9 @@ impl DirectionBox {
 }
 
 /// The boxes of directions met so far: every joint box's search splits the same tiles the same
-/// way, so each is enclosed once (up to [`CACHE_LIMIT`] of them).
+/// way, so each is enclosed once (up to `CACHE_LIMIT` of them).
 #[derive(Debug, Default)]
-pub(super) struct DirectionCache {
+pub struct DirectionCache {
     boxes: RefCell<HashMap<[u64; 4], DirectionBox>>,
 }
 
@@ -328,10 +328,10 @@ impl Ord for Leaf {
 }
 
 /// A rigorous bound of `max_u h(u)` (module documentation): best first over boxes of directions,
-/// refined until the best box's bound is within [`DIRECTION_TOL`] of the best estimate or below
+/// refined until the best box's bound is within `DIRECTION_TOL` of the best estimate or below
 /// `enough` (the caller needs no better), no wider than `finest` (radians: refining the direction
 /// beyond the joints' width gains nothing), or the budget is spent.
-pub(super) fn max_over_directions(
+pub fn max_over_directions(
     s: &Sensitivities,
     cache: &DirectionCache,
     finest: f64,
@@ -399,176 +399,4 @@ pub(super) fn max_over_directions(
         evaluated += 2;
     }
     f64::INFINITY
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::accuracy::ToolAccuracyProblem;
-    use crate::joint_space::JointSpace;
-    use rand::rngs::StdRng;
-    use rand::{Rng, SeedableRng};
-
-    /// The built-in arm with every prior half-width scaled by `s`, on ±170° joints.
-    fn problem(s: f64) -> ToolAccuracyProblem {
-        let arm = crate::builtin_arm().with_radii_scaled(s);
-        ToolAccuracyProblem::new(&arm, &JointSpace::simulator(6), 0.001).expect("problem")
-    }
-
-    /// A box of width `w` containing a random point of `[lo, hi]`.
-    fn around(rng: &mut StdRng, lo: f64, hi: f64, w: f64) -> Interval {
-        let c: f64 = rng.random_range(lo..hi);
-        let start = c - w * rng.random_range(0.0..1.0);
-        Interval::new(start, start + w)
-    }
-
-    /// `u·(p(q; θ) - p(q; θ̂))` at sampled joints, directions and vertices, enclosed.
-    fn sampled(
-        p: &ToolAccuracyProblem,
-        rng: &mut StdRng,
-        q: &[Interval; MAX_JOINTS],
-        phi: Interval,
-        lambda: Interval,
-    ) -> f64 {
-        let mut best = f64::NEG_INFINITY;
-        for _ in 0..200 {
-            let x: [f64; MAX_JOINTS] =
-                core::array::from_fn(|k| q[k].inf() + q[k].wid() * rng.random_range(0.0..=1.0));
-            let (f, l) = (
-                phi.inf() + phi.wid() * rng.random_range(0.0..=1.0),
-                lambda.inf() + lambda.wid() * rng.random_range(0.0..=1.0),
-            );
-            let u = [l.cos() * f.cos(), l.cos() * f.sin(), l.sin()];
-            let theta = p.vertex_towards(&x, u);
-            let e = p.error_enclosure(&x, &theta);
-            let v = (0..3).fold(Interval::ZERO, |s, r| s + Interval::point(u[r]) * e[r]);
-            best = best.max(v.inf());
-        }
-        best
-    }
-
-    #[test]
-    fn every_direction_box_bounds_the_errors_along_its_directions() {
-        let mut rng = StdRng::seed_from_u64(5);
-        for case in 0..40 {
-            let p = problem([0.02, 0.3, 1.0][case % 3]);
-            let w = [0.002, 0.02, 0.1, 0.3, 0.6][case % 5];
-            let q: [Interval; MAX_JOINTS] = core::array::from_fn(|k| {
-                if k < 6 {
-                    around(&mut rng, -2.6, 2.6, w)
-                } else {
-                    Interval::ZERO
-                }
-            });
-            let s = p.sensitivities(&q);
-            assert_eq!(s.affine.is_some(), w <= AFFINE_WIDTH, "case {case}");
-            for _ in 0..5 {
-                let dw = rng.random_range(0.001..0.5);
-                let (phi, lambda) = (
-                    around(&mut rng, -3.0, 2.5, dw),
-                    around(&mut rng, -1.4, 1.0, dw),
-                );
-                let d = DirectionBox::new(phi, lambda);
-                let bound = s.bound(&d);
-                let seen = sampled(&p, &mut rng, &q, phi, lambda);
-                assert!(seen <= bound, "case {case}: {seen} above the bound {bound}");
-                if let Some(columns) = &s.affine {
-                    let affine = s.affine_bound(columns, &d);
-                    assert!(
-                        seen <= affine,
-                        "case {case}: {seen} above the affine {affine}"
-                    );
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn the_product_with_a_box_of_directions_encloses_every_value() {
-        // Columns with exact linear parts (no error radius): g(ε) = c + a·ε exactly, so every
-        // value u(φ, λ)·g(ε) must lie in the product's form at the noise of (ε, φ, λ).
-        let mut rng = StdRng::seed_from_u64(3);
-        for case in 0..200 {
-            let g = Column::new(core::array::from_fn(|_| {
-                let mut f =
-                    JointForm::from_interval(Interval::point(rng.random_range(-50.0..50.0)));
-                for k in 0..6 {
-                    let w = rng.random_range(0.0..20.0);
-                    f = f + JointForm::input(Interval::new(-w, w), k);
-                }
-                f
-            }));
-            let dw = [0.01, 0.3, 1.0][case % 3];
-            let (phi, lambda) = (
-                around(&mut rng, -3.0, 2.0, dw),
-                around(&mut rng, -1.5, 0.5, dw),
-            );
-            let d = Directional::new(&g, &DirectionBox::new(phi, lambda));
-            for _ in 0..200 {
-                let eps: [f64; MAX_JOINTS] = core::array::from_fn(|k| {
-                    if k < 6 {
-                        rng.random_range(-1.0..=1.0)
-                    } else {
-                        0.0
-                    }
-                });
-                let eta = [rng.random_range(-1.0..=1.0), rng.random_range(-1.0..=1.0)];
-                let (f, l) = (
-                    phi.mid() + eta[0] * phi.rad(),
-                    lambda.mid() + eta[1] * lambda.rad(),
-                );
-                let u = [l.cos() * f.cos(), l.cos() * f.sin(), l.sin()];
-                let exact: f64 = (0..3)
-                    .map(|r| {
-                        let gr = g.c[r] + (0..MAX_JOINTS).map(|k| g.a[r][k] * eps[k]).sum::<f64>();
-                        u[r] * gr
-                    })
-                    .sum();
-                let linear = d.c
-                    + (0..MAX_JOINTS).map(|k| d.a[k] * eps[k]).sum::<f64>()
-                    + d.b[0] * eta[0]
-                    + d.b[1] * eta[1];
-                let slack = 1e-9 * (1.0 + d.mag);
-                assert!(
-                    (exact - linear).abs() <= d.e + slack,
-                    "case {case}: {exact} vs {linear} ± {}",
-                    d.e
-                );
-            }
-        }
-    }
-
-    #[test]
-    fn on_a_small_joint_box_the_bound_over_all_directions_is_tight() {
-        // Second order in the box's width: a 0.5° box of every joint is bracketed within 1%
-        // (the interval Jacobian alone leaves about 2% there).
-        let mut rng = StdRng::seed_from_u64(8);
-        let p = problem(0.05);
-        for case in 0..4 {
-            let q: [Interval; MAX_JOINTS] = core::array::from_fn(|k| {
-                if k < 6 {
-                    around(&mut rng, -2.6, 2.6, 0.5f64.to_radians())
-                } else {
-                    Interval::ZERO
-                }
-            });
-            let upper = p.upper(&q, &DirectionCache::default(), 0.0);
-            // The error over so small a box is largest at a corner: the largest corner's.
-            let lower = (0..64u32)
-                .map(|c| {
-                    let x: [f64; MAX_JOINTS] = core::array::from_fn(|k| match k {
-                        6 => 0.0,
-                        _ if c >> k & 1 == 1 => q[k].sup(),
-                        _ => q[k].inf(),
-                    });
-                    p.dual_value(&x, &p.best_vertex_any(&x).0)
-                })
-                .fold(f64::NEG_INFINITY, f64::max);
-            assert!(
-                lower > 0.0 && upper >= lower,
-                "case {case}: {lower} {upper}"
-            );
-            assert!(upper <= 1.01 * lower, "case {case}: {upper} vs {lower}");
-        }
-    }
 }

@@ -33,7 +33,8 @@ use calib_core::{maximize, Interval, MaximumSettings, Objective, VectorModel};
 use directions::{max_over_directions, DirectionCache, Sensitivities};
 use serde_json::json;
 
-mod directions;
+#[doc(hidden)]
+pub mod directions;
 pub mod over_set;
 use std::cell::Cell;
 use std::time::Instant;
@@ -260,13 +261,15 @@ impl ToolAccuracyProblem {
     /// An upper bound of the tool-point error over the joint box `q` and every direction
     /// (module documentation, [`directions`]), refined no further once below `enough`: `+∞` on
     /// failure.
-    fn upper(&self, q: &[Interval; MAX_JOINTS], cache: &DirectionCache, enough: f64) -> f64 {
+    #[doc(hidden)]
+    pub fn upper(&self, q: &[Interval; MAX_JOINTS], cache: &DirectionCache, enough: f64) -> f64 {
         let finest = q.iter().map(|v| v.wid()).fold(0.0, f64::max);
         max_over_directions(&self.sensitivities(q), cache, finest, enough)
     }
 
     /// The Jacobian's columns over the joint box `q` and `Θ'` ([`directions`]).
-    fn sensitivities(&self, q: &[Interval; MAX_JOINTS]) -> Sensitivities {
+    #[doc(hidden)]
+    pub fn sensitivities(&self, q: &[Interval; MAX_JOINTS]) -> Sensitivities {
         let rows = Arm7Point.evaluate_rows_interval(&self.theta, &Self::joints_box(q));
         let mut weight = [0.0; NX];
         let mut columns = [[Interval::ZERO; 3]; NX];
@@ -286,7 +289,8 @@ impl ToolAccuracyProblem {
     }
 
     /// The tool-point error `p(q; θ) - p(q; θ̂)` at the joints `q` (radians, padded), enclosed.
-    fn error_enclosure(&self, q: &[f64; MAX_JOINTS], theta: &[Interval; NX]) -> [Interval; 3] {
+    #[doc(hidden)]
+    pub fn error_enclosure(&self, q: &[f64; MAX_JOINTS], theta: &[Interval; NX]) -> [Interval; 3] {
         let m: [Interval; NM] = core::array::from_fn(|k| {
             if k < MAX_JOINTS {
                 self.fixed_joint[k].unwrap_or(Interval::point(q[k]))
@@ -301,7 +305,8 @@ impl ToolAccuracyProblem {
 
     /// The vertex of the true box where `u·(p(q; θ) - p(q; θ̂))` is largest to first order (the
     /// signs of `u·∂p/∂θ` at `θ̂`).
-    fn vertex_towards(&self, q: &[f64; MAX_JOINTS], u: [f64; 3]) -> [Interval; NX] {
+    #[doc(hidden)]
+    pub fn vertex_towards(&self, q: &[f64; MAX_JOINTS], u: [f64; 3]) -> [Interval; NX] {
         let mut m = [0.0; NM];
         m[..MAX_JOINTS].copy_from_slice(q);
         let rows = Arm7Point.evaluate_rows(&self.nominal, &m);
@@ -351,7 +356,8 @@ impl ToolAccuracyProblem {
     /// The best vertex at `q` from thirteen first directions (the axes, the diagonals of the
     /// cube's faces and the cube's diagonals: `±u` lead to opposite vertices of equal error), so
     /// that the alternation of [`Self::best_vertex`] starts near the worst direction.
-    fn best_vertex_any(&self, q: &[f64; MAX_JOINTS]) -> ([Interval; NX], f64) {
+    #[doc(hidden)]
+    pub fn best_vertex_any(&self, q: &[f64; MAX_JOINTS]) -> ([Interval; NX], f64) {
         let mut best = ([Interval::ZERO; NX], f64::NEG_INFINITY);
         for c in [-1.0f64, 0.0, 1.0] {
             for b in [-1.0f64, 0.0, 1.0] {
@@ -429,7 +435,8 @@ impl ToolAccuracyProblem {
 
     /// A rigorous lower bound of the error at the joints `q` with the vertex `theta`: its
     /// component along the direction of its floating-point value.
-    fn dual_value(&self, q: &[f64; MAX_JOINTS], theta: &[Interval; NX]) -> f64 {
+    #[doc(hidden)]
+    pub fn dual_value(&self, q: &[f64; MAX_JOINTS], theta: &[Interval; NX]) -> f64 {
         let e = self.error_enclosure(q, theta);
         let m = e.map(|v| v.mid());
         let n = norm(m);

@@ -157,39 +157,3 @@ fn fnv1a(text: &str) -> u64 {
         (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
     })
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    const UR10: &str = include_str!("../../tests/data/ur10_default_kinematics.yaml");
-
-    #[test]
-    fn ur10_reads_writes_and_reads_back_the_same_frames() {
-        let f = Path::new("ur10.yaml");
-        let k = parse(f, UR10).expect("UR10");
-        assert_eq!(k.hash.as_deref(), Some("calib_17227329492635474227"));
-        assert!((k.origins[0].translation.vector.z - 127.3).abs() < 1e-12);
-        let text = write(&k.origins, k.hash.as_deref(), "test").expect("six joints");
-        assert!(text.starts_with("# test\nkinematics:\n  shoulder:\n"));
-        let again = parse(f, &text).expect("reads back");
-        assert_eq!(again.hash, k.hash);
-        for (a, b) in again.origins.iter().zip(&k.origins) {
-            assert!((a.translation.vector - b.translation.vector).norm() < 1e-12);
-            assert!(a.rotation.angle_to(&b.rotation) < 1e-12);
-        }
-        let own = write(&k.origins, None, "").expect("six joints");
-        assert!(own.contains("hash: certicalib_"), "{own}");
-    }
-
-    #[test]
-    fn bad_files_are_named_with_line_and_field() {
-        let f = Path::new("bad.yaml");
-        let e = parse(f, &UR10.replace("forearm", "fore_arm")).unwrap_err();
-        assert!(e.line.is_some() && e.message.contains("fore_arm"), "{e}");
-        let e = parse(f, &UR10.replace("x: -0.612", "x: -612e9")).unwrap_err();
-        assert_eq!((e.line, e.field.as_deref()), (Some(16), Some("forearm")));
-        let e = parse(f, "kinematics: [1, 2]").unwrap_err();
-        assert_eq!(e.line, Some(1));
-    }
-}

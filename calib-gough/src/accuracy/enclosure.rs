@@ -283,7 +283,8 @@ impl AccuracyProblem {
     }
 
     /// The box `Θ_i` the real leg `i` lies in (decimal bounds enclosed).
-    pub(crate) fn theta(&self, i: usize) -> &[Interval; 7] {
+    #[doc(hidden)]
+    pub fn theta(&self, i: usize) -> &[Interval; 7] {
         &self.legs[i].theta
     }
 
@@ -520,7 +521,8 @@ impl AccuracyProblem {
 
     /// The vertex of leg `i`'s box where `ΔL_i` at `x` is largest (`up`) or smallest, by the
     /// signs of its gradient at the nominal geometry.
-    pub(crate) fn vertex(&self, i: usize, x: &PoseVector, up: bool) -> [Interval; 7] {
+    #[doc(hidden)]
+    pub fn vertex(&self, i: usize, x: &PoseVector, up: bool) -> [Interval; 7] {
         let leg = &self.legs[i];
         let m: [f64; 13] = core::array::from_fn(|k| if k < 6 { x[k] } else { leg.nominal[k - 6] });
         if let Some(set) = &leg.set {

@@ -14,12 +14,18 @@
 //! proved to hold no pose of the workspace counts as error 0, a box only partly inside is bounded
 //! whole (the upper bound may then cover a superset at the workspace's boundary, never less than
 //! the workspace).
-mod enclosure;
-mod model;
-mod move_paving;
-mod pose_bound;
-mod pose_chart;
-mod pose_error;
+#[doc(hidden)]
+pub mod enclosure;
+#[doc(hidden)]
+pub mod model;
+#[doc(hidden)]
+pub mod move_paving;
+#[doc(hidden)]
+pub mod pose_bound;
+#[doc(hidden)]
+pub mod pose_chart;
+#[doc(hidden)]
+pub mod pose_error;
 
 pub use enclosure::{AccuracyProblem, Instance, LegSet, PoseBox, PoseVector};
 pub use model::{
@@ -37,19 +43,6 @@ use crate::workspace::Workspace;
 use calib_core::{maximize, Interval, MaximumSettings, Objective};
 use rayon::prelude::*;
 use std::time::Instant;
-
-/// The built-in hexapod with the boxes 21 poses of the simulator's workspace leave (`a_z` and `l`
-/// at ± 0.1 cm): centimetre and degree errors at the platform, for the unit tests.
-#[cfg(test)]
-pub(crate) fn centimetre_robot() -> Vec<crate::files::LegSpec> {
-    crate::simulate::builtin_hexapod()
-        .into_iter()
-        .map(|nominal| crate::files::LegSpec {
-            nominal,
-            radius: [0.02, 0.02, 0.1, 0.01, 0.01, 0.05, 0.1],
-        })
-        .collect()
-}
 
 /// One leg's length error as a maximisation over the poses.
 struct LegLengthObjective<'a> {

@@ -107,7 +107,7 @@ pub fn reached_change<S: Scalar>(x: &[S; 6], m: &[S; 12]) -> S {
 /// The half-widths of the regions `D = M · [-R, R]` tried, in units of `U`: the widest first
 /// (its faces lie farthest from `F`), then narrower ones while they close — each closed region
 /// is a proof, and the narrowest gives the tightest bound.
-const REGIONS: [f64; 6] = [3.0, 2.0, 1.5, 1.25, 1.1, 1.05];
+pub const REGIONS: [f64; 6] = [3.0, 2.0, 1.5, 1.25, 1.1, 1.05];
 /// A box of a face of `D` narrower than this fraction of `D` (in every coordinate) that cannot be
 /// excluded ends the attempt: the region cannot be closed.
 const FINEST_FACE: f64 = 1.0 / 64.0;
@@ -210,7 +210,7 @@ pub struct PoseErrorBounds {
 
 /// The legs' Jacobian `J = ∇_δ G` at `δ = 0`, at the centre of the box of poses `x` and the
 /// nominal geometry (floating point: any matrix serves as a chart once its inverse is proved).
-pub(super) fn centre_jacobian(problem: &AccuracyProblem, x: &PoseBox) -> Matrix6<f64> {
+pub fn centre_jacobian(problem: &AccuracyProblem, x: &PoseBox) -> Matrix6<f64> {
     let xc = x.map(|v| v.mid());
     let mut j = Matrix6::zeros();
     for i in 0..6 {
@@ -227,7 +227,7 @@ pub(super) fn centre_jacobian(problem: &AccuracyProblem, x: &PoseBox) -> Matrix6
 /// The floating-point inverse `M` of `j`, when `‖I - j M‖∞ < 1` proves it (hence `j`)
 /// nonsingular: `δ = M y` then maps a region `D` onto a neighbourhood of `δ = 0` and `D`'s
 /// boundary onto its boundary.
-pub(super) fn proved_inverse(j: &Matrix6<f64>) -> Option<Matrix6<f64>> {
+pub fn proved_inverse(j: &Matrix6<f64>) -> Option<Matrix6<f64>> {
     let inv = j.try_inverse()?;
     let residual_norm = (0..6)
         .map(|r| {
@@ -248,11 +248,7 @@ pub(super) fn proved_inverse(j: &Matrix6<f64>) -> Option<Matrix6<f64>> {
 
 /// `U_i = max |ΔL_i| + ε` over the box of poses `x`, rounded up: every leg's change along the
 /// path stays within `[-U_i, U_i]` (module documentation). `None` when one is not finite.
-pub(super) fn leg_change_bounds(
-    problem: &AccuracyProblem,
-    x: &PoseBox,
-    eps: f64,
-) -> Option<[f64; 6]> {
+pub fn leg_change_bounds(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> Option<[f64; 6]> {
     let eps = Interval::point(eps.max(0.0).next_up());
     let mut bound = [0.0; 6];
     for (i, b) in bound.iter_mut().enumerate() {
@@ -268,7 +264,7 @@ pub(super) fn leg_change_bounds(
 
 /// Per leg, the inputs `m = (X, a, b)` of [`reached_change`]: the pose `pose` and the leg's
 /// geometry box, each coordinate of which `geometry` turns into a `T`.
-pub(super) fn leg_inputs<T: Copy>(
+pub fn leg_inputs<T: Copy>(
     problem: &AccuracyProblem,
     pose: &[T; 6],
     mut geometry: impl FnMut(Interval) -> T,
@@ -282,7 +278,7 @@ pub(super) fn leg_inputs<T: Copy>(
 }
 
 /// `|d|²` and `|w|²` of a move `δ = (d, w)` whose components are bounded in magnitude by `comp`.
-pub(super) fn squared_norms(comp: &[f64; 6]) -> [f64; 2] {
+pub fn squared_norms(comp: &[f64; 6]) -> [f64; 2] {
     let sq = |k: usize| comp[k] * comp[k] + comp[k + 1] * comp[k + 1] + comp[k + 2] * comp[k + 2];
     [sq(0), sq(3)]
 }
@@ -291,7 +287,7 @@ pub(super) fn squared_norms(comp: &[f64; 6]) -> [f64; 2] {
 /// bounds of `|d|²` and `|w|²`, rounded up: square roots by far more than their half-ulp error,
 /// atan above its libm value by far more than libm's error (a few ulps). A failed enclosure (NaN
 /// or infinite) bounds nothing.
-pub(super) fn errors_from_squares(squares: [f64; 2]) -> [f64; 2] {
+pub fn errors_from_squares(squares: [f64; 2]) -> [f64; 2] {
     let [d, w] = squares.map(|v| v.sqrt() * (1.0 + 1e-12));
     let angle =
         Interval::point(2.0 * w.atan() * (1.0 + 1e-12)) * Interval::point(180.0) / Interval::PI;
@@ -299,23 +295,23 @@ pub(super) fn errors_from_squares(squares: [f64; 2]) -> [f64; 2] {
 }
 
 /// The moves of one box of poses in the coordinates `y = J δ` (see the module documentation).
-struct Chart {
+pub struct Chart {
     /// Per leg, `m = (X, a, b)` over the box of poses and the leg's geometry box.
     inputs: Vec<[Interval; 12]>,
     /// `M ≈ J⁻¹`, entries as thin intervals.
-    m: [[Interval; 6]; 6],
+    pub m: [[Interval; 6]; 6],
     /// The same `M`, as floats.
     m_float: [[f64; 6]; 6],
     /// Per leg, the centre of `inputs`.
     centres: Vec<[f64; 12]>,
     /// `U_i`, rounded up.
-    bound: [f64; 6],
+    pub bound: [f64; 6],
 }
 
 /// The reached moves of a box of leg changes ([`Chart::piece`]).
-struct Piece {
+pub struct Piece {
     /// Their enclosure in `y`.
-    y: [Interval; 6],
+    pub y: [Interval; 6],
     /// The same, split as `δ = M y + t`: `y` in the first box (for the pose box's centre), `t`
     /// in the second (in `δ`: the pose's part). `None` when that enclosure failed.
     split: Option<([Interval; 6], [Interval; 6])>,
@@ -324,7 +320,7 @@ struct Piece {
 impl Chart {
     /// The chart of the box of poses `x`, `None` when `J` is not proved invertible or a leg's
     /// bound is not finite.
-    fn new(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> Option<Chart> {
+    pub fn new(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> Option<Chart> {
         if problem.legs() != 6 {
             return None;
         }
@@ -384,7 +380,7 @@ impl Chart {
     /// Leg `i`'s change `G_i(X, M y, θ*)` over the box `y` in affine arithmetic: noise symbols
     /// `0..6` for `y`, `6..12` for the pose (the geometry without correlation), so that `δ = M y`
     /// is exact and `G_i` keeps its first-order dependence on both.
-    fn affine_change(&self, i: usize, y: &[Interval; 6]) -> Affine<12> {
+    pub fn affine_change(&self, i: usize, y: &[Interval; 6]) -> Affine<12> {
         let zero = Affine::from_interval(Interval::ZERO);
         let ya: [Affine<12>; 6] = core::array::from_fn(|c| Affine::input(y[c], c));
         let delta: [Affine<12>; 6] = core::array::from_fn(|r| {
@@ -408,7 +404,7 @@ impl Chart {
     /// Each vertex is evaluated in floating point; a component `Σ_c M_kc y_c` is off by at most
     /// `γ_6 Σ_c |M_kc| |y_c|` (`γ_6 < 7u`), and `ERROR_MARGIN` (far above it) is added to every
     /// component's magnitude before the norms, which are rounded up.
-    fn vertex_value(&self, y: &[Interval; 6], shift: &[Interval; 6]) -> [f64; 2] {
+    pub fn vertex_value(&self, y: &[Interval; 6], shift: &[Interval; 6]) -> [f64; 2] {
         let ends = y.map(|v| [v.inf(), v.sup()]);
         let scale: [f64; 6] = core::array::from_fn(|r| {
             (0..6).map(|c| self.m[r][c].mag() * y[c].mag()).sum::<f64>() * ERROR_MARGIN
@@ -432,7 +428,7 @@ impl Chart {
     /// Whether no move on the boundary of `D = M · [-r, r]` lies in `F`: each of the 12 faces
     /// is paved until every piece is [`Chart::excluded`]. `None` when a piece narrower than
     /// [`FINEST_FACE`] of `D` (or the budget) is reached first; else the pieces examined.
-    fn closes(&self, r: &[f64; 6], budget: usize) -> Option<usize> {
+    pub fn closes(&self, r: &[f64; 6], budget: usize) -> Option<usize> {
         let region: [Interval; 6] = r.map(|h| Interval::new(-h, h));
         let mut examined = 0;
         for i in 0..6 {
@@ -460,7 +456,7 @@ impl Chart {
     /// Per leg, a bound of the nonlinear remainder `|G_i(M y) - y_i|` over the box `[-h, h]`
     /// of `y`: `G_i(M y) - y_i = Σ_c (S_ic - [i = c]) y_c` (`S = ∇_δ G · M` over the box, mean
     /// value from `δ = 0`, where `G = 0`). NaN where the enclosure failed.
-    fn remainder(&self, h: &[f64; 6]) -> [f64; 6] {
+    pub fn remainder(&self, h: &[f64; 6]) -> [f64; 6] {
         let y: [Interval; 6] = h.map(|v| Interval::new(-v, v));
         let d = self.delta(&y);
         core::array::from_fn(|i| {
@@ -489,7 +485,7 @@ impl Chart {
     /// Half-widths `h` with `D ∩ F ⊆ [-h, h]` for `D = M · [-r, r]`: a move of `F` has
     /// `|y_i| <= U_i + |G_i - y_i|` ([`Chart::remainder`]); repeated on the smaller box, which
     /// still holds `D ∩ F`.
-    fn enclosing_box(&self, r: &[f64; 6]) -> [f64; 6] {
+    pub fn enclosing_box(&self, r: &[f64; 6]) -> [f64; 6] {
         let mut h = *r;
         for _ in 0..SHRINK_ROUNDS {
             let rest = self.remainder(&h);
@@ -515,7 +511,7 @@ impl Chart {
     /// the pose and geometry, `G(m_c) + ∇_m G (m - m_c)`, and the pose's part is multiplied
     /// by `C` as one matrix: the legs' changes move together with the pose, and the box of
     /// `K` keeps that.
-    fn piece(&self, p: &[Interval; 6], rho: &[f64; 6], h: &[f64; 6]) -> Option<Piece> {
+    pub fn piece(&self, p: &[Interval; 6], rho: &[f64; 6], h: &[f64; 6]) -> Option<Piece> {
         let mut y: [Interval; 6] = core::array::from_fn(|i| {
             (p[i] + Interval::new(-rho[i], rho[i])).intersection(Interval::new(-h[i], h[i]))
         });
@@ -640,7 +636,7 @@ impl Chart {
 
     /// Upper bounds of both errors over a [`Piece`]: the smaller of [`Chart::vertex_value`]
     /// over its box and over its pose-free box shifted by the pose's part.
-    fn piece_value(&self, piece: &Piece) -> [f64; 2] {
+    pub fn piece_value(&self, piece: &Piece) -> [f64; 2] {
         let whole = self.vertex_value(&piece.y, &[Interval::ZERO; 6]);
         match &piece.split {
             Some((core, shift)) => {
@@ -708,7 +704,7 @@ impl Chart {
 }
 
 /// `max_k value_k / target_k` (a target of `+∞` asks nothing).
-pub(super) fn key(value: [f64; 2], target: [f64; 2]) -> f64 {
+pub fn key(value: [f64; 2], target: [f64; 2]) -> f64 {
     (0..2)
         .map(|k| {
             if target[k].is_finite() {
@@ -815,7 +811,7 @@ type Evaluated = (PoseBox, BoxBound, usize, Option<Paved>, f64, usize);
 
 /// The share of `domain`'s volume in `x` (a coordinate where `domain` is a point counts as
 /// whole): what the search has settled, for the report.
-fn share_of(x: &PoseBox, domain: &PoseBox) -> f64 {
+pub fn share_of(x: &PoseBox, domain: &PoseBox) -> f64 {
     (0..6)
         .map(|k| {
             let w = domain[k].wid();
@@ -1000,374 +996,5 @@ pub fn pose_error_bounds(
         move_boxes,
         converged,
         seconds: start.elapsed().as_secs_f64(),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::accuracy::pose_chart::PoseChart;
-    use crate::files::LegSpec;
-    use crate::simulate::builtin_hexapod;
-    use crate::workspace::Workspace;
-    use rand::rngs::StdRng;
-    use rand::{Rng, SeedableRng};
-
-    /// A tightly calibrated built-in hexapod on a small workspace, where the region closes and
-    /// the Krawczyk steps contract.
-    fn problem(rng: &mut StdRng) -> AccuracyProblem {
-        let radius = rng.random_range(0.0003..0.01);
-        let robot: Vec<LegSpec> = builtin_hexapod()
-            .into_iter()
-            .map(|nominal| LegSpec {
-                nominal,
-                radius: [radius; 7],
-            })
-            .collect();
-        let h = rng.random_range(0.1..0.3);
-        let workspace = Workspace {
-            x: [-h, h],
-            y: [-h, h],
-            z: [60.0 - h, 60.0 + h],
-            tilt_deg: rng.random_range(0.2..0.5),
-            stroke: None,
-        };
-        AccuracyProblem::new(&robot, &workspace)
-    }
-
-    /// A random sub-box of `b`, each side a fraction in `[lo, 1]` of `b`'s.
-    fn sub_box(b: &[Interval; 6], lo: f64, rng: &mut StdRng) -> [Interval; 6] {
-        b.map(|v| {
-            let w = v.wid() * rng.random_range(lo..1.0);
-            let start = v.inf() + rng.random_range(0.0..=(v.wid() - w));
-            Interval::new(start, start + w)
-        })
-    }
-
-    /// A point of `v`: mostly an end (extremes are where an enclosure is tight).
-    fn point_in(v: &Interval, rng: &mut StdRng) -> f64 {
-        if rng.random_bool(0.8) {
-            if rng.random_bool(0.5) {
-                v.inf()
-            } else {
-                v.sup()
-            }
-        } else if v.wid() > 0.0 {
-            rng.random_range(v.inf()..=v.sup())
-        } else {
-            v.inf()
-        }
-    }
-
-    /// A closed region of the chart: `(h, ρ)` as the bound uses them.
-    fn closed(chart: &Chart) -> Option<([f64; 6], [f64; 6])> {
-        let r = REGIONS
-            .iter()
-            .map(|f| chart.bound.map(|u| f * u))
-            .find(|r| chart.closes(r, 2000).is_some())?;
-        let h = chart.enclosing_box(&r);
-        Some((h, chart.remainder(&h)))
-    }
-
-    /// Every move solving `G(X, δ, θ*) = s` (Newton in floating point) for a pose, geometry and
-    /// leg changes drawn from their boxes, inside `Y₀`, lies in the piece's enclosure — and a
-    /// piece proved empty has no such move.
-    #[test]
-    fn a_piece_holds_every_move_reaching_its_leg_changes() {
-        let mut rng = StdRng::seed_from_u64(5);
-        let mut checked = 0;
-        for _ in 0..16 {
-            let problem = problem(&mut rng);
-            // Boxes of poses, and single poses (where the geometry's share shows).
-            let x = sub_box(&problem.domain(), 0.02, &mut rng).map(|v| {
-                if rng.random_bool(0.5) {
-                    v
-                } else {
-                    Interval::point(v.mid())
-                }
-            });
-            let Some(chart) = Chart::new(&problem, &x, 0.0005) else {
-                continue;
-            };
-            let Some((h, rho)) = closed(&chart) else {
-                continue;
-            };
-            let s_box = chart.bound.map(|u| Interval::new(-u, u));
-            let mf: [[f64; 6]; 6] =
-                core::array::from_fn(|r| core::array::from_fn(|c| chart.m[r][c].inf()));
-            for _ in 0..30 {
-                let p = sub_box(&s_box, 0.0, &mut rng).map(|v| {
-                    let w = v.wid() * rng.random_range(0.0..0.1);
-                    Interval::new(v.inf(), v.inf() + w)
-                });
-                let piece = chart.piece(&p, &rho, &h);
-                for _ in 0..40 {
-                    let pose: [f64; 6] = core::array::from_fn(|k| point_in(&x[k], &mut rng));
-                    let m = leg_inputs(&problem, &pose, |t| point_in(&t, &mut rng));
-                    let s: [f64; 6] = core::array::from_fn(|i| point_in(&p[i], &mut rng));
-                    let mut y = s;
-                    let mut residual = f64::INFINITY;
-                    for _ in 0..30 {
-                        let d: [f64; 6] =
-                            core::array::from_fn(|r| (0..6).map(|c| mf[r][c] * y[c]).sum());
-                        let mut a = Matrix6::zeros();
-                        let mut g = nalgebra::Vector6::zeros();
-                        for i in 0..6 {
-                            g[i] = ReachedChange.residual(&d, &m[i]) - s[i];
-                            let row = ReachedChange.jacobian_x(&d, &m[i]);
-                            for c in 0..6 {
-                                a[(i, c)] = (0..6).map(|k| row[k] * mf[k][c]).sum();
-                            }
-                        }
-                        residual = g.amax();
-                        let Some(step) = a.lu().solve(&g) else { break };
-                        for c in 0..6 {
-                            y[c] -= step[c];
-                        }
-                    }
-                    let scale = chart.bound.iter().fold(0.0f64, |a, &b| a.max(b));
-                    let tol = 1e-9 * scale;
-                    let in_y0 = (0..6)
-                        .all(|i| (y[i] - s[i]).abs() <= rho[i] - tol && y[i].abs() <= h[i] - tol);
-                    if residual > 1e-13 || !in_y0 {
-                        continue;
-                    }
-                    let piece = piece.as_ref().unwrap_or_else(|| {
-                        panic!("piece {p:?} proved empty, but y = {y:?} reaches s = {s:?}")
-                    });
-                    for c in 0..6 {
-                        assert!(
-                            piece.y[c].inf() - tol <= y[c] && y[c] <= piece.y[c].sup() + tol,
-                            "y[{c}] = {} outside {:?} (s = {s:?})",
-                            y[c],
-                            piece.y[c]
-                        );
-                    }
-                    let d: [f64; 6] =
-                        core::array::from_fn(|r| (0..6).map(|c| mf[r][c] * y[c]).sum());
-                    let [pos, ori] = chart.piece_value(piece);
-                    let position = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                    let angle = 2.0 * (d[3] * d[3] + d[4] * d[4] + d[5] * d[5]).sqrt().atan();
-                    assert!(
-                        position <= pos * (1.0 + 1e-9),
-                        "|d| = {position} above {pos}"
-                    );
-                    assert!(
-                        angle.to_degrees() <= ori * (1.0 + 1e-9),
-                        "angle {} above {ori}",
-                        angle.to_degrees()
-                    );
-                    checked += 1;
-                }
-            }
-        }
-        assert!(checked > 1000, "only {checked} moves checked");
-    }
-
-    /// The affine change of a leg encloses its sampled values, and the remainder bounds
-    /// `|G_i - y_i|`, over random boxes of moves, poses and geometries (both are what closing
-    /// a region and starting a piece rely on).
-    #[test]
-    fn affine_changes_and_remainders_enclose_sampled_moves() {
-        let mut rng = StdRng::seed_from_u64(8);
-        let mut checked = 0;
-        for _ in 0..20 {
-            let problem = problem(&mut rng);
-            let x = sub_box(&problem.domain(), 0.05, &mut rng);
-            let Some(chart) = Chart::new(&problem, &x, 0.0005) else {
-                continue;
-            };
-            let f = rng.random_range(1.0..3.0);
-            let h = chart.bound.map(|u| f * u);
-            let rest = chart.remainder(&h);
-            let whole = h.map(|v| Interval::new(-v, v));
-            let y = sub_box(&whole, 0.0, &mut rng);
-            let changes: Vec<Interval> =
-                (0..6).map(|i| chart.affine_change(i, &y).range()).collect();
-            for _ in 0..200 {
-                let pose: [f64; 6] = core::array::from_fn(|k| point_in(&x[k], &mut rng));
-                let yv: [f64; 6] = core::array::from_fn(|c| point_in(&y[c], &mut rng));
-                let yw: [f64; 6] = core::array::from_fn(|c| point_in(&whole[c], &mut rng));
-                for i in 0..6 {
-                    let t = problem.theta(i);
-                    let m: [f64; 12] = core::array::from_fn(|k| {
-                        if k < 6 {
-                            pose[k]
-                        } else {
-                            point_in(&t[k - 6], &mut rng)
-                        }
-                    });
-                    let to_delta = |y: &[f64; 6]| -> [f64; 6] {
-                        core::array::from_fn(|r| (0..6).map(|c| chart.m[r][c].inf() * y[c]).sum())
-                    };
-                    let g = ReachedChange.residual(&to_delta(&yv), &m);
-                    let slack = 1e-12 * (1.0 + g.abs());
-                    assert!(
-                        changes[i].inf() - slack <= g && g <= changes[i].sup() + slack,
-                        "leg {i}: G = {g} outside {}",
-                        changes[i]
-                    );
-                    let r = (ReachedChange.residual(&to_delta(&yw), &m) - yw[i]).abs();
-                    assert!(
-                        r <= rest[i] + 1e-12,
-                        "leg {i}: |G - y| = {r} above {}",
-                        rest[i]
-                    );
-                    checked += 1;
-                }
-            }
-        }
-        assert!(checked > 10_000, "only {checked} values checked");
-    }
-
-    /// The chart that follows the pose: at sampled poses its forms hold the exact `M(X) = M_c -
-    /// M_c (J(X) - J_c) M_c`, its remainder bounds `|G_i(X, M(X) y, θ*) - y_i|`, and its bound
-    /// holds every reached move (Newton along `t s`, `s` drawn from `[-U, U]`, mostly corners).
-    #[test]
-    fn the_pose_chart_holds_its_chart_remainder_and_reached_moves() {
-        let mut rng = StdRng::seed_from_u64(9);
-        let (mut checked, mut bounded) = (0, 0);
-        for _ in 0..60 {
-            let problem = problem(&mut rng);
-            let x = sub_box(&problem.domain(), 0.05, &mut rng);
-            let Some(chart) = PoseChart::new(&problem, &x, 0.0005) else {
-                continue;
-            };
-            let jc = centre_jacobian(&problem, &x);
-            let mc = proved_inverse(&jc).expect("the chart's inverse");
-            let f = rng.random_range(1.0..2.0);
-            let h = chart.bound.map(|u| f * u);
-            let rest = chart.remainder(&h);
-            let bound = chart.bound();
-            for _ in 0..100 {
-                let pose: [f64; 6] = core::array::from_fn(|k| point_in(&x[k], &mut rng));
-                let point = PoseBox::from(pose.map(Interval::point));
-                let mx = mc - mc * (centre_jacobian(&problem, &point) - jc) * mc;
-                for r in 0..6 {
-                    for c in 0..6 {
-                        let form = &chart.m[r][c];
-                        let lin = (0..6).fold(form.centre(), |s, k| {
-                            let e = if x[k].rad() > 0.0 {
-                                (pose[k] - x[k].mid()) / x[k].rad()
-                            } else {
-                                0.0
-                            };
-                            s + form.coefficients()[k] * e
-                        });
-                        let tol = 1e-9 * (1.0 + mx[(r, c)].abs());
-                        assert!(
-                            (mx[(r, c)] - lin).abs() <= form.error() + tol,
-                            "M({r}, {c})"
-                        );
-                    }
-                }
-                let thetas = leg_inputs(&problem, &pose, |t| point_in(&t, &mut rng));
-                let y: [f64; 6] =
-                    core::array::from_fn(|c| point_in(&Interval::new(-h[c], h[c]), &mut rng));
-                let d: [f64; 6] = core::array::from_fn(|r| (0..6).map(|c| mx[(r, c)] * y[c]).sum());
-                for i in 0..6 {
-                    let g = ReachedChange.residual(&d, &thetas[i]);
-                    assert!(
-                        (g - y[i]).abs() <= rest[i] + 1e-12,
-                        "leg {i}: |G - y| {} above {}",
-                        (g - y[i]).abs(),
-                        rest[i]
-                    );
-                    checked += 1;
-                }
-                let Some([pos, ori]) = bound else { continue };
-                // A reached move: leg changes s, Newton along t s from δ = 0.
-                let s: [f64; 6] = core::array::from_fn(|i| {
-                    chart.bound[i]
-                        * if rng.random_bool(0.5) { 1.0 } else { -1.0 }
-                        * if rng.random_bool(0.8) {
-                            1.0
-                        } else {
-                            rng.random_range(0.0..1.0)
-                        }
-                });
-                let mut delta = [0.0; 6];
-                let mut ok = true;
-                for step in 1..=10 {
-                    let t = step as f64 / 10.0;
-                    for _ in 0..20 {
-                        let mut a = Matrix6::zeros();
-                        let mut g = nalgebra::Vector6::zeros();
-                        for i in 0..6 {
-                            g[i] = ReachedChange.residual(&delta, &thetas[i]) - t * s[i];
-                            let row = ReachedChange.jacobian_x(&delta, &thetas[i]);
-                            for k in 0..6 {
-                                a[(i, k)] = row[k];
-                            }
-                        }
-                        let Some(step) = a.lu().solve(&g) else {
-                            ok = false;
-                            break;
-                        };
-                        for k in 0..6 {
-                            delta[k] -= step[k];
-                        }
-                    }
-                }
-                if !ok {
-                    continue;
-                }
-                let p = (delta[0].powi(2) + delta[1].powi(2) + delta[2].powi(2)).sqrt();
-                let w = (delta[3].powi(2) + delta[4].powi(2) + delta[5].powi(2)).sqrt();
-                assert!(p <= pos * (1.0 + 1e-9), "|d| = {p} above {pos}");
-                assert!(
-                    2.0 * w.atan().to_degrees() <= ori * (1.0 + 1e-9),
-                    "angle above {ori}"
-                );
-                bounded += 1;
-            }
-        }
-        assert!(
-            checked > 5000 && bounded > 500,
-            "{checked} remainders, {bounded} moves checked"
-        );
-    }
-
-    /// The vertex value bounds both errors at every point of its box.
-    /// The halves of a box hold its share of the workspace between them; a coordinate in which
-    /// the workspace is a point counts whole.
-    #[test]
-    fn halves_share_their_parents_volume() {
-        let domain: PoseBox = [
-            Interval::new(-1.0, 1.0),
-            Interval::new(0.0, 4.0),
-            Interval::new(59.0, 61.0),
-            Interval::new(-0.1, 0.1),
-            Interval::new(-0.1, 0.1),
-            Interval::ZERO,
-        ];
-        assert_eq!(share_of(&domain, &domain), 1.0);
-        let (l, r) = split_widest(&domain, &domain).expect("splits");
-        assert_eq!(share_of(&l, &domain) + share_of(&r, &domain), 1.0);
-        let (ll, lr) = split_widest(&l, &domain).expect("splits");
-        assert_eq!(share_of(&ll, &domain), 0.25);
-        assert_eq!(share_of(&lr, &domain), 0.25);
-    }
-
-    #[test]
-    fn the_vertex_value_bounds_the_errors_inside_its_box() {
-        let mut rng = StdRng::seed_from_u64(6);
-        for _ in 0..20 {
-            let problem = problem(&mut rng);
-            let x = sub_box(&problem.domain(), 0.05, &mut rng);
-            let chart = Chart::new(&problem, &x, 0.0).expect("a chart");
-            let h = chart.bound.map(|u| Interval::new(-2.0 * u, 2.0 * u));
-            let y = sub_box(&h, 0.0, &mut rng);
-            let [pos, ori] = chart.vertex_value(&y, &[Interval::ZERO; 6]);
-            for _ in 0..200 {
-                let v: [f64; 6] = core::array::from_fn(|c| point_in(&y[c], &mut rng));
-                let d: [f64; 6] =
-                    core::array::from_fn(|r| (0..6).map(|c| chart.m[r][c].inf() * v[c]).sum());
-                let p = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                let w = (d[3] * d[3] + d[4] * d[4] + d[5] * d[5]).sqrt();
-                assert!(p <= pos, "|d| = {p} above {pos}");
-                assert!(2.0 * w.atan().to_degrees() <= ori, "angle above {ori}");
-            }
-        }
     }
 }

@@ -49,17 +49,17 @@ const SHRINK_ROUNDS: usize = 3;
 const ERROR_MARGIN: f64 = 1e-12;
 
 /// The chart of one box of poses.
-pub(super) struct PoseChart {
+pub struct PoseChart {
     /// `M(X)`.
-    pub(super) m: [[Form; 6]; 6],
+    pub m: [[Form; 6]; 6],
     /// `U_i`, rounded up.
-    pub(super) bound: [f64; 6],
+    pub bound: [f64; 6],
     /// Per leg, the box of poses as forms and the geometry's box (without correlation).
     inputs: Vec<[Form; 12]>,
 }
 
 /// `a + b` rounded up (`+∞` when either is not finite).
-pub(super) fn add_up(a: f64, b: f64) -> f64 {
+pub fn add_up(a: f64, b: f64) -> f64 {
     if a.is_finite() && b.is_finite() {
         (Interval::point(a) + Interval::point(b)).sup()
     } else {
@@ -68,7 +68,7 @@ pub(super) fn add_up(a: f64, b: f64) -> f64 {
 }
 
 /// `a · b` rounded up, for `a, b >= 0` (`+∞` when either is not finite).
-pub(super) fn mul_up(a: f64, b: f64) -> f64 {
+pub fn mul_up(a: f64, b: f64) -> f64 {
     if a.is_finite() && b.is_finite() {
         (Interval::point(a) * Interval::point(b)).sup()
     } else {
@@ -79,7 +79,7 @@ pub(super) fn mul_up(a: f64, b: f64) -> f64 {
 impl PoseChart {
     /// The chart of the box of poses `x` with actuator errors `± eps`; `None` when `J_c` is
     /// singular, `M(X)` is not proved nonsingular over the box, or a leg's bound is not finite.
-    pub(super) fn new(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> Option<PoseChart> {
+    pub fn new(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> Option<PoseChart> {
         if problem.legs() != 6 {
             return None;
         }
@@ -120,7 +120,7 @@ impl PoseChart {
     }
 
     /// `ρ_i` over `|y_c| <= h_c` (module documentation); `+∞` where an enclosure failed.
-    pub(super) fn remainder(&self, h: &[f64; 6]) -> [f64; 6] {
+    pub fn remainder(&self, h: &[f64; 6]) -> [f64; 6] {
         // The segment's points ξ = M(X) (τ y), τ y in the box [-h, h]: noise symbols 6..12
         // for τ y, so that ξ keeps the parallelepiped's shape (its box would not).
         let ty: [Form; 6] =
@@ -142,7 +142,7 @@ impl PoseChart {
 
     /// Upper bounds of the position (cm) and orientation (degrees) errors over every pose of the
     /// box, every geometry and every actuator error, or `None` when no region closes.
-    pub(super) fn bound(&self) -> Option<[f64; 2]> {
+    pub fn bound(&self) -> Option<[f64; 2]> {
         let u = self.bound;
         let (mut h, mut rest) = FACTORS.iter().find_map(|f| {
             let r = u.map(|v| f * v);

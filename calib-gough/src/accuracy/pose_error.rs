@@ -159,7 +159,7 @@ impl FirstOrder {
 }
 
 /// The concrete instance of a sign pattern at a pose: per leg the geometry and actuator error.
-fn pattern_instance(
+pub fn pattern_instance(
     problem: &AccuracyProblem,
     x: &PoseVector,
     pattern: u32,
@@ -176,8 +176,8 @@ fn pattern_instance(
 }
 
 /// The error of `kind` of a sign pattern at `x`, from the floating-point forward kinematics (0
-/// where Newton fails): the score of [`search`]'s second climb.
-fn exact_size(
+/// where Newton fails): the score of `search`'s second climb.
+pub fn exact_size(
     problem: &AccuracyProblem,
     x: &PoseVector,
     pattern: u32,
@@ -530,57 +530,4 @@ pub fn pose_errors(
     errors.seconds += bounds.seconds;
     errors.bounds = Some(bounds);
     errors
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::workspace::Workspace;
-    use rand::rngs::StdRng;
-
-    /// The floating-point move that scores the search's second climb is the reached pose the
-    /// instance's proof encloses (the same solution, followed from the commanded pose), at random
-    /// poses and sign patterns of a robot whose moves are centimetres.
-    #[test]
-    fn the_search_score_is_the_proved_reached_move() {
-        let spec = crate::accuracy::centimetre_robot();
-        let workspace = Workspace {
-            x: [-2.0, 2.0],
-            y: [-2.0, 2.0],
-            z: [58.0, 62.0],
-            tilt_deg: 5.0,
-            stroke: None,
-        };
-        let problem = AccuracyProblem::new(&spec, &workspace);
-        let domain = problem.domain();
-        let eps = 0.0005;
-        let mut rng = StdRng::seed_from_u64(4);
-        let mut checked = 0;
-        while checked < 20 {
-            let x: PoseVector =
-                core::array::from_fn(|k| rng.random_range(domain[k].inf()..=domain[k].sup()));
-            if !problem.proved_feasible(&x) {
-                continue;
-            }
-            let pattern = rng.random_range(0..64u32);
-            let (theta, actuator) = pattern_instance(&problem, &x, pattern, eps);
-            let Some(proved) = prove_instance(&problem, &x, theta, actuator) else {
-                continue;
-            };
-            checked += 1;
-            for (kind, value) in [
-                (PoseErrorKind::Position, proved.position),
-                (PoseErrorKind::Orientation, proved.orientation_deg),
-            ] {
-                let mut score = exact_size(&problem, &x, pattern, eps, kind);
-                if kind == PoseErrorKind::Orientation {
-                    score = score.to_degrees();
-                }
-                assert!(
-                    (score - value).abs() <= 1e-6 * (1.0 + value),
-                    "{kind:?}: score {score}, proved {value}"
-                );
-            }
-        }
-    }
 }

@@ -1,0 +1,14 @@
+//! Every integration test of this package, one module per file, linked into one binary: each
+//! test binary links (and monomorphises the kernel for) its models anew, so one binary instead
+//! of one per file keeps `cargo test --workspace` within its budget, and lets the tests of
+//! every file share the cores.
+
+mod support;
+
+mod accuracy;
+mod certificate;
+mod cli;
+mod design;
+mod pose_error;
+mod predict;
+mod unit;

@@ -1,0 +1,16 @@
+//! Every integration test of this package, one module per file, linked into one binary: each
+//! test binary links (and monomorphises the kernel for) its models anew, so one binary instead
+//! of one per file keeps `cargo test --workspace` within its budget, and lets the tests of
+//! every file share the cores.
+
+#[path = "../calib-core/tests/support/mod.rs"]
+mod core_support;
+mod support;
+
+mod certified_set;
+mod gough_leg_model;
+mod hull;
+mod kernel_soundness;
+mod lying_lp;
+mod outliers;
+mod parsers;
