@@ -598,6 +598,8 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
             "2",
             "--max-set-boxes",
             "150",
+            "--map-cells",
+            "2",
         ],
     );
     let stdout = String::from_utf8_lossy(&out.stdout);
@@ -670,11 +672,17 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
         "2",
         "--max-set-boxes",
         "300",
+        // The error map's cost grows as the square of its cells per side (default 6).
+        "--map-cells",
+        "2",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let page = std::fs::read_to_string(dir.join("accuracy.html")).unwrap();
     let svg = &page[page.find("<svg").unwrap()..page.find("</svg>").unwrap() + 6];
     roxmltree::Document::parse(svg).expect("a well-formed map");
+    // 2 × 2 cells in each of 3 slabs (and a few rectangles of frame and legend), not 6 × 6.
+    let rects = svg.matches("<rect").count();
+    assert!((12..27).contains(&rects), "{rects} rectangles in the map");
     assert!(page.contains("SHA-256") && page.contains("improvement"));
     let j: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();

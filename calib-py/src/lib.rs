@@ -759,6 +759,7 @@ fn accuracy(
         max_boxes,
         max_set_boxes,
         pose_seconds,
+        ..AccuracySettings::default()
     };
     let report = py.detach(|| {
         accuracy_report(

@@ -137,6 +137,9 @@ pub struct AccuracySettings {
     /// Stop the platform pose errors' upper bounds after about this many seconds per robot
     /// (default 30; [`PoseBoundSettings::max_seconds`]): the bounds stay valid, only less tight.
     pub pose_seconds: f64,
+    /// Cells per side of the certificate's error map over `x`–`y` (default [`MAP_CELLS`]; each
+    /// cell, in each of [`MAP_SLABS`] slabs of heights, is a short branch and bound per leg).
+    pub map_cells: usize,
 }
 
 impl Default for AccuracySettings {
@@ -146,6 +149,7 @@ impl Default for AccuracySettings {
             max_boxes: 300_000,
             max_set_boxes: 1000,
             pose_seconds: PoseBoundSettings::default().max_seconds,
+            map_cells: MAP_CELLS,
         }
     }
 }
@@ -209,7 +213,7 @@ pub fn accuracy_report(
         after: assess(after),
         before: before.map(assess),
         actuator,
-        map: map.then(|| error_map(after, MAP_CELLS, MAP_SLABS)),
+        map: map.then(|| error_map(after, settings.map_cells, MAP_SLABS)),
         over_set: (0..after.legs()).map(|i| after.over_set(i)).collect(),
     }
 }
@@ -787,7 +791,7 @@ const MAP_BOXES: usize = 400;
 /// Boxes per leg and cell of the error map, a leg over its set (each costs milliseconds).
 const MAP_SET_BOXES: usize = 12;
 
-/// The error map of the certificates: cells per side of the `x`–`y` grid.
+/// The error map of the certificates: cells per side of the `x`–`y` grid, by default.
 pub const MAP_CELLS: usize = 6;
 /// The error map of the certificates: slabs of heights.
 pub const MAP_SLABS: usize = 3;

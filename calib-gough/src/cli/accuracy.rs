@@ -44,6 +44,12 @@ pub struct Args {
     /// many seconds per robot: they stay proved, only less tight (the output says so).
     #[arg(long, value_name = "S", default_value_t = AccuracySettings::default().pose_seconds)]
     pose_seconds: f64,
+    /// With --report: cells per side of the certificate's map of where the error is large (x–y,
+    /// in 3 slabs of heights; each cell is a short proof per leg, so the map's cost grows as the
+    /// square).
+    #[arg(long, value_name = "N", default_value_t = AccuracySettings::default().map_cells,
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=40))]
+    map_cells: usize,
     /// Write the brackets, worst instances and improvement as JSON (schema version 1).
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
@@ -84,6 +90,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         max_boxes: a.max_boxes,
         max_set_boxes: a.max_set_boxes,
         pose_seconds: checked_pose_seconds(a.pose_seconds)?,
+        map_cells: a.map_cells,
     };
     if sets.iter().all(Option::is_none) {
         println!(

@@ -92,6 +92,12 @@ pub struct Args {
     /// (see `gough accuracy --max-set-boxes`).
     #[arg(long, value_name = "N", default_value_t = AccuracySettings::default().max_set_boxes)]
     max_set_boxes: usize,
+    /// With --workspace and --report: cells per side of the certificate's map of where the error is large (x–y,
+    /// in 3 slabs of heights; each cell is a short proof per leg, so the map's cost grows as the
+    /// square).
+    #[arg(long, value_name = "N", default_value_t = AccuracySettings::default().map_cells,
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=40))]
+    map_cells: usize,
     /// Write one SVG per leg into this folder: x0, x1, x2, the outer and the inner box in the
     /// projections (ax, ay), (bx, by) and (az, l).
     #[arg(long, value_name = "DIR")]
@@ -270,6 +276,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                     &AccuracySettings {
                         pose_seconds,
                         max_set_boxes: a.max_set_boxes,
+                        map_cells: a.map_cells,
                         ..AccuracySettings::default()
                     },
                     a.report.is_some(),
