@@ -36,7 +36,8 @@ fn norm(e: [f64; 3]) -> f64 {
 #[test]
 fn the_upper_bound_holds_and_the_worst_instance_is_rechecked() {
     let mut rng = StdRng::seed_from_u64(11);
-    for case in 0..5 {
+    // One random arm and joint space per joint error: none, 0.001° and 0.01°.
+    for case in 0..3 {
         let arm = builtin_arm().with_radii_scaled(rng.random_range(0.05..1.5));
         let ranges_deg: Vec<[f64; 2]> = (0..arm.joints.len())
             .map(|_| {

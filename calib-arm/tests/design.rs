@@ -7,6 +7,9 @@ use calib_arm::design::design_arm;
 use calib_arm::simulate::{Uncertainty, JOINT_LIMIT_DEG};
 use calib_pipeline::design::Criterion;
 
+/// Random candidate configurations the designs choose 12 from.
+const CANDIDATES: usize = 110;
+
 fn geometric_mean(w: &[f64]) -> f64 {
     (w.iter().map(|v| v.ln()).sum::<f64>() / w.len() as f64).exp()
 }
@@ -16,13 +19,21 @@ fn designed_configurations_beat_random_ones_to_first_order() {
     let arm = calib_arm::builtin_arm();
     let prior = arm.radius();
     // The D-optimal design once: checked on its own, and as the certified criterion's fallback.
-    let d_optimal =
-        design_arm(&arm, &Uncertainty::TRACKER, 12, 150, Criterion::DOptimal, 3).unwrap();
+    let d_optimal = design_arm(
+        &arm,
+        &Uncertainty::TRACKER,
+        12,
+        CANDIDATES,
+        Criterion::DOptimal,
+        3,
+    )
+    .unwrap();
     for criterion in [Criterion::Certified, Criterion::DOptimal] {
         let certified;
         let d = match criterion {
             Criterion::Certified => {
-                certified = design_arm(&arm, &Uncertainty::TRACKER, 12, 150, criterion, 3).unwrap();
+                certified =
+                    design_arm(&arm, &Uncertainty::TRACKER, 12, CANDIDATES, criterion, 3).unwrap();
                 &certified
             }
             Criterion::DOptimal => &d_optimal,

@@ -26,6 +26,8 @@ pub mod verdict;
 pub use error::{line_at, read_text, toml_error, DataError, MAX_MAGNITUDE};
 pub use outcome::{certify_model, is_fixed, Depth, ModelCertification, Outcome};
 pub use outlier_budget::{smallest_consistent, OutlierBudget};
+#[doc(hidden)] // for the package's tests (tests/unit)
+pub use output::is_closed_output;
 pub use output::{
     check_hull_options, exit_quietly_when_output_closes, main_with, write_atomically,
     CLOSED_OUTPUT_STATUS,

@@ -76,53 +76,7 @@ pub fn check_hull_options(tolerance: f64, max_seconds: Option<f64>) -> Result<()
 }
 
 /// Whether a panic message is the standard library's for writing to a closed stdout or stderr.
-fn is_closed_output(message: &str) -> bool {
+#[doc(hidden)]
+pub fn is_closed_output(message: &str) -> bool {
     message.starts_with("failed printing to std") && message.contains("Broken pipe")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn only_closed_output_panics_are_recognised() {
-        assert!(is_closed_output(
-            "failed printing to stdout: Broken pipe (os error 32)"
-        ));
-        assert!(!is_closed_output(
-            "failed printing to stdout: No space left on device"
-        ));
-        assert!(!is_closed_output("index out of bounds: Broken pipe"));
-    }
-
-    #[test]
-    fn hull_options_are_checked_by_name() {
-        assert!(check_hull_options(0.05, None).is_ok());
-        assert!(check_hull_options(0.05, Some(10.0)).is_ok());
-        for tol in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-            assert!(check_hull_options(tol, None)
-                .unwrap_err()
-                .starts_with("--tolerance"));
-        }
-        for s in [0.0, -2.0, f64::NAN] {
-            assert!(check_hull_options(0.05, Some(s))
-                .unwrap_err()
-                .starts_with("--max-seconds"));
-        }
-    }
-
-    #[test]
-    fn writes_whole_files_and_leaves_no_temporary_behind() {
-        let dir = std::env::temp_dir().join(format!("calib-pipeline-out-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("report.json");
-        write_atomically(&path, "one").unwrap();
-        write_atomically(&path, "two").unwrap();
-        assert_eq!(std::fs::read_to_string(&path).unwrap(), "two");
-        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
-        assert_eq!(names.len(), 1, "a temporary file was left behind");
-        // A directory that does not exist: an error, and nothing written.
-        assert!(write_atomically(&dir.join("missing/report.json"), "x").is_err());
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
 }

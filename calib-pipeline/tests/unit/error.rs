@@ -1,0 +1,30 @@
+//! The tests of `calib_pipeline::error`.
+
+use calib_pipeline::*;
+use std::path::Path;
+
+#[test]
+fn errors_name_file_line_and_field() {
+    let e = DataError::new(Path::new("robot.toml"), Some(4), Some("joint[2].d"), "bad");
+    assert_eq!(e.to_string(), "robot.toml, line 4, field `joint[2].d`: bad");
+    let e = DataError::new(Path::new("a.csv"), None, None, "empty");
+    assert_eq!(e.to_string(), "a.csv: empty");
+}
+
+#[test]
+fn offsets_at_a_line_start_are_on_that_line() {
+    let text = "a = 1\nb = 2\n";
+    assert_eq!(line_at(text, 0), 1);
+    assert_eq!(line_at(text, 5), 1);
+    assert_eq!(line_at(text, 6), 2);
+    assert_eq!(line_at(text, 99), 3);
+}
+
+#[test]
+fn toml_errors_point_at_the_line() {
+    let text = "a = 1\nb = [1,\nc = ";
+    let err = toml::from_str::<toml::Value>(text).unwrap_err();
+    let e = toml_error(Path::new("x.toml"), text, &err, "expected numbers");
+    assert!(e.line.is_some_and(|l| l >= 2), "{e}");
+    assert!(e.message.ends_with("expected numbers"));
+}

@@ -1,0 +1,82 @@
+//! The tests of `calib_pipeline::verdict`.
+
+use calib_core::{EmptinessProof, Interval, Status};
+use calib_pipeline::verdict::*;
+
+#[test]
+fn factors_below_one_are_not_improvements() {
+    assert!(
+        improvement("the error", 23.9).starts_with("calibration reduced the error at least 23.90")
+    );
+    let none = improvement("the error", 0.99);
+    assert!(
+        none.starts_with("no improvement of the error is proved"),
+        "{none}"
+    );
+}
+
+#[test]
+fn auto_outliers_say_what_was_proved() {
+    assert!(auto_outliers(0, Status::Consistent).contains("no outlier needed"));
+    assert!(auto_outliers(1, Status::Consistent).contains("with every configuration kept"));
+    let undecided = auto_outliers(3, Status::Undecided);
+    assert!(undecided.contains("undecided with 3") && undecided.contains("2 or fewer"));
+    assert!(!auto_outliers(0, Status::Undecided).contains("no outlier needed"));
+    assert!(auto_outliers(3, Status::Consistent).contains("with 2 or fewer tolerated"));
+    assert!(auto_outliers(4, Status::Empty).contains("empty even with 4"));
+}
+
+#[test]
+fn configurations_are_named_by_number_and_line() {
+    let lines = [2, 3, 5, 6];
+    let n = ConfigurationNames {
+        file: "m.csv",
+        lines: &lines,
+    };
+    assert_eq!(n.name(&[2]), "configuration 3 (m.csv line 5)");
+    assert_eq!(n.name(&[0, 3]), "configurations 1, 4 (m.csv lines 2, 6)");
+    assert_eq!(n.name(&[9]), "configuration 10 (m.csv line ?)");
+}
+
+#[test]
+fn only_vectors_inside_x0_are_refuted() {
+    let x0 = [Interval::new(-1.0, 1.0); 7];
+    let outer = [Interval::new(-0.5, 0.5); 7];
+    let mut x = [0.0; 7];
+    assert_eq!(standing(&x0, Some(&outer), &x), Standing::Inside);
+    assert_eq!(standing(&x0, None, &x), Standing::Refuted(vec![]));
+    x[6] = 0.75;
+    assert_eq!(standing(&x0, Some(&outer), &x), Standing::Refuted(vec![6]));
+    x[2] = 3.0;
+    assert_eq!(standing(&x0, Some(&outer), &x), Standing::BeyondX0(vec![2]));
+    assert_eq!(standing(&x0, None, &x), Standing::BeyondX0(vec![2]));
+}
+
+#[test]
+fn every_proof_has_words() {
+    let names: Vec<String> = (0..7).map(|j| format!("p{j}")).collect();
+    for p in [
+        Some(EmptinessProof::CheapRejection { measurement: 4 }),
+        Some(EmptinessProof::LpInfeasible),
+        Some(EmptinessProof::EmptyIntersection { parameter: 6 }),
+        Some(EmptinessProof::Subdivision),
+        Some(EmptinessProof::EverySubset),
+        None,
+    ] {
+        let words = proof_in_words(p, &names);
+        assert!(
+            !words.contains("Rejection") && !words.contains("Lp"),
+            "{words}"
+        );
+    }
+    assert!(proof_in_words(
+        Some(EmptinessProof::CheapRejection { measurement: 4 }),
+        &names
+    )
+    .contains("configuration 5"));
+    assert!(proof_in_words(
+        Some(EmptinessProof::EmptyIntersection { parameter: 6 }),
+        &names
+    )
+    .contains("p6"));
+}
