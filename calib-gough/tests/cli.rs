@@ -595,7 +595,7 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
             "--report",
             html.to_str().unwrap(),
             "--pose-seconds",
-            "2",
+            "1",
             "--max-set-boxes",
             "150",
             "--map-cells",
@@ -669,7 +669,7 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
         // The pose-error bounds' budget (per robot): their output, not their tightness, is
         // checked here.
         "--pose-seconds",
-        "2",
+        "1",
         "--max-set-boxes",
         "300",
         // The error map's cost grows as the square of its cells per side (default 6).
@@ -723,7 +723,7 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
     assert!(page.contains("Platform pose error"));
     assert!(String::from_utf8_lossy(&o.stdout).contains("platform pose error"));
     // No upper bound claimed: the page and the text say where and why it was not proved (the
-    // budget of 5 s ending first here, with the share of the workspace settled).
+    // budget of 1 s per robot ending first here, with the share of the workspace settled).
     if j["position"]["upper"].is_null() {
         let why = &j["position"]["upper_unproved"];
         let settled = why["settled_share"].as_f64().unwrap();
