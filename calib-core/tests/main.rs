@@ -9,7 +9,6 @@ mod support;
 pub mod certified_set;
 pub mod custom_models;
 mod interval_ops;
-mod macro_errors;
 mod maximum;
 pub mod small_models;
 pub mod vector_models;

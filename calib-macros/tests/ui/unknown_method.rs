@@ -1,4 +1,4 @@
-use calib_core::{interval_model, Scalar};
+use calib_macros::interval_model; trait Scalar: Sized { fn sqr(self) -> Self; }
 
 #[interval_model]
 fn expo<S: Scalar>(x: &[S; 1], m: &[S; 1]) -> S {

@@ -1,4 +1,4 @@
-use calib_core::{interval_model, Scalar};
+use calib_macros::interval_model; trait Scalar: Sized { fn sqr(self) -> Self; }
 
 fn helper<S: Scalar>(a: S) -> S {
     a.sqr()
