@@ -24,6 +24,55 @@ struct RobotFile {
     base: BaseEntry,
     tool: ToolEntry,
     certified_set: Option<StoredSet>,
+    least_squares: Option<LeastSquaresEntry>,
+}
+
+/// `arm lsq --out`'s mark: whether the fit was proved consistent with the measurements.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LeastSquaresEntry {
+    proved_consistent: Spanned<bool>,
+}
+
+/// The `[least_squares]` table `arm lsq --out` ends its robot file with: `proved_consistent`
+/// says whether its parameter vector was proved to fit every measurement within the error bounds
+/// (`--uncertainty`). A file marked `false` is a comparison, which [`read_exportable_robot`]
+/// refuses to hand on as a calibration.
+pub fn least_squares_mark(proved_consistent: bool) -> String {
+    format!(
+        "\n# a least-squares fit: {} consistent with the measurements within their error bounds\n\
+         [least_squares]\nproved_consistent = {proved_consistent}\n",
+        if proved_consistent {
+            "proved"
+        } else {
+            "NOT proved"
+        }
+    )
+}
+
+/// Reads a robot file to hand on to a controller (`arm export`): as [`read_robot`], but refuses
+/// `arm lsq --out`'s fits that are not proved consistent with their measurements
+/// (`[least_squares] proved_consistent = false`, see [`least_squares_mark`]): every parameter
+/// vector certicalib hands out is either a proved one or the user's own (nominal, imported,
+/// registered).
+pub fn read_exportable_robot(file: &Path) -> Result<Arm, DataError> {
+    let text = read_text(file)?;
+    let arm = parse_robot(file, &text)?;
+    let parsed: RobotFile =
+        toml::from_str(&text).map_err(|e| toml_error(file, &text, &e, ROBOT_FORMAT))?;
+    if let Some(mark) = parsed.least_squares {
+        if !*mark.proved_consistent.get_ref() {
+            return Err(DataError::new(
+                file,
+                Some(line_at(&text, mark.proved_consistent.span().start)),
+                Some("least_squares.proved_consistent"),
+                "this least-squares fit is not proved consistent with the measurements: a \
+                 comparison, not a calibration to load into a controller; export what `arm \
+                 certify --write-calibrated` writes (proved to fit every measurement)",
+            ));
+        }
+    }
+    Ok(arm)
 }
 
 #[derive(Deserialize)]

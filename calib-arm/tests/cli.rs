@@ -237,38 +237,26 @@ fn least_squares_runs_on_the_files() {
     let dir = tempdir("lsq");
     simulated(&dir, 12, &[]);
     let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
-    let o = arm(&[
-        "lsq",
-        "--robot",
-        &p("robot.toml"),
-        "--measurements",
-        &p("measurements.csv"),
-    ]);
+    let (robot, measurements) = (p("robot.toml"), p("measurements.csv"));
+    let lsq = |extra: &[&str]| {
+        let mut args = vec!["lsq", "--robot", &robot, "--measurements", &measurements];
+        args.extend_from_slice(extra);
+        arm(&args)
+    };
+    let o = lsq(&[]);
     assert!(o.status.success(), "{}", text(&o));
     assert!(text(&o).contains("residuals: rms"), "{}", text(&o));
     // Checked against error bounds: proved consistent with generous bounds, not with bounds far
     // below the noise; the verdict is printed, in the JSON and in the written file's header.
     for (pos, proved) in [(5.0, true), (1e-4, false)] {
         std::fs::write(p("u.toml"), format!("joint_deg = 0.001\npos = {pos}\n")).expect("write");
-        let o = arm(&[
-            "lsq",
-            "--robot",
-            &p("robot.toml"),
-            "--measurements",
-            &p("measurements.csv"),
-            "--uncertainty",
-            &p("u.toml"),
-            "--json",
-            &p("lsq.json"),
-            "--out",
-            &p("lsq.toml"),
-        ]);
+        let (u, json, out) = (p("u.toml"), p("lsq.json"), p("lsq.toml"));
+        let o = lsq(&["--uncertainty", &u, "--json", &json, "--out", &out]);
         assert!(o.status.success(), "{}", text(&o));
         let json: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(p("lsq.json")).expect("json"))
-                .expect("json");
+            serde_json::from_str(&std::fs::read_to_string(&json).expect("json")).expect("json");
         assert_eq!(json["consistent"], proved, "pos {pos}: {}", text(&o));
-        let header = std::fs::read_to_string(p("lsq.toml")).expect("toml");
+        let header = std::fs::read_to_string(&out).expect("toml");
         let says = if proved {
             "# proved consistent"
         } else {
@@ -276,9 +264,9 @@ fn least_squares_runs_on_the_files() {
         };
         assert!(header.contains(says), "{header}");
         // The written file is the fit: checked again from the file, the same verdict.
-        let fitted = calib_arm::files::read_robot(Path::new(&p("lsq.toml"))).expect("robot");
-        let data = calib_arm::files::read_measurements(Path::new(&p("measurements.csv")), 3)
-            .expect("measurements");
+        let fitted = calib_arm::files::read_robot(Path::new(&out)).expect("robot");
+        let data =
+            calib_arm::files::read_measurements(Path::new(&measurements), 3).expect("measurements");
         let u = calib_arm::simulate::Uncertainty {
             joint_deg: 0.001,
             pos,
@@ -287,6 +275,36 @@ fn least_squares_runs_on_the_files() {
             calib_arm::certification::is_consistent_arm(&fitted, &data.readings, &u),
             proved
         );
+        // Only a proved fit is handed on to a controller: the other is refused, naming the file,
+        // its line and the field, and nothing is written. (This 3-joint arm has no vendor chain
+        // either: the library call tells the two refusals apart.)
+        assert_eq!(
+            calib_arm::files::read_exportable_robot(Path::new(&out)).is_ok(),
+            proved
+        );
+        let urdf = p("lsq.urdf");
+        let o = arm(&["export", "--robot", &out, "--urdf", &urdf]);
+        assert!(!Path::new(&urdf).exists());
+        assert_eq!(
+            text(&o).contains("least_squares.proved_consistent"),
+            !proved,
+            "{}",
+            text(&o)
+        );
+        if !proved {
+            let line = header
+                .lines()
+                .position(|l| l.starts_with("proved_consistent = false"))
+                .expect("the mark")
+                + 1;
+            let err = text(&o);
+            assert!(
+                err.contains(&format!("lsq.toml, line {line}"))
+                    && err.contains("least_squares.proved_consistent")
+                    && err.contains("arm certify --write-calibrated"),
+                "{err}"
+            );
+        }
     }
 }
 

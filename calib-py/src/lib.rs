@@ -458,7 +458,7 @@ fn arm_export(
     urdf: Option<PathBuf>,
     hash: Option<String>,
 ) -> PyResult<()> {
-    let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
+    let arm = calib_arm::files::read_exportable_robot(&robot).map_err(value_error)?;
     let chain = calib_arm::vendor::arm_to_chain(&arm)
         .map_err(|e| value_error(format!("{}: {e}", robot.display())))?;
     let source = format!("exported by certicalib from {}", robot.display());

@@ -58,3 +58,10 @@ def test_mistakes_raise_value_errors_naming_the_file(tmp_path):
         certicalib.import_arm(DATA / "ur10_default_kinematics.yaml", tmp_path / "y.toml",
                               kind="dh")
     assert not (tmp_path / "x.toml").exists() and not (tmp_path / "y.toml").exists()
+    # A least-squares fit that `arm lsq --out` marks as not proved consistent is no calibration.
+    fit = tmp_path / "lsq.toml"
+    fit.write_text(nominal.read_text() + "\n[least_squares]\nproved_consistent = false\n")
+    with pytest.raises(ValueError, match=r"lsq.toml, line \d+.*least_squares.proved_consistent"):
+        certicalib.export_arm(fit, ur_yaml=tmp_path / "fit.yaml")
+    assert not (tmp_path / "fit.yaml").exists()
+    certicalib.export_arm(nominal, ur_yaml=tmp_path / "nominal.yaml")

@@ -1,6 +1,6 @@
 //! `arm export`.
 
-use calib_arm::files::read_robot;
+use calib_arm::files::read_exportable_robot;
 use calib_arm::vendor::{arm_to_chain, ur_yaml, urdf};
 use calib_pipeline::write_atomically;
 use std::path::PathBuf;
@@ -8,7 +8,8 @@ use std::path::PathBuf;
 #[derive(clap::Args, Debug)]
 #[command(group = clap::ArgGroup::new("target").required(true).multiple(true))]
 pub struct Args {
-    /// The robot file to export (e.g. `arm certify --write-calibrated`'s).
+    /// The robot file to export (e.g. `arm certify --write-calibrated`'s). A least-squares fit
+    /// (`arm lsq --out`) is refused unless it was proved consistent with its measurements.
     #[arg(long, value_name = "FILE")]
     robot: PathBuf,
     /// Write UR's kinematics YAML (6 joints; the layout the UR driver loads).
@@ -25,7 +26,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
-    let arm = read_robot(&a.robot)?;
+    let arm = read_exportable_robot(&a.robot)?;
     let chain = arm_to_chain(&arm).map_err(|e| format!("{}: {e}", a.robot.display()))?;
     let source = format!(
         "exported by certicalib {} from {}",

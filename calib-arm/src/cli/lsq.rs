@@ -15,8 +15,9 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
     /// Write a robot file with the fitted values (priors as in --robot): e.g. to compare its
-    /// predictions on held-out data with `arm predict`. Its header says whether the fit was
-    /// proved consistent with the measurements (--uncertainty) or not.
+    /// predictions on held-out data with `arm predict`. Its header and its `[least_squares]`
+    /// table say whether the fit was proved consistent with the measurements (--uncertainty) or
+    /// not; `arm export` refuses a fit that was not.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
     /// Check the fit against these error bounds (uncertainty.toml): is it proved consistent with
@@ -154,11 +155,12 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             _ => "not checked against error bounds, not certified: a comparison".to_string(),
         };
         let text = format!(
-            "# least-squares fit by certicalib {} of {} to {}\n# {status}\n{}",
+            "# least-squares fit by certicalib {} of {} to {}\n# {status}\n{}{}",
             env!("CARGO_PKG_VERSION"),
             a.files.robot.display(),
             a.files.measurements.display(),
-            calib_arm::write::robot_toml(&fitted)
+            calib_arm::write::robot_toml(&fitted),
+            calib_arm::files::least_squares_mark(consistent == Some(true))
         );
         write_atomically(path, &text)
             .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;

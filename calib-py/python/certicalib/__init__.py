@@ -560,7 +560,9 @@ def import_arm(source: PathLike, out: PathLike, *, kind: str = "ur_yaml",
 def export_arm(robot: PathLike, *, ur_yaml: Optional[PathLike] = None,
                urdf: Optional[PathLike] = None, hash: Optional[str] = None) -> None:
     """Write the arm of ``robot`` as UR's kinematics YAML (``ur_yaml``, for the UR driver; its
-    ``hash`` is the file's own unless given) and/or a URDF, as ``arm export`` does."""
+    ``hash`` is the file's own unless given) and/or a URDF, as ``arm export`` does. A
+    least-squares fit (``arm lsq --out``) not proved consistent with its measurements raises
+    ``ValueError``: it is a comparison, not a calibration."""
     if ur_yaml is None and urdf is None:
         raise ValueError("export_arm: give ur_yaml, urdf or both")
     _native.arm_export(os.fspath(robot), None if ur_yaml is None else os.fspath(ur_yaml),
