@@ -81,9 +81,18 @@ fn fast_reports_the_papers_x1_as_the_outer_box() {
 fn error_scale_brackets_the_needed_bounds_and_certifies_there() {
     let dir = tempdir("error_scale");
     simulate(&dir, 8, &[]);
+    let html = dir.join("certificate.html");
     let out = certify(
         &dir,
-        &["--fast", "--error-scale", "auto", "--scale-margin", "1.05"],
+        &[
+            "--fast",
+            "--error-scale",
+            "auto",
+            "--scale-margin",
+            "1.05",
+            "--report",
+            html.to_str().unwrap(),
+        ],
     );
     assert_eq!(
         out.status.code(),
@@ -103,6 +112,14 @@ fn error_scale_brackets_the_needed_bounds_and_certifies_there() {
     assert!(legs.iter().all(|l| l["status"] == "consistent"), "{legs:?}");
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("proved too small") && stdout.contains("a margin of × 1.05"));
+    // The certificate states how its error bounds were found, in the same words.
+    let page = std::fs::read_to_string(&html).unwrap();
+    assert!(
+        page.contains("found by --error-scale auto")
+            && page.contains("proved too small")
+            && page.contains("a margin of × 1.05"),
+        "the certificate does not say how its bounds were found"
+    );
     let bad = certify(&dir, &["--error-scale", "auto", "--scale-margin", "0.5"]);
     assert_eq!(bad.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--scale-margin 0.5"));
