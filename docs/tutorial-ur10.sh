@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # The real-UR10 tutorial (docs/tutorial-ur10.md), every command as written there; CI runs it.
-# Usage: docs/tutorial-ur10.sh [ARM_BINARY] [WORK_DIR]
+# Usage: docs/tutorial-ur10.sh [ARM_BINARY] [WORK_DIR] [EXAMPLES_DIR]
+# With EXAMPLES_DIR (where cargo put calib-arm's examples, e.g. target/debug/examples), the two
+# studies at the end of the tutorial run too.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 arm="${1:-arm}"
 work="${2:-$(mktemp -d)}"
+examples="${3:-}"
 mkdir -p "$work"
 cd "$work"
 data="$here/data/ur10_ipa"
@@ -36,4 +39,15 @@ status=0
           --uncertainty held_out_bounds.toml
 # 6. The calibrated kinematics for the UR driver.
 "$arm" export --robot calibrated.toml --ur-yaml calibrated_kinematics.yaml --urdf calibrated.urdf
+# 7. The studies: gravity, and what the T-Mac's orientations add (what the tutorial runs with
+# `cargo run --release -p calib-arm --example …`).
+if [ -n "$examples" ]; then
+  "$examples/compliance_study" robot.toml "$series" 60
+  "$examples/orientation_study" robot.toml "$series" 60
+  # A least-squares fit not proved consistent is no calibration: export refuses it.
+  if "$arm" export --robot lsq.toml --ur-yaml lsq_kinematics.yaml 2>/dev/null; then
+    echo "arm export accepted a least-squares fit that is not proved consistent" >&2
+    exit 1
+  fi
+fi
 echo "tutorial done in $work"

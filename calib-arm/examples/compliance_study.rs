@@ -19,17 +19,18 @@
 //! (`robot.toml` from tutorial steps 1–2, `docs/tutorial-ur10.md`.) A measurement, not a feature:
 //! nothing here is certified except the consistency of the Chebyshev points.
 
+mod study;
+
 use calib_arm::certification::{padded_box, NM};
 use calib_arm::files::{read_robot, read_tracker_measurements};
 use calib_arm::model::tracked_point;
-use calib_arm::params::{self, Unit};
 use calib_arm::simulate::{measurement_box, Reading, Uncertainty};
-use calib_arm::tracker_file::{JointUnit, LengthUnit, MeasurementColumns};
 use calib_arm::vendor::link;
 use calib_arm::{Arm, Arm7Point};
 use calib_core::{is_consistent_point, smallest_scale, Interval};
-use nalgebra::{DMatrix, DVector, Point3, Vector3};
+use nalgebra::{Point3, Vector3};
 use std::path::Path;
+use study::{fit, rms, tracker_columns};
 
 /// UR10 link masses (kg) from UR's description (`ur_description`): shoulder, upper arm, forearm,
 /// wrist 1, 2, 3; and the tracker target at the tool point.
@@ -74,29 +75,6 @@ fn gravity_torques(arm: &Arm, q: &[f64]) -> [f64; 3] {
     })
 }
 
-/// The arm's parameters in model order and units (radians, mm), with which are free and their
-/// prior half-widths.
-fn model_parameters(arm: &Arm) -> (Vec<f64>, Vec<bool>, Vec<f64>) {
-    let units: Vec<Unit> = params::names(arm.joints.len())
-        .into_iter()
-        .map(|(_, u)| u)
-        .collect();
-    let conv = |u: &Unit, v: f64| if *u == Unit::Deg { v.to_radians() } else { v };
-    let x = arm
-        .nominal()
-        .iter()
-        .zip(&units)
-        .map(|(v, u)| conv(u, *v))
-        .collect();
-    let r = arm
-        .radius()
-        .iter()
-        .zip(&units)
-        .map(|(v, u)| conv(u, *v))
-        .collect();
-    (x, arm.free(), r)
-}
-
 /// Joint readings (radians) corrected by the deflections `c · τ`.
 fn deflected(q: &[f64], tau: &[f64; 3], c: &[f64]) -> Vec<f64> {
     let mut q = q.to_vec();
@@ -132,71 +110,6 @@ fn residuals(x: &[f64], c: &[f64], d: &Data) -> Vec<f64> {
         out.extend((0..3).map(|r| f[r] - p[r]));
     }
     out
-}
-
-fn rms(r: &[f64]) -> f64 {
-    (r.iter().map(|v| v * v).sum::<f64>() / r.len() as f64).sqrt()
-}
-
-/// Levenberg–Marquardt (finite differences, steps projected onto the prior box and kept only
-/// when they lower the sum of squares) over the free parameters within their prior box and, with
-/// `compliance`, the three unbounded coefficients.
-fn fit(arm: &Arm, d: &Data, compliance: bool) -> (Vec<f64>, Vec<f64>) {
-    let (mut x, free, radius) = model_parameters(arm);
-    let nominal = x.clone();
-    let mut c = vec![0.0; if compliance { 3 } else { 0 }];
-    let vars: Vec<usize> = (0..x.len()).filter(|&j| free[j]).collect();
-    let n = vars.len() + c.len();
-    let cost = |x: &[f64], c: &[f64]| residuals(x, c, d).iter().map(|v| v * v).sum::<f64>();
-    let mut damping = 1e-3;
-    for _ in 0..200 {
-        let r0 = DVector::from_vec(residuals(&x, &c, d));
-        let mut jac = DMatrix::zeros(r0.len(), n);
-        for k in 0..n {
-            let (mut xp, mut cp) = (x.clone(), c.clone());
-            let h = if k < vars.len() {
-                let h = 1e-6 * radius[vars[k]].max(1e-3);
-                xp[vars[k]] += h;
-                h
-            } else {
-                cp[k - vars.len()] += 1e-10;
-                1e-10
-            };
-            let rp = DVector::from_vec(residuals(&xp, &cp, d));
-            jac.set_column(k, &((rp - &r0) / h));
-        }
-        let normal = jac.transpose() * &jac;
-        let gradient = -(jac.transpose() * &r0);
-        let before = r0.norm_squared();
-        let mut improved = false;
-        for _ in 0..12 {
-            let mut damped = normal.clone();
-            for k in 0..n {
-                damped[(k, k)] += damping * normal[(k, k)].max(1e-12);
-            }
-            let Some(step) = damped.lu().solve(&gradient) else {
-                break;
-            };
-            let (mut xn, mut cn) = (x.clone(), c.clone());
-            for (k, &j) in vars.iter().enumerate() {
-                xn[j] = (x[j] + step[k]).clamp(nominal[j] - radius[j], nominal[j] + radius[j]);
-            }
-            for k in 0..c.len() {
-                cn[k] += step[vars.len() + k];
-            }
-            if cost(&xn, &cn) < before {
-                (x, c) = (xn, cn);
-                damping = (damping / 3.0).max(1e-9);
-                improved = true;
-                break;
-            }
-            damping *= 4.0;
-        }
-        if !improved {
-            break;
-        }
-    }
-    (x, c)
 }
 
 /// The Chebyshev estimate of the smallest consistent position bound (mm) with joint bounds
@@ -261,22 +174,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let calibrate: usize = calibrate.parse()?;
     let arm = read_robot(Path::new(robot))?;
-    let columns = MeasurementColumns {
-        joints: [
-            "shoulder_pan_joint",
-            "shoulder_lift_joint",
-            "elbow_joint",
-            "wrist_1_joint",
-            "wrist_2_joint",
-            "wrist_3_joint",
-        ]
-        .map(String::from)
-        .to_vec(),
-        point: ["measurement_x", "measurement_y", "measurement_z"].map(String::from),
-        joint_unit: JointUnit::Rad,
-        length_unit: LengthUnit::Mm,
-        rows: None,
-    };
+    let columns = tracker_columns(["measurement_x", "measurement_y", "measurement_z"]);
     let all = read_tracker_measurements(Path::new(measurements), 6, &columns)?.readings;
     let (cal, held) = all.split_at(calibrate.min(all.len()));
     let (dc, dh) = (data(&arm, cal), data(&arm, held));
@@ -286,7 +184,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         held.len()
     );
     for compliance in [false, true] {
-        let (x, c) = fit(&arm, &dc, compliance);
+        let extras = vec![0.0; if compliance { 3 } else { 0 }];
+        let (x, c) = fit(&arm, extras, 1e-10, |x, c| residuals(x, c, &dc));
         println!(
             "least squares in the prior box{}: calibration rms {:.4} mm, held-out rms {:.4} mm{}",
             if compliance { " + compliance" } else { "" },
