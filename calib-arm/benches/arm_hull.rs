@@ -5,6 +5,10 @@
 //! `benches/README.md`). And the error-scale search's first step: the Chebyshev fit of the
 //! built-in arm to 50 configurations (`calib_core::smallest_scale`, every bound scaled) and the
 //! certificate of its point (`calib_core::is_consistent_point`) just above the fit's factor.
+//! And the kernel's unit of work at real-arm size (issue 36's target: ≤ 30 ms): one Newton/LP
+//! step (`calib_core::contract` with one iteration, cold LP bases) of the built-in arm's prior
+//! against 50 configurations (27 free parameters, 150 residual rows), and the whole contraction
+//! to its fixed point (its number of steps printed once).
 //!
 //! `cargo bench -p calib-arm --bench arm_hull`.
 
@@ -12,7 +16,7 @@ use calib_arm::certification::{certify_arm, padded_box, RunOptions, NM};
 use calib_arm::error_scale::ScaleBounds;
 use calib_arm::simulate::{measurement_box, simulate, Uncertainty};
 use calib_arm::{builtin_arm, Arm, Arm7Point, Joint};
-use calib_core::{is_consistent_point, smallest_scale, Interval, Settings};
+use calib_core::{contract, is_consistent_point, smallest_scale, Interval, Settings, Workspace};
 use calib_pipeline::Depth;
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
@@ -89,6 +93,35 @@ fn bench(c: &mut Criterion) {
     g.bench_function("built-in witness check at 1.005 x the fit", |b| {
         b.iter(|| black_box(is_consistent_point(&Arm7Point, &e.point, &widened)))
     });
+    let one_step = Settings {
+        max_iterations: 1,
+        ..Settings::default()
+    };
+    g.bench_function("built-in one Newton/LP step, 50 configurations", |b| {
+        b.iter(|| {
+            let mut ws = Workspace::new(&one_step);
+            black_box(contract(&Arm7Point, &x0, &at_one, &one_step, &mut ws))
+        })
+    });
+    let settings = Settings::default();
+    let steps = contract(
+        &Arm7Point,
+        &x0,
+        &at_one,
+        &settings,
+        &mut Workspace::new(&settings),
+    )
+    .iterations;
+    eprintln!("the built-in arm's contraction to its fixed point takes {steps} Newton/LP steps");
+    g.bench_function(
+        "built-in contraction to the fixed point, 50 configurations",
+        |b| {
+            b.iter(|| {
+                let mut ws = Workspace::new(&settings);
+                black_box(contract(&Arm7Point, &x0, &at_one, &settings, &mut ws))
+            })
+        },
+    );
     g.finish();
 }
 

@@ -41,6 +41,11 @@ pub(super) struct ScaledSimplex {
     /// Per constraint, the primal ratio test's step and pivot (reused buffers).
     ratio: Vec<f64>,
     pivot: Vec<f64>,
+    /// Per constraint, the primal simplex's slack `b_k - a_k·y` at the current vertex and
+    /// `a_k·d` along the current edge: slacks follow the walk (`s_k -= t a_k·d`) instead of a
+    /// second product per row and pivot, and are recomputed at every refactorisation.
+    slack: Vec<f64>,
+    along: Vec<f64>,
     scaled: Scaled,
     /// The polyhedron generation of the last optimal solve (its basis can warm-start the next).
     warm: Option<u64>,
@@ -491,9 +496,13 @@ impl ScaledSimplex {
             return None;
         }
         self.b.vertex(&View { s: &self.scaled, p });
-        if (0..m + 2 * n)
-            .any(|k| !self.b.in_basis[k] && violation(&self.scaled, p, k, &self.b.y) > WARM_TOL)
-        {
+        let total = m + 2 * n;
+        self.slack.resize(total, 0.0);
+        self.along.resize(total, 0.0);
+        self.ratio.resize(total, f64::INFINITY);
+        self.pivot.resize(total, 0.0);
+        self.refresh_slacks(p);
+        if (0..total).any(|k| !self.b.in_basis[k] && -self.slack[k] > WARM_TOL) {
             return None;
         }
         let mut since_refactor = 0;
@@ -506,6 +515,7 @@ impl ScaledSimplex {
                 }
                 since_refactor = 0;
                 self.b.vertex(&View { s: &self.scaled, p });
+                self.refresh_slacks(p);
             }
             self.b.multipliers(&self.c);
             if degenerate > 2 * n {
@@ -537,18 +547,17 @@ impl ScaledSimplex {
             // Harris: the largest step direction among the ratios within tolerance of the
             // smallest (slacks relaxed by the tolerance), then the step to it. One pass computes
             // every `a_k·d` and slack; the second picks among them.
-            let total = m + 2 * n;
-            self.ratio.resize(total, f64::INFINITY);
-            self.pivot.resize(total, 0.0);
             let mut bound = f64::INFINITY;
             for k in 0..total {
                 self.ratio[k] = f64::INFINITY;
+                self.along[k] = 0.0;
                 if self.b.in_basis[k] {
                     continue;
                 }
                 let ad = along(&self.scaled, k, &self.b.a_w[..n]);
+                self.along[k] = ad;
                 if ad > PIVOT_TOL {
-                    let slack = (-violation(&self.scaled, p, k, &self.b.y)).max(0.0);
+                    let slack = self.slack[k].max(0.0);
                     self.ratio[k] = slack / ad;
                     self.pivot[k] = ad;
                     bound = bound.min((slack + HARRIS_TOL) / ad);
@@ -566,11 +575,18 @@ impl ScaledSimplex {
             for j in 0..n {
                 self.b.y[j] += step * self.b.a_w[j];
             }
+            for (s, ad) in self.slack.iter_mut().zip(&self.along) {
+                *s -= step * ad;
+            }
             constraint(&self.scaled, p, k, &mut self.b.a_k);
             self.b.transformed_row();
             if self.b.w[r].abs() < PIVOT_TOL {
                 return None;
             }
+            // The leaving constraint's slack, and the entering one's (now active).
+            let leaving = self.b.basis[r];
+            self.slack[leaving] = -violation(&self.scaled, p, leaving, &self.b.y);
+            self.slack[k] = 0.0;
             self.b.replace(r, k);
             since_refactor += 1;
         }
@@ -579,6 +595,13 @@ impl ScaledSimplex {
 }
 
 impl ScaledSimplex {
+    /// Every constraint's slack `b_k - a_k·y` at the current vertex `y` (scaled).
+    fn refresh_slacks(&mut self, p: &Polyhedron) {
+        for (k, s) in self.slack.iter_mut().enumerate() {
+            *s = -violation(&self.scaled, p, k, &self.b.y);
+        }
+    }
+
     /// Approximately solves `min c·y` over `p` (the contract of [`super::LpBackend::minimize`]).
     pub(super) fn minimize(
         &mut self,
