@@ -38,12 +38,13 @@ pub(super) struct ScaledSimplex {
     c: Vec<f64>,
     /// The objective in scaled coordinates, as given.
     c_true: Vec<f64>,
-    /// Per constraint, the primal ratio test's step and pivot (reused buffers).
+    /// Per constraint, the primal ratio test's step (reused buffer; infinite where the edge does
+    /// not approach the constraint).
     ratio: Vec<f64>,
-    pivot: Vec<f64>,
     /// Per constraint, the primal simplex's slack `b_k - a_k·y` at the current vertex and
-    /// `a_k·d` along the current edge: slacks follow the walk (`s_k -= t a_k·d`) instead of a
-    /// second product per row and pivot, and are recomputed at every refactorisation.
+    /// `a_k·d` along the current edge (the pivot of a finite ratio): slacks follow the walk
+    /// (`s_k -= t a_k·d`) instead of a second product per row and pivot, and are recomputed at
+    /// every refactorisation.
     slack: Vec<f64>,
     along: Vec<f64>,
     /// The edge direction over the live columns.
@@ -519,7 +520,6 @@ impl ScaledSimplex {
         self.slack.resize(total, 0.0);
         self.along.resize(total, 0.0);
         self.ratio.resize(total, f64::INFINITY);
-        self.pivot.resize(total, 0.0);
         self.refresh_slacks(p);
         if (0..total).any(|k| !self.b.in_basis[k] && -self.slack[k] > WARM_TOL) {
             return None;
@@ -585,14 +585,13 @@ impl ScaledSimplex {
                 if ad > PIVOT_TOL {
                     let slack = self.slack[k].max(0.0);
                     self.ratio[k] = slack / ad;
-                    self.pivot[k] = ad;
                     bound = bound.min((slack + HARRIS_TOL) / ad);
                 }
             }
             let mut enter: Option<(usize, f64, f64)> = None;
             for k in 0..total {
-                let (t, ad) = (self.ratio[k], self.pivot[k]);
-                if t <= bound && enter.is_none_or(|(_, _, best)| ad > best) {
+                let (t, ad) = (self.ratio[k], self.along[k]);
+                if t.is_finite() && t <= bound && enter.is_none_or(|(_, _, best)| ad > best) {
                     enter = Some((k, t, ad));
                 }
             }
