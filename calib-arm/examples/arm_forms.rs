@@ -3,20 +3,21 @@
 //! interval evaluation of the residual (the wrapping effect of a chain of rotations).
 //! `cargo run --release -p calib-arm --example arm_forms`.
 
+use calib_arm::certification::padded_box;
 use calib_arm::simulate::{measurement_box, Uncertainty};
-use calib_arm::{builtin_arm, simulate, Arm6Point};
+use calib_arm::{builtin_arm, simulate, Arm7Point};
 use calib_core::{Interval, VectorModel};
 
 fn main() {
     let arm = builtin_arm();
     let sim = simulate(&arm, 3, 1, Uncertainty::TRACKER, 1.0, &[]);
-    let x0: [Interval; 39] = arm.initial_box().try_into().expect("39");
+    let x0 = padded_box(&arm);
     for r in &sim.readings {
-        let m: [Interval; 9] = measurement_box(r, &sim.uncertainty).expect("6 joints");
+        let m: [Interval; 10] = measurement_box(r, &sim.uncertainty).expect("6 joints");
         for shrink in [1.0, 0.1, 0.01] {
             let xb = x0.map(|v| Interval::mid_rad(v.mid(), v.rad() * shrink));
-            let forms = Arm6Point.linear_enclosures(&xb, &m).expect("vector model");
-            let natural = Arm6Point.residuals_interval(&xb, &m);
+            let forms = Arm7Point.linear_enclosures(&xb, &m).expect("vector model");
+            let natural = Arm7Point.residuals_interval(&xb, &m);
             for (f, n) in forms.iter().zip(natural) {
                 let lin: f64 = f.gx.iter().map(|g| g.abs()).sum();
                 let meas: f64 = f.gm.iter().map(|g| g.abs()).sum();

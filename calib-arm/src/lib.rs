@@ -32,6 +32,6 @@ pub mod units;
 pub mod vendor;
 pub mod write;
 
-pub use model::{Arm3Point, Arm4Point, Arm5Point, Arm6Point, Arm7Point};
+pub use model::Arm7Point;
 pub use robot::{builtin_arm, Arm, Joint};
 pub use simulate::{simulate, Simulation};

@@ -183,7 +183,8 @@ pub fn assert_jacobians_match_dual<
 /// Numerically, independently of the kernel's proof: is there one reading in `m` at which every
 /// row vanishes at `x`? Tries every choice of `NR` free quantities, the others on a grid of their
 /// intervals, and Newton's method on the square system; accepts a reading inside the box with
-/// residuals at rounding level.
+/// residuals at rounding level. Quantities known exactly (point intervals: a padded model's unused
+/// joints) stay at their value, neither free nor on the grid.
 pub fn fits_with_one_reading<
     M: VectorModel<NX, NM, NR>,
     const NX: usize,
@@ -195,12 +196,27 @@ pub fn fits_with_one_reading<
     m: &[Interval; NM],
 ) -> bool {
     let grid: usize = 17;
-    let subsets: Vec<Vec<usize>> = (0..1usize << NM)
+    let uncertain: Vec<usize> = (0..NM).filter(|&i| m[i].wid() > 0.0).collect();
+    let candidates = if uncertain.len() >= NR {
+        uncertain
+    } else {
+        (0..NM).collect()
+    };
+    let subsets: Vec<Vec<usize>> = (0..1usize << candidates.len())
         .filter(|mask| mask.count_ones() as usize == NR)
-        .map(|mask| (0..NM).filter(|i| mask >> i & 1 == 1).collect())
+        .map(|mask| {
+            (0..candidates.len())
+                .filter(|k| mask >> k & 1 == 1)
+                .map(|k| candidates[k])
+                .collect()
+        })
         .collect();
     for free in &subsets {
-        let fixed: Vec<usize> = (0..NM).filter(|i| !free.contains(i)).collect();
+        let fixed: Vec<usize> = candidates
+            .iter()
+            .copied()
+            .filter(|i| !free.contains(i))
+            .collect();
         for cell in 0..grid.pow(fixed.len() as u32) {
             let mut reading = m.map(|v| v.mid());
             let mut c = cell;
