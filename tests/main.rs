@@ -5,6 +5,8 @@
 
 #[path = "../calib-core/tests/support/mod.rs"]
 mod core_support;
+#[path = "../calib-core/tests/support/scratch_dir.rs"]
+mod scratch_dir;
 mod support;
 
 mod certified_set;

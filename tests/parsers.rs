@@ -293,8 +293,7 @@ proptest! {
 
     #[test]
     fn random_bytes_on_disk_are_errors_naming_the_file(bytes in prop::collection::vec(any::<u8>(), 0..200)) {
-        let dir = std::env::temp_dir().join(format!("certicalib-parsers-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let dir = crate::scratch_dir::ScratchDir::new("certicalib-parsers");
         let path = dir.join("random.bin");
         std::fs::write(&path, &bytes).map_err(|e| TestCaseError::fail(e.to_string()))?;
         let named = |e: DataError| e.file == path;

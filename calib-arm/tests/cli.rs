@@ -2,8 +2,9 @@
 //! arm takes a minute): simulate, certify with the truth inside, an outlier proved and named,
 //! least squares, and bad input refused with the file, line and field named and nothing written.
 
+use crate::scratch_dir::ScratchDir;
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
 /// A 3-joint arm with small priors (one Newton step bites) and a tilted base.
@@ -24,11 +25,8 @@ fn text(o: &Output) -> String {
     )
 }
 
-fn tempdir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("arm-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+fn tempdir(name: &str) -> ScratchDir {
+    ScratchDir::new(&format!("arm-cli-{name}"))
 }
 
 /// Simulates `configs` configurations of [`ROBOT`] into `dir`, with `extra` options.

@@ -6,6 +6,8 @@
 mod common;
 #[path = "../../calib-core/tests/support/mod.rs"]
 mod core_support;
+#[path = "../../calib-core/tests/support/scratch_dir.rs"]
+mod scratch_dir;
 
 mod accuracy;
 mod cli;

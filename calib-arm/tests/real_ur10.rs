@@ -2,7 +2,8 @@
 //! newcomer runs: import UR's YAML, register the tracker, certify, predict held-out rows, export
 //! the calibrated YAML; and the files' mistakes named without anything written.
 
-use std::path::{Path, PathBuf};
+use crate::scratch_dir::ScratchDir;
+use std::path::Path;
 use std::process::{Command, Output};
 
 fn arm(args: &[&str]) -> Output {
@@ -28,11 +29,8 @@ fn data(file: &str) -> String {
         .into_owned()
 }
 
-fn tempdir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("arm-ur10-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+fn tempdir(name: &str) -> ScratchDir {
+    ScratchDir::new(&format!("arm-ur10-{name}"))
 }
 
 const JOINTS: &str = "shoulder_pan_joint,shoulder_lift_joint,elbow_joint,wrist_1_joint,\

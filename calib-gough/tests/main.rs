@@ -3,6 +3,8 @@
 //! of one per file keeps `cargo test --workspace` within its budget, and lets the tests of
 //! every file share the cores.
 
+#[path = "../../calib-core/tests/support/scratch_dir.rs"]
+mod scratch_dir;
 mod support;
 
 mod accuracy;

@@ -2,7 +2,8 @@
 // Each test file uses its own subset of the helpers.
 #![allow(dead_code)]
 
-use std::path::{Path, PathBuf};
+use crate::scratch_dir::ScratchDir;
+use std::path::Path;
 use std::process::{Command, Output};
 
 pub fn gough(args: &[&str]) -> Output {
@@ -12,11 +13,9 @@ pub fn gough(args: &[&str]) -> Output {
         .expect("the gough binary runs")
 }
 
-pub fn tempdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("gough-test-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A scratch directory for one test, removed when it passes.
+pub fn tempdir(name: &str) -> ScratchDir {
+    ScratchDir::new(&format!("gough-test-{name}"))
 }
 
 pub fn simulate(dir: &Path, seed: u64, extra: &[&str]) {
