@@ -57,9 +57,7 @@ pub fn least_squares_mark(proved_consistent: bool) -> String {
 /// registered).
 pub fn read_exportable_robot(file: &Path) -> Result<Arm, DataError> {
     let text = read_text(file)?;
-    let arm = parse_robot(file, &text)?;
-    let parsed: RobotFile =
-        toml::from_str(&text).map_err(|e| toml_error(file, &text, &e, ROBOT_FORMAT))?;
+    let (arm, parsed) = parse_robot_file(file, &text)?;
     if let Some(mark) = parsed.least_squares {
         if !*mark.proved_consistent.get_ref() {
             return Err(DataError::new(
@@ -151,9 +149,7 @@ pub fn read_robot(file: &Path) -> Result<Arm, DataError> {
 /// polyhedra recomputed by the Newton step's relaxation and the points proved consistent again.
 pub fn read_calibrated(file: &Path) -> Result<(Arm, Option<ArmSet>), DataError> {
     let text = read_text(file)?;
-    let arm = parse_robot(file, &text)?;
-    let parsed: RobotFile =
-        toml::from_str(&text).map_err(|e| toml_error(file, &text, &e, ROBOT_FORMAT))?;
+    let (arm, parsed) = parse_robot_file(file, &text)?;
     let Some(stored) = parsed.certified_set else {
         return Ok((arm, None));
     };
@@ -192,6 +188,12 @@ pub fn read_calibrated(file: &Path) -> Result<(Arm, Option<ArmSet>), DataError> 
 /// [rx, ry, rz]`, `radius` (one, or six: x, y, z in mm, then rx, ry, rz in degrees); `[tool]`
 /// with `xyz`, `radius` (one, or three). `file` names the text in errors.
 pub fn parse_robot(file: &Path, text: &str) -> Result<Arm, DataError> {
+    parse_robot_file(file, text).map(|(arm, _)| arm)
+}
+
+/// [`parse_robot`], also returning the parsed tables (for the optional ones: the certified set,
+/// the least-squares mark).
+fn parse_robot_file(file: &Path, text: &str) -> Result<(Arm, RobotFile), DataError> {
     let parsed: RobotFile =
         toml::from_str(text).map_err(|e| toml_error(file, text, &e, ROBOT_FORMAT))?;
     let line = |span: std::ops::Range<usize>| Some(line_at(text, span.start));
@@ -274,13 +276,14 @@ pub fn parse_robot(file: &Path, text: &str) -> Result<Arm, DataError> {
     }
     let xyz = values(&parsed.base.xyz, "base.xyz")?;
     let rpy = values(&parsed.base.rpy_deg, "base.rpy_deg")?;
-    Ok(Arm {
+    let arm = Arm {
         joints,
         base: [xyz[0], xyz[1], xyz[2], rpy[0], rpy[1], rpy[2]],
         base_radius: radii(&parsed.base.radius, "base.radius", &err)?,
         tool: values(&parsed.tool.xyz, "tool.xyz")?,
         tool_radius: radii(&parsed.tool.radius, "tool.radius", &err)?,
-    })
+    };
+    Ok((arm, parsed))
 }
 
 #[derive(Deserialize)]
