@@ -23,6 +23,7 @@ pub mod files;
 pub mod joint_space;
 pub mod model;
 pub mod params;
+pub mod pose;
 pub mod predict;
 pub mod register;
 pub mod robot;

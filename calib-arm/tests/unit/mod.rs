@@ -7,6 +7,7 @@ mod certificate;
 mod error_scale;
 mod joint_space;
 mod params;
+mod pose_orientation;
 mod register;
 mod robot;
 mod simulate;
