@@ -50,12 +50,16 @@ impl Basis {
         self.a_k.resize(n, 0.0);
     }
 
-    /// Rebuilds `in_basis` for `constraints` constraints from `basis`.
+    /// Rebuilds `in_basis` for `constraints` constraints from `basis`. A basis entry beyond the
+    /// constraints (a stale basis of a larger problem) marks nothing: the mask then holds fewer
+    /// than `n` constraints, which every start from a remembered basis checks.
     pub fn set_mask(&mut self, constraints: usize) {
         self.in_basis.clear();
         self.in_basis.resize(constraints, false);
         for &k in &self.basis {
-            self.in_basis[k] = true;
+            if let Some(slot) = self.in_basis.get_mut(k) {
+                *slot = true;
+            }
         }
     }
 
@@ -143,5 +147,23 @@ impl Basis {
         self.in_basis[k] = true;
         self.basis[r] = k;
         self.pivots += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Basis;
+
+    /// A stale basis naming constraints of a larger problem (found on a 6-DoF arm's hull, where
+    /// it indexed past the mask) marks only the constraints there are.
+    #[test]
+    fn a_stale_basis_marks_only_existing_constraints() {
+        let mut b = Basis {
+            basis: vec![0, 9, 3],
+            ..Basis::default()
+        };
+        b.set_mask(5);
+        assert_eq!(b.in_basis, [true, false, false, true, false]);
+        assert_eq!(b.in_basis.iter().filter(|&&k| k).count(), 2);
     }
 }

@@ -658,7 +658,11 @@ impl ScaledSimplex {
                 }
                 self.c.copy_from_slice(&self.c_true);
                 self.b.basis.copy_from_slice(&self.saved);
-                self.b.set_mask(total);
+                // The basis before the recall is the previous solve's, maybe on a larger
+                // polyhedron: only the warm start below reads it, and only when it is this one's.
+                if warm {
+                    self.b.set_mask(total);
+                }
             }
         }
         if warm {
