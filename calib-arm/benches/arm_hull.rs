@@ -40,6 +40,7 @@ fn small_arm() -> Arm {
         base_radius: [0.05, 0.05, 0.05, 0.005, 0.005, 0.005],
         tool: [10.0, 5.0, 60.0],
         tool_radius: [0.02; 3],
+        tool_rotation: None,
     }
 }
 

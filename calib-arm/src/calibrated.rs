@@ -155,7 +155,11 @@ fn with_point(arm: &Arm, outer: &[Interval], x: &[f64; NX]) -> Arm {
             radius[j] = radius_about(value[j], outer[j]);
         }
     }
-    with_parameters(joints, &value, &radius)
+    Arm {
+        // Positions alone say nothing of the tool frame's rotation: kept as it was.
+        tool_rotation: arm.tool_rotation,
+        ..with_parameters(joints, &value, &radius)
+    }
 }
 
 /// The padded model's box of the values a controller reads from `arm` (each decimal in degrees
@@ -223,5 +227,6 @@ fn with_parameters(joints: usize, value: &[f64], radius: &[f64]) -> Arm {
         base_radius: core::array::from_fn(|k| base_r[k]),
         tool: core::array::from_fn(|k| tool[k]),
         tool_radius: core::array::from_fn(|k| tool_r[k]),
+        tool_rotation: None,
     }
 }

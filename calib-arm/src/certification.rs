@@ -62,6 +62,15 @@ pub fn names(joints: usize) -> Vec<String> {
     params::names(joints).into_iter().map(|(n, _)| n).collect()
 }
 
+/// The unit symbols of the parameters `names` (an arm's, with the tool rotation's in a 6-DoF
+/// run; see [`params::unit_of`]).
+pub fn units_of(names: &[String]) -> Vec<String> {
+    names
+        .iter()
+        .map(|n| params::unit_of(n).map_or("", Unit::symbol).to_string())
+        .collect()
+}
+
 /// The unit symbols of an arm with `joints` joints.
 pub fn units(joints: usize) -> Vec<String> {
     params::names(joints)
@@ -80,7 +89,7 @@ fn to_file_units(unit: Unit, v: Interval) -> Interval {
 
 /// What a run computes besides identifiability.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Job {
+pub(crate) enum Job {
     Identify,
     Fit,
     Certify(RunOptions),
@@ -165,6 +174,22 @@ impl CertifyRequest {
             .with_hull_tolerance(self.tolerance)
             .with_hull_budget(self.max_boxes, self.max_seconds))
     }
+
+    /// The settings (outliers set per try) and options of each certification this request makes
+    /// on `configs` configurations.
+    pub(crate) fn prepared(&self, configs: usize) -> Result<(Settings, RunOptions), String> {
+        let mut settings = self.settings(configs)?;
+        if self.max_outliers == OutlierBudget::Auto {
+            // Every result `auto` keeps is consistent, or tolerates outliers: a conflict set
+            // (sought only for an empty verdict with none tolerated) would be thrown away.
+            settings = settings.with_conflict_sets(false);
+        }
+        let options = RunOptions {
+            depth: self.depth,
+            lsq: self.lsq,
+        };
+        Ok((settings, options))
+    }
 }
 
 /// Certifies `arm` as `arm certify` does: with [`OutlierBudget::Auto`], with the smallest number
@@ -175,16 +200,7 @@ pub fn certify_request(
     u: &Uncertainty,
     request: &CertifyRequest,
 ) -> Result<(usize, ArmRun), String> {
-    let mut settings = request.settings(readings.len())?;
-    if request.max_outliers == OutlierBudget::Auto {
-        // Every result `auto` keeps is consistent, or tolerates outliers: a conflict set (sought
-        // only for an empty verdict with none tolerated) would be thrown away.
-        settings = settings.with_conflict_sets(false);
-    }
-    let options = RunOptions {
-        depth: request.depth,
-        lsq: request.lsq,
-    };
+    let (settings, options) = request.prepared(readings.len())?;
     smallest_consistent(
         request.max_outliers,
         readings.len(),
@@ -209,7 +225,7 @@ pub fn json_report(run: &ArmRun, names: &ConfigurationNames<'_>, tolerated: usiz
     sentences.extend(verdict::outliers(o, names, tolerated));
     let mut report = OutcomeReport::new(
         o,
-        &units(o.names.len().saturating_sub(9) / 5),
+        &units_of(&o.names),
         sentences,
         run.identifiability.sentences(&o.names),
         run.fit.as_ref().map(|f| &f.x[..]),
@@ -273,6 +289,13 @@ fn dispatch(
     job: Job,
     settings: &Settings,
 ) -> Result<ArmRun, String> {
+    check_shape(arm, readings)?;
+    Ok(run(arm, readings, u, job, settings))
+}
+
+/// Whether the padded model takes `arm` (3 to [`MAX_JOINTS`] joints) and `readings` (one reading
+/// per joint each); the error says what is wrong.
+pub(crate) fn check_shape(arm: &Arm, readings: &[Reading]) -> Result<(), String> {
     let joints = arm.joints.len();
     if !(3..=MAX_JOINTS).contains(&joints) {
         return Err(format!(
@@ -285,7 +308,7 @@ fn dispatch(
             r.joints_deg.len()
         ));
     }
-    Ok(run(arm, readings, u, job, settings))
+    Ok(())
 }
 
 /// The most joints an arm may have (the model every arm is padded to).
@@ -311,12 +334,12 @@ pub fn padded_index(joints: usize) -> Vec<usize> {
 
 /// The padded model's problem: the prior box, the nominal (model units), one measurement box per
 /// reading, and the padded index and unit of each of the arm's parameters.
-struct Padded {
-    x0: [Interval; NX],
-    nominal: [f64; NX],
-    boxes: Vec<[Interval; NM]>,
-    index: Vec<usize>,
-    units: Vec<Unit>,
+pub(crate) struct Padded<const X: usize, const Q: usize> {
+    pub(crate) x0: [Interval; X],
+    pub(crate) nominal: [f64; X],
+    pub(crate) boxes: Vec<[Interval; Q]>,
+    pub(crate) index: Vec<usize>,
+    pub(crate) units: Vec<Unit>,
 }
 
 /// The arm's prior box in the padded model (radians; padded parameters are points at 0, an
@@ -344,7 +367,7 @@ pub fn padded_nominal(arm: &Arm) -> [f64; NX] {
     nominal
 }
 
-fn padded(arm: &Arm, readings: &[Reading], u: &Uncertainty) -> Padded {
+fn padded(arm: &Arm, readings: &[Reading], u: &Uncertainty) -> Padded<NX, NM> {
     let joints = arm.joints.len();
     let index = padded_index(joints);
     let units: Vec<Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
@@ -388,18 +411,46 @@ pub fn identification_rows(
 }
 
 fn run(arm: &Arm, readings: &[Reading], u: &Uncertainty, job: Job, settings: &Settings) -> ArmRun {
-    let model = &Arm7Point;
-    let joints = arm.joints.len();
-    let names = names(joints);
-    let prior = arm.initial_box();
+    let p = padded(arm, readings, u);
+    let (mut run, cover) = run_model(
+        &Arm7Point,
+        &p,
+        names(arm.joints.len()),
+        &arm.initial_box(),
+        job,
+        settings,
+    );
+    run.set = cover
+        .map(|(cover, points)| CertifiedSet::new(&Arm7Point, &cover, &p.boxes, &points, ARM_PIECES))
+        .filter(|s| !s.is_empty());
+    run
+}
+
+/// The certified cover and points of a run (model units), for its certified set.
+pub(crate) type Cover<const X: usize> = (calib_core::Cover<X>, Vec<[f64; X]>);
+
+/// A run of `model` on the padded problem `p` (the arm's parameters `names`, its prior `prior` in
+/// model units): the outcome, identifiability and fit in the files' units (the [`ArmRun`] without
+/// its set), and what a certified set is built from (`None` when nothing was certified).
+pub(crate) fn run_model<M, const X: usize, const Q: usize, const R: usize>(
+    model: &M,
+    p: &Padded<X, Q>,
+    names: Vec<String>,
+    prior: &[Interval],
+    job: Job,
+    settings: &Settings,
+) -> (ArmRun, Option<Cover<X>>)
+where
+    M: calib_core::VectorModel<X, Q, R> + Sync,
+{
     let Padded {
         x0,
         nominal,
         boxes,
         index,
         units,
-    } = padded(arm, readings, u);
-    let (free, jacobian) = identification_jacobian(model, &nominal, &x0, &boxes);
+    } = p;
+    let (free, jacobian) = identification_jacobian(model, nominal, x0, boxes);
     let to_arm = |p: usize| index.iter().position(|&q| q == p).unwrap_or(p);
     let mut identifiability = analyse(&free, jacobian);
     for c in identifiability
@@ -409,23 +460,22 @@ fn run(arm: &Arm, readings: &[Reading], u: &Uncertainty, job: Job, settings: &Se
     {
         c.members.iter_mut().for_each(|m| m.0 = to_arm(m.0));
     }
-    let mid = || -> Vec<[f64; NM]> { boxes.iter().map(|b| b.map(|v| v.mid())).collect() };
-    let (outcome, fit, set) = match job {
+    let mid = || -> Vec<[f64; Q]> { boxes.iter().map(|b| b.map(|v| v.mid())).collect() };
+    let (outcome, fit, cover) = match job {
         Job::Certify(o) => {
-            let all_names: Vec<String> = (0..NX).map(|p| format!("#{p}")).collect();
-            let c = certify_model(model, &all_names, &x0, &boxes, o.depth, settings);
-            let fit = o.lsq.then(|| least_squares(model, &nominal, &free, &mid()));
-            let set = (c.outcome.status != calib_core::Status::Empty)
-                .then(|| CertifiedSet::new(model, &c.cover, &boxes, &c.points, ARM_PIECES))
-                .filter(|s| !s.is_empty());
-            (c.outcome.select(&index, names), fit, set)
+            let all_names: Vec<String> = (0..X).map(|p| format!("#{p}")).collect();
+            let c = certify_model(model, &all_names, x0, boxes, o.depth, settings);
+            let fit = o.lsq.then(|| least_squares(model, nominal, &free, &mid()));
+            let cover =
+                (c.outcome.status != calib_core::Status::Empty).then_some((c.cover, c.points));
+            (c.outcome.select(index, names), fit, cover)
         }
         Job::Fit => (
-            uncertified(names, &prior),
-            Some(least_squares(model, &nominal, &free, &mid())),
+            uncertified(names, prior),
+            Some(least_squares(model, nominal, &free, &mid())),
             None,
         ),
-        Job::Identify => (uncertified(names, &prior), None, None),
+        Job::Identify => (uncertified(names, prior), None, None),
     };
     let outcome = outcome.map_units(
         |j, v| to_file_units(units[j], v),
@@ -445,12 +495,13 @@ fn run(arm: &Arm, readings: &[Reading], u: &Uncertainty, job: Job, settings: &Se
             .collect(),
         ..f
     });
-    ArmRun {
+    let run = ArmRun {
         outcome,
         identifiability,
         fit,
-        set,
-    }
+        set: None,
+    };
+    (run, cover)
 }
 
 /// An outcome with nothing certified yet (the prior box only).

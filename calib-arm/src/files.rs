@@ -3,7 +3,8 @@
 //! field.
 
 use crate::certification::{padded_box, padded_index, padded_quantities, ArmSet, NM, NX};
-use crate::robot::{Arm, Joint};
+use crate::pose::PoseUncertainty;
+use crate::robot::{Arm, Joint, ToolRotation};
 use crate::simulate::{Reading, Uncertainty};
 pub use crate::tracker_file::{parse_tracker_measurements, MeasurementColumns, Slack};
 use crate::Arm7Point;
@@ -98,6 +99,10 @@ struct BaseEntry {
 struct ToolEntry {
     xyz: Spanned<[f64; 3]>,
     radius: Spanned<Radius<3>>,
+    #[serde(default)]
+    rpy_deg: Option<Spanned<[f64; 3]>>,
+    #[serde(default)]
+    rotation_radius: Option<Spanned<Radius<3>>>,
 }
 
 /// One half-width for all, or one per parameter.
@@ -136,7 +141,8 @@ impl<const N: usize> Radius<N> {
 const ROBOT_FORMAT: &str = "expected [[joint]] tables (base to flange) with theta_deg, d, a, \
 alpha_deg, optional beta_deg and radius (one half-width or five: theta°, d mm, a mm, alpha°, \
 beta°), then [base] with xyz, rpy_deg = [rx, ry, rz] and radius (one or six), and [tool] with xyz \
-and radius (one or three)";
+and radius (one or three), and for 6-DoF measurements rpy_deg = [rx, ry, rz] with rotation_radius (one or \
+three, degrees)";
 
 /// Reads `robot.toml` (see [`parse_robot`]).
 pub fn read_robot(file: &Path) -> Result<Arm, DataError> {
@@ -276,12 +282,35 @@ fn parse_robot_file(file: &Path, text: &str) -> Result<(Arm, RobotFile), DataErr
     }
     let xyz = values(&parsed.base.xyz, "base.xyz")?;
     let rpy = values(&parsed.base.rpy_deg, "base.rpy_deg")?;
+    let tool_rotation =
+        match (&parsed.tool.rpy_deg, &parsed.tool.rotation_radius) {
+            (None, None) => None,
+            (Some(rpy), Some(radius)) => Some(ToolRotation {
+                rpy_deg: values(rpy, "tool.rpy_deg")?,
+                radius: radii(radius, "tool.rotation_radius", &err)?,
+            }),
+            (Some(rpy), None) => return Err(err(
+                rpy.span(),
+                "tool.rpy_deg",
+                "the tool frame's rotation needs its prior too: rotation_radius = one half-width \
+                 or three (degrees)"
+                    .into(),
+            )),
+            (None, Some(radius)) => return Err(err(
+                radius.span(),
+                "tool.rotation_radius",
+                "a prior for the tool frame's rotation needs the rotation: rpy_deg = [rx, ry, rz] \
+                 (degrees)"
+                    .into(),
+            )),
+        };
     let arm = Arm {
         joints,
         base: [xyz[0], xyz[1], xyz[2], rpy[0], rpy[1], rpy[2]],
         base_radius: radii(&parsed.base.radius, "base.radius", &err)?,
         tool: values(&parsed.tool.xyz, "tool.xyz")?,
         tool_radius: radii(&parsed.tool.radius, "tool.radius", &err)?,
+        tool_rotation,
     };
     Ok((arm, parsed))
 }
@@ -291,6 +320,8 @@ fn parse_robot_file(file: &Path, text: &str) -> Result<(Arm, RobotFile), DataErr
 struct UncertaintyFile {
     joint_deg: Spanned<f64>,
     pos: Spanned<f64>,
+    #[serde(default)]
+    orient_deg: Option<Spanned<f64>>,
 }
 
 /// Reads `uncertainty.toml` (see [`parse_uncertainty`]).
@@ -301,12 +332,20 @@ pub fn read_uncertainty(file: &Path) -> Result<Uncertainty, DataError> {
 /// Parses `uncertainty.toml`: `joint_deg` (half-width of every joint reading, degrees) and `pos`
 /// (half-width of every tracked coordinate, mm).
 pub fn parse_uncertainty(file: &Path, text: &str) -> Result<Uncertainty, DataError> {
+    parse_pose_uncertainty(file, text).map(|u| u.position)
+}
+
+/// Parses `uncertainty.toml` with the bound of 6-DoF measurements' orientations: as
+/// [`parse_uncertainty`], and `orient_deg` (optional: the half-width of every measured Euler
+/// angle, degrees).
+pub fn parse_pose_uncertainty(file: &Path, text: &str) -> Result<PoseUncertainty, DataError> {
     let u: UncertaintyFile = toml::from_str(text).map_err(|e| {
         toml_error(
             file,
             text,
             &e,
-            "expected joint_deg = half-width in degrees, pos = half-width in mm",
+            "expected joint_deg = half-width in degrees, pos = half-width in mm, and for \
+             6-DoF measurements orient_deg = half-width of each Euler angle in degrees",
         )
     })?;
     let check = |v: &Spanned<f64>, field: &str| {
@@ -323,9 +362,12 @@ pub fn parse_uncertainty(file: &Path, text: &str) -> Result<Uncertainty, DataErr
             ))
         }
     };
-    Ok(Uncertainty {
-        joint_deg: check(&u.joint_deg, "joint_deg")?,
-        pos: check(&u.pos, "pos")?,
+    Ok(PoseUncertainty {
+        position: Uncertainty {
+            joint_deg: check(&u.joint_deg, "joint_deg")?,
+            pos: check(&u.pos, "pos")?,
+        },
+        orient_deg: u.orient_deg.map(|o| check(&o, "orient_deg")).transpose()?,
     })
 }
 
@@ -341,6 +383,9 @@ pub struct Measurements {
     pub slack: Slack,
     /// Remarks on the file (values that may be in another unit than the one read).
     pub notes: Vec<String>,
+    /// The measured orientation of each configuration (6-DoF probes), intrinsic Euler angles
+    /// `XYZ` in degrees; `None` when the file was read for positions only.
+    pub orientations: Option<Vec<[f64; 3]>>,
 }
 
 /// Reads `measurements.csv` (see [`parse_measurements`]).

@@ -45,6 +45,14 @@ pub const TOOL_PARAMETERS: [(&str, Unit); 3] = [
     ("tool_z", Unit::Mm),
 ];
 
+/// The tool frame's rotation, after the tool point: parameters of 6-DoF measurements only
+/// ([`crate::pose`]).
+pub const TOOL_ROTATION_PARAMETERS: [(&str, Unit); 3] = [
+    ("tool_rx", Unit::Deg),
+    ("tool_ry", Unit::Deg),
+    ("tool_rz", Unit::Deg),
+];
+
 /// The number of parameters of an arm with `joints` joints: `5N + 9`.
 pub fn count(joints: usize) -> usize {
     5 * joints + BASE_PARAMETERS.len() + TOOL_PARAMETERS.len()
@@ -64,4 +72,34 @@ pub fn names(joints: usize) -> Vec<(String, Unit)> {
     out.extend(BASE_PARAMETERS.iter().map(|(n, u)| (n.to_string(), *u)));
     out.extend(TOOL_PARAMETERS.iter().map(|(n, u)| (n.to_string(), *u)));
     out
+}
+
+/// Names and units of every parameter of an arm with `joints` joints measured by a 6-DoF probe:
+/// [`names`], then `tool_rx, tool_ry, tool_rz`.
+pub fn pose_names(joints: usize) -> Vec<(String, Unit)> {
+    let mut out = names(joints);
+    out.extend(
+        TOOL_ROTATION_PARAMETERS
+            .iter()
+            .map(|(n, u)| (n.to_string(), *u)),
+    );
+    out
+}
+
+/// The unit of the parameter called `name` (`theta3`, `base_rx`, `tool_rz`, …), as [`names`] and
+/// [`pose_names`] give it; `None` for a name no arm has.
+pub fn unit_of(name: &str) -> Option<Unit> {
+    let stem = name.trim_end_matches(|c: char| c.is_ascii_digit());
+    let joint = stem.len() < name.len();
+    let table: &[(&str, Unit)] = if joint {
+        &JOINT_PARAMETERS
+    } else {
+        &[
+            BASE_PARAMETERS.as_slice(),
+            &TOOL_PARAMETERS,
+            &TOOL_ROTATION_PARAMETERS,
+        ]
+        .concat()
+    };
+    table.iter().find(|(n, _)| *n == stem).map(|(_, u)| *u)
 }

@@ -11,7 +11,8 @@
 //! parameters together ([`crate::certification::fit_arm`]).
 
 use crate::certification::fit_arm;
-use crate::robot::Arm;
+use crate::pose::orientation::from_euler_xyz;
+use crate::robot::{Arm, ToolRotation};
 use crate::simulate::Reading;
 use crate::vendor::{arm_flange, base_frame, base_parameters, Frame};
 use nalgebra::{Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
@@ -176,4 +177,54 @@ fn rms(flanges: &[Frame], measured: &[Vector3<f64>], pose: &Frame, t: &Vector3<f
         .map(|(f, p)| ((pose * f * Point3::from(*t)).coords - p).norm_squared())
         .sum();
     (sum / (3.0 * flanges.len() as f64)).sqrt()
+}
+
+/// The measured frame's rotation on the flange of a registered `arm` (its base and joints as
+/// they are), from the measured orientations (intrinsic Euler angles `XYZ`, degrees, one per
+/// reading): the rotation nearest, in the Frobenius norm, to every `R_kᵀ M_k` (`R_k` the
+/// flange's rotation with the base, `M_k` the measured one) — the projection of their sum onto
+/// the rotations by an SVD — with the prior half-width `radius_deg` around it. Also the
+/// orientation residuals' RMS and largest angle, degrees.
+pub fn register_tool_rotation(
+    arm: &Arm,
+    readings: &[Reading],
+    euler_xyz_deg: &[[f64; 3]],
+    radius_deg: f64,
+) -> Result<(ToolRotation, f64, f64), String> {
+    if !(radius_deg.is_finite() && radius_deg >= 0.0) {
+        return Err(format!(
+            "tool rotation prior {radius_deg}: expected a finite half-width >= 0"
+        ));
+    }
+    let pairs: Vec<(Rotation3<f64>, Rotation3<f64>)> = readings
+        .iter()
+        .zip(euler_xyz_deg)
+        .map(|(r, e)| {
+            let q: Vec<f64> = r.joints_deg.iter().map(|d| d.to_radians()).collect();
+            let flange = arm_flange(arm, &q).rotation.to_rotation_matrix();
+            (flange, from_euler_xyz(e.map(f64::to_radians)))
+        })
+        .collect();
+    let sum: Matrix3<f64> = pairs
+        .iter()
+        .map(|(f, m)| (f.inverse() * m).into_inner())
+        .sum();
+    let svd = sum.svd(true, true);
+    let (u, v_t) = (svd.u.ok_or("no SVD")?, svd.v_t.ok_or("no SVD")?);
+    let d = (u * v_t).determinant().signum();
+    let tool = Rotation3::from_matrix_unchecked(
+        u * Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, d)) * v_t,
+    );
+    let angles: Vec<f64> = pairs
+        .iter()
+        .map(|(f, m)| (f * tool).angle_to(m).to_degrees())
+        .collect();
+    let rms = (angles.iter().map(|a| a * a).sum::<f64>() / angles.len().max(1) as f64).sqrt();
+    let max = angles.iter().fold(0.0_f64, |a, b| a.max(*b));
+    let (roll, pitch, yaw) = tool.euler_angles();
+    let rotation = ToolRotation {
+        rpy_deg: [roll.to_degrees(), pitch.to_degrees(), yaw.to_degrees()],
+        radius: [radius_deg; 3],
+    };
+    Ok((rotation, rms, max))
 }

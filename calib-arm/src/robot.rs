@@ -28,6 +28,20 @@ pub struct Arm {
     pub tool: [f64; 3],
     /// Half-widths of the tool point.
     pub tool_radius: [f64; 3],
+    /// The tool frame's rotation on the flange, for 6-DoF measurements ([`crate::pose`]); `None`
+    /// for an arm tracked by its point only.
+    pub tool_rotation: Option<ToolRotation>,
+}
+
+/// The rotation of the measured frame on the flange, `R_tool = Rz(rz) Ry(ry) Rx(rx)` (the base's
+/// convention), and its prior: what a 6-DoF probe's orientation adds to the parameters
+/// (`tool_rx, tool_ry, tool_rz`, see [`crate::pose::model`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ToolRotation {
+    /// Nominal `rx, ry, rz`, degrees.
+    pub rpy_deg: [f64; 3],
+    /// Their prior half-widths, degrees (0 fixes one).
+    pub radius: [f64; 3],
 }
 
 impl Arm {
@@ -46,6 +60,9 @@ impl Arm {
         }
         self.base_radius = self.base_radius.map(|r| r * factor);
         self.tool_radius = self.tool_radius.map(|r| r * factor);
+        if let Some(t) = &mut self.tool_rotation {
+            t.radius = t.radius.map(|r| r * factor);
+        }
         self
     }
 
@@ -133,5 +150,6 @@ pub fn builtin_arm() -> Arm {
         base_radius: [1.0, 1.0, 1.0, 0.1, 0.1, 0.1],
         tool: [15.0, -10.0, 55.0],
         tool_radius: [0.5, 0.5, 0.5],
+        tool_rotation: None,
     }
 }

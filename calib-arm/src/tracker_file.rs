@@ -32,6 +32,15 @@ pub enum LengthUnit {
     M,
 }
 
+/// How a file writes the measured frame's orientation (6-DoF probes, see [`crate::pose`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum OrientationConvention {
+    /// Intrinsic Euler angles `XYZ` in degrees, `R = Rx(a) Ry(b) Rz(c)` (Leica's T-Mac).
+    EulerXyzDeg,
+    /// The same in radians.
+    EulerXyzRad,
+}
+
 /// Which rows of a file to use: data rows `first..=last`, 1-based (the header is not a row).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RowRange {
@@ -76,6 +85,8 @@ pub struct MeasurementColumns {
     pub length_unit: LengthUnit,
     /// The rows to use (`None`: all).
     pub rows: Option<RowRange>,
+    /// The measured orientation's three columns and their convention (`None`: positions only).
+    pub orientation: Option<([String; 3], OrientationConvention)>,
 }
 
 impl MeasurementColumns {
@@ -87,6 +98,7 @@ impl MeasurementColumns {
             joint_unit: JointUnit::Deg,
             length_unit: LengthUnit::Mm,
             rows: None,
+            orientation: None,
         }
     }
 
@@ -172,6 +184,7 @@ pub fn parse_tracker_measurements(
         .joints
         .iter()
         .chain(&columns.point)
+        .chain(columns.orientation.iter().flat_map(|(o, _)| o))
         .cloned()
         .collect();
     let table = parse_named_columns(file, text, &names)?;
@@ -203,6 +216,7 @@ pub fn parse_tracker_measurements(
         lines: Vec::with_capacity(end + 1 - first),
         slack: Slack::default(),
         notes: Vec::new(),
+        orientations: columns.orientation.as_ref().map(|_| Vec::new()),
     };
     let mut largest_joint: f64 = 0.0;
     let mut largest_coordinate: f64 = 0.0;
@@ -232,7 +246,11 @@ pub fn parse_tracker_measurements(
             joints_deg.push(out.slack.keep_joint(deg));
         }
         let mut point = [0.0; 3];
-        for ((p, v), name) in point.iter_mut().zip(&row[joints..]).zip(&columns.point) {
+        for ((p, v), name) in point
+            .iter_mut()
+            .zip(&row[joints..joints + 3])
+            .zip(&columns.point)
+        {
             largest_coordinate = largest_coordinate.max(v.abs());
             let mm = match columns.length_unit {
                 LengthUnit::Mm => Interval::point(*v),
@@ -250,6 +268,37 @@ pub fn parse_tracker_measurements(
                 }
             };
             *p = out.slack.keep_point(mm);
+        }
+        if let (Some((names, convention)), Some(orientations)) =
+            (&columns.orientation, &mut out.orientations)
+        {
+            let mut angles = [0.0; 3];
+            for ((e, v), name) in angles.iter_mut().zip(&row[joints + 3..]).zip(names) {
+                *e = match convention {
+                    OrientationConvention::EulerXyzDeg => {
+                        if v.abs() > 360.0 {
+                            return Err(bad(
+                                name,
+                                format!("{v}: an Euler angle in degrees within ±360 expected"),
+                            ));
+                        }
+                        *v
+                    }
+                    OrientationConvention::EulerXyzRad => {
+                        if v.abs() > MAX_RADIANS {
+                            return Err(bad(
+                                name,
+                                format!(
+                                    "{v} read as radians is more than a turn: it looks like \
+                                     degrees (use --orientation-convention euler-xyz-deg)"
+                                ),
+                            ));
+                        }
+                        out.slack.keep_orientation(rad_to_deg(Interval::point(*v)))
+                    }
+                };
+            }
+            orientations.push(angles);
         }
         out.readings.push(Reading { joints_deg, point });
         out.lines.push(line);
@@ -284,6 +333,8 @@ pub struct Slack {
     pub joint_deg: f64,
     /// On the tracked coordinates, mm.
     pub pos: f64,
+    /// On the measured Euler angles, degrees.
+    pub orient_deg: f64,
 }
 
 impl Slack {
@@ -295,6 +346,18 @@ impl Slack {
             joint_deg: up(u.joint_deg, self.joint_deg),
             pos: up(u.pos, self.pos),
         }
+    }
+
+    /// The orientation bound `orient_deg` widened by the conversion's rounding error, rounded up.
+    pub fn widen_orientation(&self, orient_deg: f64) -> f64 {
+        (Interval::point(orient_deg) + Interval::point(self.orient_deg)).sup()
+    }
+
+    /// The midpoint of `deg` (an Euler angle), remembering how far its ends are.
+    fn keep_orientation(&mut self, deg: Interval) -> f64 {
+        let (mid, rad) = mid_and_radius(deg);
+        self.orient_deg = self.orient_deg.max(rad);
+        mid
     }
 
     /// The midpoint of `deg`, remembering how far its ends are.

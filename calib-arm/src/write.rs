@@ -51,6 +51,15 @@ pub fn robot_toml(arm: &Arm) -> String {
         list(&arm.tool),
         list(&arm.tool_radius)
     );
+    if let Some(t) = &arm.tool_rotation {
+        let _ = write!(
+            s,
+            "# the measured frame's rotation on the flange (6-DoF probes): Rz(rz) Ry(ry) Rx(rx)\n\
+             rpy_deg = {}\nrotation_radius = {}\n",
+            list(&t.rpy_deg),
+            list(&t.radius)
+        );
+    }
     s
 }
 

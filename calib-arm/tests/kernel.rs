@@ -16,7 +16,7 @@ use support::fits_with_one_reading_all;
 
 /// A random arm of `joints` joints with small priors (so that one Newton step already bites on
 /// this nonlinear chain; the large priors of the built-in arm need the tight hull).
-fn random_arm(joints: usize, rng: &mut StdRng) -> Arm {
+pub(crate) fn random_arm(joints: usize, rng: &mut StdRng) -> Arm {
     let joint = |rng: &mut StdRng| Joint {
         nominal: [
             rng.random_range(-5.0..5.0),
@@ -44,6 +44,7 @@ fn random_arm(joints: usize, rng: &mut StdRng) -> Arm {
             rng.random_range(0.0..150.0),
         ],
         tool_radius: [0.002; 3],
+        tool_rotation: None,
     }
 }
 

@@ -237,3 +237,106 @@ fn wrong_units_and_columns_are_named_and_nothing_is_written() {
     assert!(err.contains("bad.yaml") && err.contains("line 5"), "{err}");
     assert!(!dir.join("never.toml").exists());
 }
+
+const ORIENTATION: &str = "measurement_rx,measurement_ry,measurement_rz";
+
+#[test]
+fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
+    let dir = tempdir("six-dof");
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let o = arm(&[
+        "import",
+        "--ur-yaml",
+        &data("ur10_default_kinematics.yaml"),
+        "--out",
+        &p("nominal.toml"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let mut six = tracker("1-40");
+    six.extend(["--orientation-columns".into(), ORIENTATION.into()]);
+    let o = run(
+        &[
+            "register",
+            "--robot",
+            &p("nominal.toml"),
+            "--out",
+            &p("robot.toml"),
+        ],
+        &six,
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    // The T-Mac's frame is turned a quarter turn about the flange axis (as registered from
+    // every configuration's orientation; the fit leaves about a tenth of a degree).
+    let robot = calib_arm::files::read_robot(Path::new(&p("robot.toml"))).expect("robot");
+    let t = robot.tool_rotation.expect("the tool frame's rotation");
+    assert!((t.rpy_deg[2] + 90.0).abs() < 1.0, "{t:?}");
+    assert!(
+        t.rpy_deg[0].abs() < 1.0 && t.rpy_deg[1].abs() < 1.0,
+        "{t:?}"
+    );
+    assert_eq!(t.radius, [0.5; 3]);
+    let out = text(&o);
+    let rms: f64 = out
+        .split("orientation residuals rms ")
+        .nth(1)
+        .and_then(|s| s.split('°').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("{out}"));
+    assert!(rms > 0.0 && rms < 0.2, "{out}");
+    // Commands that use positions only say so; nothing is written.
+    std::fs::write(
+        p("u.toml"),
+        "joint_deg = 0.001\npos = 0.6\norient_deg = 0.2\n",
+    )
+    .expect("write");
+    let o = run(
+        &[
+            "predict",
+            "--robot",
+            &p("robot.toml"),
+            "--uncertainty",
+            &p("u.toml"),
+            "--json",
+            &p("never.json"),
+        ],
+        &six,
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("positions only"), "{}", text(&o));
+    // Certification with the orientations: 6-DoF where the feature is built, else how to build it.
+    let o = run(
+        &[
+            "certify",
+            "--robot",
+            &p("robot.toml"),
+            "--uncertainty",
+            &p("u.toml"),
+            "--json",
+            &p("six.json"),
+        ],
+        &six,
+    );
+    if cfg!(feature = "six-dof") {
+        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+        assert!(text(&o).contains("6-DoF"), "{}", text(&o));
+        assert!(dir.join("six.json").exists());
+    } else {
+        assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+        assert!(text(&o).contains("--features six-dof"), "{}", text(&o));
+        assert!(!dir.join("six.json").exists());
+    }
+    assert!(!dir.join("never.json").exists());
+    // A rotation without its prior in the robot file: file, line and field.
+    let text_robot = std::fs::read_to_string(p("robot.toml")).expect("robot");
+    let cut: String = text_robot
+        .lines()
+        .filter(|l| !l.starts_with("rotation_radius"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let e = calib_arm::files::parse_robot(Path::new("cut.toml"), &cut).unwrap_err();
+    let e = e.to_string();
+    assert!(
+        e.contains("cut.toml") && e.contains("tool.rpy_deg") && e.contains("rotation_radius"),
+        "{e}"
+    );
+}

@@ -28,6 +28,7 @@ pub fn tracker_columns(point: [&str; 3]) -> MeasurementColumns {
         joint_unit: JointUnit::Rad,
         length_unit: LengthUnit::Mm,
         rows: None,
+        orientation: None,
     }
 }
 

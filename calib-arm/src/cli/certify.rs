@@ -8,7 +8,8 @@ use calib_arm::calibrated::{calibrated_arm, calibrated_toml, PointChoice};
 use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{certify_request, CertifyRequest};
 use calib_arm::error_scale::{search, ScaleBounds};
-use calib_arm::files::{parse_robot, parse_uncertainty};
+use calib_arm::files::{parse_pose_uncertainty, parse_robot};
+use calib_arm::pose::{certify_pose, PoseReading, PoseUncertainty};
 use calib_arm::simulate::Uncertainty;
 use calib_core::Status;
 use calib_pipeline::error_scale::{check_margin, report as scale_report};
@@ -140,9 +141,39 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         .files
         .columns
         .parse(&a.files.measurements, &data_text, arm.joints.len())?;
-    let u = data
-        .slack
-        .widen(&parse_uncertainty(&a.uncertainty, &u_text)?);
+    let pose_u = parse_pose_uncertainty(&a.uncertainty, &u_text)?;
+    let u = data.slack.widen(&pose_u.position);
+    let pose = match &data.orientations {
+        Some(orientations) => {
+            for (given, option) in [
+                (a.write_calibrated.is_some(), "--write-calibrated"),
+                (a.error_scale.is_some(), "--error-scale"),
+            ] {
+                if given {
+                    return Err(format!(
+                        "{option} works on positions only for now: drop --orientation-columns \
+                         (a 6-DoF run reports the certified bounds, verdict and fit)"
+                    )
+                    .into());
+                }
+            }
+            let readings: Vec<PoseReading> = data
+                .readings
+                .iter()
+                .zip(orientations)
+                .map(|(r, o)| PoseReading {
+                    reading: r.clone(),
+                    euler_xyz_deg: *o,
+                })
+                .collect();
+            let bounds = PoseUncertainty {
+                position: u,
+                orient_deg: pose_u.orient_deg.map(|o| data.slack.widen_orientation(o)),
+            };
+            Some((readings, bounds))
+        }
+        None => None,
+    };
     let (scale_json, u, scale_words) = match a.error_scale {
         Some(ErrorScaleMode::Auto) => {
             let (json, scaled, words) = error_scale(&a, &arm, &data.readings, &u)?;
@@ -162,11 +193,26 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     request.settings(data.readings.len())?;
     let bar = spinner(&format!(
         "certifying {} parameters on {} configurations",
-        arm.free().iter().filter(|f| **f).count(),
+        arm.free().iter().filter(|f| **f).count()
+            + pose.as_ref().map_or(0, |_| {
+                arm.tool_rotation
+                    .map_or(0, |t| t.radius.iter().filter(|r| **r > 0.0).count())
+            }),
         data.readings.len()
     ));
-    let (q, run) = certify_request(&arm, &data.readings, &u, &request)?;
+    let (q, run) = match &pose {
+        Some((readings, bounds)) => certify_pose(&arm, readings, bounds, &request),
+        None => certify_request(&arm, &data.readings, &u, &request),
+    }
+    .map_err(|e| format!("{}: {e}", a.files.robot.display()))?;
     bar.finish_and_clear();
+    if let Some((_, bounds)) = &pose {
+        println!(
+            "6-DoF: six equations per configuration (position and orientation), orientations \
+             within ±{}° per Euler angle, the tool frame's rotation among the parameters",
+            bounds.orient_deg.unwrap_or(f64::NAN)
+        );
+    }
     let file = file_name(&a.files.measurements);
     let names = ConfigurationNames {
         file: &file,
@@ -219,9 +265,14 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         };
         let page = ArmCertificate {
             title: format!(
-                "{}-axis arm, {} configurations",
+                "{}-axis arm, {} configurations{}",
                 arm.joints.len(),
-                data.readings.len()
+                data.readings.len(),
+                if pose.is_some() {
+                    " (6-DoF: positions and orientations)"
+                } else {
+                    ""
+                }
             ),
             command: command_line(),
             date: now(),

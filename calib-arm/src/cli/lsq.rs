@@ -28,6 +28,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    a.files.columns.positions_only("lsq")?;
     let arm = read_robot(&a.files.robot)?;
     let data = a
         .files

@@ -184,6 +184,23 @@ pub struct ColumnArgs {
     /// calibrate on the first 60 configurations, 61- to check the rest with `predict`.
     #[arg(long, value_name = "A-B")]
     rows: Option<calib_arm::tracker_file::RowRange>,
+    /// The measured frame's orientation, three columns (a 6-DoF probe such as Leica's T-Mac):
+    /// six equations per configuration instead of three, with the tool frame's rotation
+    /// (tool_rx, tool_ry, tool_rz: [tool] rpy_deg and rotation_radius in the robot file) among
+    /// the parameters and orient_deg in the uncertainty file. Used by `certify` and `register`.
+    // The brackets are a TOML table name shown verbatim by --help, not a rustdoc link.
+    #[allow(rustdoc::broken_intra_doc_links)]
+    #[arg(long, value_name = "A,B,C", value_delimiter = ',', num_args = 1)]
+    orientation_columns: Option<Vec<String>>,
+    /// How the orientation columns write it: intrinsic Euler angles XYZ, R = Rx(a) Ry(b) Rz(c),
+    /// in degrees (the T-Mac's export) or radians.
+    #[arg(
+        long,
+        value_enum,
+        value_name = "CONVENTION",
+        default_value = "euler-xyz-deg"
+    )]
+    orientation_convention: calib_arm::tracker_file::OrientationConvention,
 }
 
 impl ColumnArgs {
@@ -201,7 +218,28 @@ impl ColumnArgs {
         c.joint_unit = self.joint_unit;
         c.length_unit = self.length_unit;
         c.rows = self.rows;
+        if let Some(o) = &self.orientation_columns {
+            let names = <[String; 3]>::try_from(o.clone()).map_err(|o| {
+                format!(
+                    "--orientation-columns: expected three names a,b,c, found {}",
+                    o.len()
+                )
+            })?;
+            c.orientation = Some((names, self.orientation_convention));
+        }
         Ok(c)
+    }
+
+    /// An error for a command (`arm COMMAND`) that uses positions only when orientation columns
+    /// are given.
+    fn positions_only(&self, command: &str) -> Result<(), String> {
+        match &self.orientation_columns {
+            Some(_) => Err(format!(
+                "--orientation-columns: `arm {command}` uses the tracked positions only; \
+                 orientations are used by `arm certify` and `arm register`"
+            )),
+            None => Ok(()),
+        }
     }
 
     /// Reads `file` (whose text is `text`) for an arm with `joints` joints, printing the file's

@@ -2,7 +2,7 @@
 //! the parameters, and the JSON report.
 
 use calib_arm::certificate::ArmCertificate;
-use calib_arm::certification::{json_report, units, ArmRun};
+use calib_arm::certification::{json_report, units_of, ArmRun};
 use calib_core::{Interval, Status};
 use calib_pipeline::html::outward;
 use calib_pipeline::verdict::{self, ConfigurationNames};
@@ -42,7 +42,7 @@ pub fn print_outcome(run: &ArmRun, names: &ConfigurationNames<'_>, max_outliers:
              need with --error-scale auto"
         );
     }
-    let units = units(o.names.len().saturating_sub(9) / 5);
+    let units = units_of(&o.names);
     let ratios = o.width_ratios();
     let lsq = run.fit.as_ref().map(|f| &f.x);
     println!(

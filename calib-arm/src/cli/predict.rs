@@ -34,6 +34,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    a.columns.positions_only("predict")?;
     let (arm, set) = read_calibrated(&a.robot)?;
     let u = read_uncertainty(&a.uncertainty)?;
     let n = arm.joints.len();

@@ -2,7 +2,7 @@
 
 use super::DataFiles;
 use calib_arm::files::read_robot;
-use calib_arm::register::{register, RegistrationPriors};
+use calib_arm::register::{register, register_tool_rotation, RegistrationPriors};
 use calib_pipeline::write_atomically;
 use std::path::PathBuf;
 
@@ -23,6 +23,10 @@ pub struct Args {
     /// The prior half-width written around the registered tool point (mm).
     #[arg(long, value_name = "MM", default_value_t = 2.0)]
     tool_radius: f64,
+    /// With --orientation-columns: the prior half-width written around the registered tool
+    /// frame's rotation (degrees).
+    #[arg(long, value_name = "DEG", default_value_t = 0.5)]
+    tool_rotation_radius: f64,
     /// The robot file to write: the --robot file's joints with the registered base and tool.
     #[arg(long, value_name = "FILE")]
     out: PathBuf,
@@ -45,8 +49,18 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         base_deg,
         tool_mm: a.tool_radius,
     };
-    let r = register(&arm, &data.readings, priors)
+    let mut r = register(&arm, &data.readings, priors)
         .map_err(|e| format!("{}: {e}", a.files.measurements.display()))?;
+    let rotation = match &data.orientations {
+        Some(o) => {
+            let (t, rms, max) =
+                register_tool_rotation(&r.arm, &data.readings, o, a.tool_rotation_radius)
+                    .map_err(|e| format!("{}: {e}", a.files.measurements.display()))?;
+            r.arm.tool_rotation = Some(t);
+            Some((t, rms, max))
+        }
+        None => None,
+    };
     let b = r.arm.base;
     println!(
         "registered on {} configurations of {}:",
@@ -65,6 +79,13 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         a.tool_radius,
         r.arm.tool.iter().map(|v| v * v).sum::<f64>().sqrt()
     );
+    if let Some((t, rms, max)) = rotation {
+        println!(
+            "  tool frame (on the flange, Rz Ry Rx): rx {:.4} ry {:.4} rz {:.4}° (± {}°); \
+             orientation residuals rms {rms:.4}°, max {max:.4}°",
+            t.rpy_deg[0], t.rpy_deg[1], t.rpy_deg[2], a.tool_rotation_radius
+        );
+    }
     println!(
         "  residuals with the nominal joints: rms {:.4} mm, max {:.4} mm (closed-form start: rms \
          {:.4} mm; least squares {})",

@@ -274,6 +274,7 @@ pub fn chain_to_arm(origins: &[Frame], radii: ImportRadii) -> Result<Arm, String
         base_radius: [0.0; 6],
         tool: [0.0; 3],
         tool_radius: [0.0; 3],
+        tool_rotation: None,
     })
 }
 

@@ -11,7 +11,76 @@ fn columns(unit: JointUnit, length: LengthUnit) -> MeasurementColumns {
         joint_unit: unit,
         length_unit: length,
         rows: None,
+        orientation: None,
     }
+}
+
+const SIX_DOF: &str = "j1;j2;j3;X;Y;Z;A;B;C\n\
+    0,1;0,2;0,3;383,7;-3240,8;201,9;179,5;-0,25;-90,125\n\
+    0,4;0,5;0,6;380,1;-3241,2;205,3;-179,75;0,5;89,5\n";
+
+#[test]
+fn orientation_columns_read_euler_angles_in_degrees_or_radians() {
+    let f = Path::new("six.csv");
+    let mut c = columns(JointUnit::Rad, LengthUnit::Mm);
+    let names = ["A".to_string(), "B".into(), "C".into()];
+    c.orientation = Some((names.clone(), OrientationConvention::EulerXyzDeg));
+    let m = parse_tracker_measurements(f, SIX_DOF, 3, &c).unwrap();
+    let o = m.orientations.unwrap();
+    assert_eq!(o, vec![[179.5, -0.25, -90.125], [-179.75, 0.5, 89.5]]);
+    assert_eq!(m.slack.orient_deg, 0.0);
+    // Without orientation columns the file reads as before.
+    let plain = parse_tracker_measurements(f, SIX_DOF, 3, &columns(JointUnit::Rad, LengthUnit::Mm));
+    assert_eq!(plain.unwrap().orientations, None);
+    // Radians are converted, their rounding kept for the bound; degrees read as radians refused.
+    let text = SIX_DOF
+        .replace("179,5;-0,25;-90,125", "3,1;-0,25;-1,5")
+        .replace("-179,75;0,5;89,5", "-3;0,5;1,5");
+    c.orientation = Some((names.clone(), OrientationConvention::EulerXyzRad));
+    let m = parse_tracker_measurements(f, &text, 3, &c).unwrap();
+    let o = m.orientations.unwrap();
+    assert!((o[0][0] - 3.1_f64.to_degrees()).abs() < 1e-12);
+    assert!(m.slack.orient_deg > 0.0 && m.slack.orient_deg < 1e-12);
+    assert!(m.slack.widen_orientation(0.01) >= 0.01);
+    let e = parse_tracker_measurements(f, SIX_DOF, 3, &c)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("six.csv") && e.contains("line 2") && e.contains('A'),
+        "{e}"
+    );
+    assert!(e.contains("euler-xyz-deg"), "{e}");
+}
+
+#[test]
+fn a_bad_orientation_field_is_named_with_its_line() {
+    let f = Path::new("six.csv");
+    let mut c = columns(JointUnit::Rad, LengthUnit::Mm);
+    c.orientation = Some((
+        ["A".to_string(), "B".into(), "C".into()],
+        OrientationConvention::EulerXyzDeg,
+    ));
+    let text = SIX_DOF.replace("0,5;89,5", "zero;89,5");
+    let e = parse_tracker_measurements(f, &text, 3, &c)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("six.csv") && e.contains("line 3") && e.contains('B'),
+        "{e}"
+    );
+    let text = SIX_DOF.replace("-90,125", "-450");
+    let e = parse_tracker_measurements(f, &text, 3, &c)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("line 2") && e.contains("-450") && e.contains("360"),
+        "{e}"
+    );
+    let missing = SIX_DOF.replace(";C\n", ";D\n");
+    let e = parse_tracker_measurements(f, &missing, 3, &c)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("six.csv") && e.contains('C'), "{e}");
 }
 
 const EXPORT: &str = "Stamp;j1;j2;j3;T;X;Y;Z\n\

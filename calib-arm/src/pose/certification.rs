@@ -1,0 +1,113 @@
+//! Certifying an arm on 6-DoF measurements: the point model's padded problem
+//! ([`crate::certification`]) with the tool frame's rotation appended to the parameters and the
+//! measured Euler angles to each configuration's measured quantities, through [`Arm7Pose`].
+//!
+//! The run reports the verdict, the outer and inner bounds, identifiability and the
+//! least-squares fit as the point model's does; it builds no certified set (the calibrated file,
+//! `predict` and `accuracy` work over position-only calibrations).
+
+use super::{Arm7Pose, PoseReading, PoseUncertainty};
+use crate::certification::{
+    check_shape, padded_box, padded_index, padded_nominal, run_model, ArmRun, CertifyRequest, Job,
+    Padded, NM, NX,
+};
+use crate::params::{self, Unit};
+use crate::robot::Arm;
+use crate::simulate::{measurement_box, Reading};
+use crate::units::{deg_to_rad, to_rad};
+use calib_core::Interval;
+use calib_pipeline::smallest_consistent;
+
+/// Parameters of the padded 6-DoF model: the point model's, then `tool_rx, tool_ry, tool_rz`.
+pub const NX6: usize = NX + 3;
+/// Measured quantities of the padded 6-DoF model: the point model's, then the Euler angles.
+pub const NM6: usize = NM + 3;
+
+/// The parameter names of an arm with `joints` joints measured in 6-DoF.
+pub fn names(joints: usize) -> Vec<String> {
+    params::pose_names(joints)
+        .into_iter()
+        .map(|(n, _)| n)
+        .collect()
+}
+
+/// Certifies `arm` (which must carry a [`crate::robot::ToolRotation`]) against 6-DoF
+/// measurements as [`crate::certification::certify_request`] does against points: with
+/// [`calib_pipeline::OutlierBudget::Auto`], with the smallest number of tolerated outliers not
+/// proved empty. Returns that number and the run (no certified set, see the module's
+/// documentation). `u.orient_deg` must be given.
+pub fn certify_pose_request(
+    arm: &Arm,
+    readings: &[PoseReading],
+    u: &PoseUncertainty,
+    request: &CertifyRequest,
+) -> Result<(usize, ArmRun), String> {
+    let p = padded_pose(arm, readings, u)?;
+    let (settings, options) = request.prepared(readings.len())?;
+    let names = names(arm.joints.len());
+    let prior: Vec<Interval> = p.index.iter().map(|&i| p.x0[i]).collect();
+    smallest_consistent(
+        request.max_outliers,
+        readings.len(),
+        |q| {
+            let settings = settings.clone().with_max_outliers(q);
+            let job = Job::Certify(options);
+            Ok(run_model(&Arm7Pose, &p, names.clone(), &prior, job, &settings).0)
+        },
+        |run: &ArmRun| run.outcome.status == calib_core::Status::Empty,
+    )
+}
+
+/// The padded 6-DoF problem, or what is missing for it.
+fn padded_pose(
+    arm: &Arm,
+    readings: &[PoseReading],
+    u: &PoseUncertainty,
+) -> Result<Padded<NX6, NM6>, String> {
+    let plain: Vec<Reading> = readings.iter().map(|r| r.reading.clone()).collect();
+    check_shape(arm, &plain)?;
+    let tool = arm.tool_rotation.ok_or(
+        "6-DoF measurements need the measured frame's rotation on the flange: [tool] rpy_deg \
+         and rotation_radius in the robot file (`arm register` with --orientation-columns finds \
+         them)",
+    )?;
+    let orient_deg = u.orient_deg.ok_or(
+        "6-DoF measurements need the orientation's error bound: orient_deg (degrees, the \
+         half-width of each measured Euler angle) in the uncertainty file",
+    )?;
+    let joints = arm.joints.len();
+    let base = padded_box(arm);
+    let nominal = padded_nominal(arm);
+    let x0 = core::array::from_fn(|i| match i.checked_sub(NX) {
+        None => base[i],
+        Some(k) => deg_to_rad(Interval::mid_rad(tool.rpy_deg[k], tool.radius[k])),
+    });
+    let nominal = core::array::from_fn(|i| match i.checked_sub(NX) {
+        None => nominal[i],
+        Some(k) => to_rad(tool.rpy_deg[k]),
+    });
+    let boxes = readings
+        .iter()
+        .map(|r| {
+            let point: [Interval; NM] = measurement_box(&r.reading, &u.position)
+                .ok_or("a configuration has more joint readings than the model")?;
+            Ok(core::array::from_fn(|i| match i.checked_sub(NM) {
+                None => point[i],
+                Some(k) => deg_to_rad(Interval::mid_rad(r.euler_xyz_deg[k], orient_deg)),
+            }))
+        })
+        .collect::<Result<Vec<[Interval; NM6]>, String>>()?;
+    let mut index = padded_index(joints);
+    index.extend(NX..NX6);
+    let units = params::pose_names(joints)
+        .into_iter()
+        .map(|(_, u)| u)
+        .collect::<Vec<Unit>>();
+    Ok(Padded {
+        x0,
+        nominal,
+        boxes,
+        index,
+        units,
+    })
+}

@@ -1,0 +1,214 @@
+//! The six-row residual against the independent forward kinematics of `common`, and 6-DoF
+//! certification ([`calib_arm::pose`]) on random arms measured in position and orientation,
+//! the data made by the independent forward kinematics of `common`: the truth stays inside the
+//! outer box, consistent data are not proved empty, the orientations narrow the tool frame's
+//! rotation, and a configuration whose orientation is turned is proved inconsistent.
+
+use crate::common::{forward, tool_rotation};
+use crate::kernel::random_arm;
+use crate::model::random_arm as random_geometry;
+use calib_arm::certification::CertifyRequest;
+use calib_arm::params::{self, Unit};
+use calib_arm::pose::certification::certify_pose_request;
+use calib_arm::pose::orientation::{from_euler_xyz, to_euler_xyz};
+use calib_arm::pose::Arm7Pose;
+use calib_arm::pose::{PoseReading, PoseUncertainty};
+use calib_arm::robot::ToolRotation;
+use calib_arm::simulate::{Reading, Uncertainty};
+use calib_arm::{Arm, Arm7Point};
+use calib_core::Status;
+use calib_core::{Interval, VectorModel};
+use nalgebra::Rotation3;
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+
+/// The error bounds of the simulated data: the tracker's, and 0.002° per Euler angle.
+const BOUNDS: PoseUncertainty = PoseUncertainty {
+    position: Uncertainty::TRACKER,
+    orient_deg: Some(0.002),
+};
+
+/// A random arm of 3 joints with a tool frame's rotation and its prior.
+fn pose_arm(rng: &mut StdRng) -> Arm {
+    let mut arm = random_arm(3, rng);
+    arm.tool_rotation = Some(ToolRotation {
+        rpy_deg: core::array::from_fn(|_| rng.random_range(-180.0..180.0)),
+        radius: [0.01; 3],
+    });
+    arm
+}
+
+/// The truth (files' units: the point model's parameters, then the tool rotation) within 0.8 of
+/// each prior half-width, and `configs` readings within the bounds of the true values.
+fn simulate(arm: &Arm, configs: usize, rng: &mut StdRng) -> (Vec<f64>, Vec<PoseReading>) {
+    let tool = arm.tool_rotation.unwrap();
+    let names = params::pose_names(arm.joints.len());
+    let nominal: Vec<f64> = arm.nominal().into_iter().chain(tool.rpy_deg).collect();
+    let radius: Vec<f64> = arm.radius().into_iter().chain(tool.radius).collect();
+    let truth: Vec<f64> = nominal
+        .iter()
+        .zip(&radius)
+        .map(|(v, r)| v + rng.random_range(-0.8..=0.8) * r)
+        .collect();
+    let model: Vec<f64> = truth
+        .iter()
+        .zip(&names)
+        .map(|(v, (_, u))| if *u == Unit::Deg { v.to_radians() } else { *v })
+        .collect();
+    let point_parameters = params::count(arm.joints.len());
+    let noise = |rng: &mut StdRng, r: f64| rng.random_range(-1.0..=1.0) * r;
+    let readings = (0..configs)
+        .map(|_| {
+            let q: Vec<f64> = (0..arm.joints.len())
+                .map(|_| rng.random_range(-170.0..170.0))
+                .collect();
+            let q_rad: Vec<f64> = q.iter().map(|v| v.to_radians()).collect();
+            let p = forward(&model[..point_parameters], &q_rad);
+            let r = Rotation3::from_matrix_unchecked(tool_rotation(&model, &q_rad));
+            let euler = to_euler_xyz(&r).map(f64::to_degrees);
+            let u = &BOUNDS.position;
+            PoseReading {
+                reading: Reading {
+                    joints_deg: q.iter().map(|v| v + noise(rng, u.joint_deg)).collect(),
+                    point: p.map(|v| v + noise(rng, u.pos)),
+                },
+                euler_xyz_deg: euler.map(|v| v + noise(rng, BOUNDS.orient_deg.unwrap())),
+            }
+        })
+        .collect();
+    (truth, readings)
+}
+
+#[test]
+fn six_dof_certification_keeps_the_truth_and_narrows_the_tool_rotation() {
+    let mut narrowed = 0;
+    for seed in 0..3u64 {
+        let mut rng = StdRng::seed_from_u64(100 + seed);
+        let arm = pose_arm(&mut rng);
+        let (truth, readings) = simulate(&arm, 10, &mut rng);
+        let (_, run) =
+            certify_pose_request(&arm, &readings, &BOUNDS, &CertifyRequest::default()).unwrap();
+        let o = &run.outcome;
+        assert_ne!(
+            o.status,
+            Status::Empty,
+            "seed {seed}: consistent data proved empty"
+        );
+        let outer = o.outer.as_ref().unwrap();
+        assert_eq!(outer.len(), truth.len());
+        for (j, (b, t)) in outer.iter().zip(&truth).enumerate() {
+            assert!(
+                b.contains(*t),
+                "seed {seed}: {} = {t} outside {b}",
+                o.names[j]
+            );
+        }
+        // The tool frame's rotation (the last three) is seen by the orientations only.
+        let n = truth.len();
+        narrowed += (n - 3..n)
+            .filter(|&j| outer[j].wid() < 0.5 * o.x0[j].wid())
+            .count();
+    }
+    assert!(
+        narrowed >= 6,
+        "the orientations narrowed only {narrowed} of 9 tool rotations"
+    );
+}
+
+#[test]
+fn a_turned_orientation_is_proved_inconsistent() {
+    let mut rng = StdRng::seed_from_u64(7);
+    let arm = pose_arm(&mut rng);
+    let (_, mut readings) = simulate(&arm, 10, &mut rng);
+    readings[2].euler_xyz_deg[1] += 0.05;
+    let (_, run) =
+        certify_pose_request(&arm, &readings, &BOUNDS, &CertifyRequest::default()).unwrap();
+    assert_eq!(run.outcome.status, Status::Empty);
+}
+
+#[test]
+fn six_dof_needs_the_tool_rotation_and_its_bound() {
+    let mut rng = StdRng::seed_from_u64(8);
+    let arm = pose_arm(&mut rng);
+    let (_, readings) = simulate(&arm, 4, &mut rng);
+    let request = CertifyRequest::default();
+    let plain = Arm {
+        tool_rotation: None,
+        ..arm.clone()
+    };
+    let e = certify_pose_request(&plain, &readings, &BOUNDS, &request).unwrap_err();
+    assert!(
+        e.contains("rpy_deg") && e.contains("rotation_radius"),
+        "{e}"
+    );
+    let no_bound = PoseUncertainty {
+        orient_deg: None,
+        ..BOUNDS
+    };
+    let e = certify_pose_request(&arm, &readings, &no_bound, &request).unwrap_err();
+    assert!(e.contains("orient_deg"), "{e}");
+}
+
+/// The 6-DoF model's parameters: a random 7-joint arm, then a tool rotation (radians).
+fn random_pose_arm(rng: &mut StdRng) -> [f64; 47] {
+    let mut x = random_geometry(rng, 7);
+    x.extend((0..3).map(|_| rng.random_range(-3.0..3.0)));
+    x.try_into().unwrap()
+}
+
+/// The 6-DoF model's measured quantities at `x`, `q`: the readings, the tracked point and the
+/// intrinsic Euler angles `XYZ` of the tool frame, from the independent forward kinematics.
+fn pose_measurement(x: &[f64; 47], q: &[f64]) -> [f64; 13] {
+    let mut m = [0.0; 13];
+    m[..7].copy_from_slice(q);
+    m[7..10].copy_from_slice(&forward(&x[..44], q));
+    let r = nalgebra::Rotation3::from_matrix_unchecked(tool_rotation(x, q));
+    m[10..].copy_from_slice(&to_euler_xyz(&r));
+    m
+}
+
+#[test]
+fn the_six_row_residual_is_the_forward_kinematics_of_the_chain_and_its_orientation() {
+    let mut rng = StdRng::seed_from_u64(5);
+    for _ in 0..200 {
+        let x = random_pose_arm(&mut rng);
+        let q: Vec<f64> = (0..7).map(|_| rng.random_range(-3.0..3.0)).collect();
+        let m = pose_measurement(&x, &q);
+        let r = Arm7Pose.residuals(&x, &m);
+        let point = Arm7Point.residuals(&x[..44].try_into().unwrap(), &m[..10].try_into().unwrap());
+        assert_eq!(r[..3], point, "the position rows are the point model's");
+        for k in 3..6 {
+            assert!(r[k].abs() < 1e-8, "row {k}: {r:?}");
+        }
+        // A small rotation `δ` of the measured frame: the rows are ±500 δ (one sign for all).
+        let delta = nalgebra::Vector3::new(
+            rng.random_range(-1e-3..1e-3),
+            rng.random_range(-1e-3..1e-3),
+            rng.random_range(-1e-3..1e-3),
+        );
+        let measured =
+            from_euler_xyz([m[10], m[11], m[12]]) * nalgebra::Rotation3::from_scaled_axis(-delta);
+        let mut moved = m;
+        moved[10..].copy_from_slice(&to_euler_xyz(&measured));
+        let r = Arm7Pose.residuals(&x, &moved);
+        let sign = r[3].signum() * delta[0].signum();
+        for k in 0..3 {
+            assert!(
+                (r[3 + k] - sign * 500.0 * delta[k]).abs() < 1e-3,
+                "row {}: {} against {}",
+                3 + k,
+                r[3 + k],
+                500.0 * delta[k]
+            );
+        }
+        // The interval evaluation over a small box contains the point values (the orientation
+        // rows, 1000 × a chain of 24 quaternion products, widen more than the position rows: up to
+        // ~1.1 here, against ~0.03 to first order).
+        let xb = x.map(|v| Interval::mid_rad(v, 1e-6));
+        let mb = moved.map(|v| Interval::mid_rad(v, 1e-6));
+        let ri = Arm7Pose.residuals_interval(&xb, &mb);
+        for k in 0..6 {
+            assert!(ri[k].contains(r[k]) && ri[k].wid() < 2.0, "{:?}", ri[k]);
+        }
+    }
+}
