@@ -136,6 +136,19 @@ impl std::str::FromStr for JointUnit {
     }
 }
 
+impl std::str::FromStr for OrientationConvention {
+    type Err = String;
+
+    /// `euler-xyz-deg` or `euler-xyz-rad`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "euler-xyz-deg" => Ok(OrientationConvention::EulerXyzDeg),
+            "euler-xyz-rad" => Ok(OrientationConvention::EulerXyzRad),
+            other => Err(format!("`euler-xyz-deg` or `euler-xyz-rad`, not `{other}`")),
+        }
+    }
+}
+
 impl std::str::FromStr for LengthUnit {
     type Err = String;
 

@@ -384,6 +384,12 @@ fn arm_measurements(
     joints: usize,
     c: Columns,
 ) -> PyResult<calib_arm::files::Measurements> {
+    let m = arm_columns(joints, c)?;
+    calib_arm::files::read_tracker_measurements(path, joints, &m).map_err(value_error)
+}
+
+/// The layout `columns` gives an arm of `joints` joints.
+fn arm_columns(joints: usize, c: Columns) -> PyResult<calib_arm::tracker_file::MeasurementColumns> {
     use calib_arm::tracker_file::MeasurementColumns;
     let mut m = MeasurementColumns::with_names(joints, c.joint_columns, c.point_columns)
         .map_err(|e| value_error(format!("point_columns: {e}")))?;
@@ -396,7 +402,7 @@ fn arm_measurements(
         .map(|r| r.parse())
         .transpose()
         .map_err(|e| value_error(format!("rows: {e}")))?;
-    calib_arm::files::read_tracker_measurements(path, joints, &m).map_err(value_error)
+    Ok(m)
 }
 
 /// Imports a vendor's kinematics (`kind`: `ur_yaml` or `urdf`) into the robot file `out`, as
@@ -483,9 +489,14 @@ fn arm_export(
     Ok(())
 }
 
-/// Registers the tracker and the tool point, as `arm register` does: writes `out` and returns
-/// JSON (`base`, `tool`, `rms_mm`, `max_mm`, `start_rms_mm`, `converged`).
+/// Registers the tracker and the tool point, as `arm register` does — and with
+/// `orientation_columns` (three names, `orientation_convention` `euler-xyz-deg` or
+/// `euler-xyz-rad`) the tool frame's rotation with the prior `tool_rotation_radius` (degrees):
+/// writes `out` and returns JSON (`base`, `tool`, `rms_mm`, `max_mm`, `start_rms_mm`,
+/// `converged`, and `tool_rotation` with `rpy_deg`, `rms_deg`, `max_deg` or null).
 #[pyfunction]
+#[pyo3(signature = (robot, measurements, out, columns, priors, orientation_columns=None, orientation_convention="euler-xyz-deg", tool_rotation_radius=0.5))]
+#[allow(clippy::too_many_arguments)] // the command line's options, one argument each
 fn arm_register(
     py: Python<'_>,
     robot: PathBuf,
@@ -493,17 +504,49 @@ fn arm_register(
     out: PathBuf,
     columns: Columns,
     priors: (f64, f64, f64),
+    orientation_columns: Option<Vec<String>>,
+    orientation_convention: &str,
+    tool_rotation_radius: f64,
 ) -> PyResult<String> {
     let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
-    let data = arm_measurements(&measurements, arm.joints.len(), columns)?;
+    let mut layout = arm_columns(arm.joints.len(), columns)?;
+    if let Some(o) = orientation_columns {
+        let names = <[String; 3]>::try_from(o).map_err(|o| {
+            value_error(format!(
+                "orientation_columns: expected three names, found {}",
+                o.len()
+            ))
+        })?;
+        let convention = orientation_convention
+            .parse()
+            .map_err(|e: String| value_error(format!("orientation_convention: {e}")))?;
+        layout.orientation = Some((names, convention));
+    }
+    let data =
+        calib_arm::files::read_tracker_measurements(&measurements, arm.joints.len(), &layout)
+            .map_err(value_error)?;
     let priors = calib_arm::register::RegistrationPriors {
         base_mm: priors.0,
         base_deg: priors.1,
         tool_mm: priors.2,
     };
-    let r = py
+    let mut r = py
         .detach(|| calib_arm::register::register(&arm, &data.readings, priors))
         .map_err(|e| value_error(format!("{}: {e}", measurements.display())))?;
+    let rotation = match &data.orientations {
+        Some(o) => {
+            let (t, rms, max) = calib_arm::register::register_tool_rotation(
+                &r.arm,
+                &data.readings,
+                o,
+                tool_rotation_radius,
+            )
+            .map_err(|e| value_error(format!("{}: {e}", measurements.display())))?;
+            r.arm.tool_rotation = Some(t);
+            serde_json::json!({"rpy_deg": t.rpy_deg, "rms_deg": rms, "max_deg": max})
+        }
+        None => serde_json::Value::Null,
+    };
     let text = format!(
         "# registered by certicalib {}\n{}",
         env!("CARGO_PKG_VERSION"),
@@ -518,6 +561,7 @@ fn arm_register(
         "max_mm": r.max_abs,
         "start_rms_mm": r.start_rms,
         "converged": r.converged,
+        "tool_rotation": rotation,
     })
     .to_string())
 }

@@ -65,3 +65,32 @@ def test_mistakes_raise_value_errors_naming_the_file(tmp_path):
         certicalib.export_arm(fit, ur_yaml=tmp_path / "fit.yaml")
     assert not (tmp_path / "fit.yaml").exists()
     certicalib.export_arm(nominal, ur_yaml=tmp_path / "nominal.yaml")
+
+
+def test_register_finds_the_tool_frame_from_the_tmac_orientations(tmp_path):
+    nominal = tmp_path / "nominal.toml"
+    certicalib.import_arm(DATA / "ur10_default_kinematics.yaml", nominal)
+    robot = tmp_path / "robot6.toml"
+    orientation = ["measurement_rx", "measurement_ry", "measurement_rz"]
+    reg = certicalib.register_arm(nominal, SERIES, robot, rows="1-40",
+                                  orientation_columns=orientation, tool_rotation_radius=0.3,
+                                  **TRACKER)
+    rotation = reg["tool_rotation"]
+    assert abs(rotation["rpy_deg"][2] + 90.0) < 1.0 and 0.0 < rotation["rms_deg"] < 0.2
+    # The command line writes the same robot file.
+    cli = tmp_path / "cli6.toml"
+    subprocess.run([repo_binary("arm"), "register", "--robot", str(nominal), "--measurements",
+                    str(SERIES), "--joint-columns", ",".join(JOINTS), "--point-columns",
+                    ",".join(POINT), "--joint-unit", "rad", "--rows", "1-40",
+                    "--orientation-columns", ",".join(orientation),
+                    "--tool-rotation-radius", "0.3", "--out", str(cli)],
+                   check=True, capture_output=True)
+    assert robot.read_text().split("\n", 1)[1] == cli.read_text().split("\n", 1)[1]
+    assert "rotation_radius = [0.3, 0.3, 0.3]" in robot.read_text()
+    assert certicalib.register_arm(nominal, SERIES, tmp_path / "p.toml", rows="1-40",
+                                   **TRACKER)["tool_rotation"] is None
+    with pytest.raises(ValueError, match="orientation_convention"):
+        certicalib.register_arm(nominal, SERIES, tmp_path / "x.toml", rows="1-40",
+                                orientation_columns=orientation,
+                                orientation_convention="quaternion", **TRACKER)
+    assert not (tmp_path / "x.toml").exists()

@@ -574,17 +574,26 @@ def register_arm(robot: PathLike, measurements: PathLike, out: PathLike, *,
                  point_columns: Optional[Sequence[str]] = None, joint_unit: str = "deg",
                  length_unit: str = "mm", rows: Optional[str] = None,
                  base_radius: Tuple[float, float] = (2.0, 0.1),
-                 tool_radius: float = 2.0) -> Dict[str, Any]:
+                 tool_radius: float = 2.0,
+                 orientation_columns: Optional[Sequence[str]] = None,
+                 orientation_convention: str = "euler-xyz-deg",
+                 tool_rotation_radius: float = 0.5) -> Dict[str, Any]:
     """Find the tracker-to-base transform and the tool point from scratch, as ``arm register``
     does, and write the robot file ``out`` with them and their priors (``base_radius``: mm and
     degrees; ``tool_radius``: mm). The measurement file is read as the command line reads it
     (``joint_columns``, ``point_columns``, ``joint_unit`` ``"deg"|"rad"``, ``length_unit``
     ``"mm"|"m"``, ``rows`` such as ``"1-60"``). Returns ``base`` (x, y, z mm, rx, ry, rz °),
-    ``tool`` (mm), ``rms_mm``, ``max_mm``, ``start_rms_mm`` and ``converged``."""
+    ``tool`` (mm), ``rms_mm``, ``max_mm``, ``start_rms_mm`` and ``converged``. With
+    ``orientation_columns`` (a 6-DoF probe's three Euler angles, ``orientation_convention``
+    ``"euler-xyz-deg"`` or ``"euler-xyz-rad"``) the tool frame's rotation is registered too and
+    written with the prior ``tool_rotation_radius`` (degrees): ``tool_rotation`` holds its
+    ``rpy_deg`` and the orientation residuals ``rms_deg``, ``max_deg`` (else ``None``)."""
     cols = _columns(joint_columns, point_columns, joint_unit, length_unit, rows)
     text = _native.arm_register(os.fspath(robot), os.fspath(measurements), os.fspath(out), cols,
                                 (float(base_radius[0]), float(base_radius[1]),
-                                 float(tool_radius)))
+                                 float(tool_radius)),
+                                None if orientation_columns is None else list(orientation_columns),
+                                str(orientation_convention), float(tool_rotation_radius))
     return json.loads(text)
 
 

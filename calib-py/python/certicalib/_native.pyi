@@ -73,7 +73,8 @@ def arm_export(
 ) -> None: ...
 def arm_register(
     robot: _Path, measurements: _Path, out: _Path, columns: _Columns,
-    priors: Tuple[float, float, float],
+    priors: Tuple[float, float, float], orientation_columns: Optional[List[str]] = ...,
+    orientation_convention: str = ..., tool_rotation_radius: float = ...,
 ) -> str: ...
 def arm_error_scale(
     robot: _Path, measurements: _Path, uncertainty: _Path, columns: _Columns, scale_bounds: str,
