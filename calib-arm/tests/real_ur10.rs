@@ -326,6 +326,29 @@ fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
         assert!(!dir.join("six.json").exists());
     }
     assert!(!dir.join("never.json").exists());
+    // Orientations need the tool frame's rotation and a bound for them: each file named.
+    std::fs::write(p("u_pos.toml"), "joint_deg = 0.001\npos = 0.6\n").expect("write");
+    for (robot, bounds, named, what) in [
+        ("nominal.toml", "u.toml", "nominal.toml", "rpy_deg"),
+        ("robot.toml", "u_pos.toml", "u_pos.toml", "orient_deg"),
+    ] {
+        let o = run(
+            &[
+                "certify",
+                "--robot",
+                &p(robot),
+                "--uncertainty",
+                &p(bounds),
+                "--json",
+                &p("never.json"),
+            ],
+            &six,
+        );
+        assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert!(err.contains(named) && err.contains(what), "{err}");
+    }
+    assert!(!dir.join("never.json").exists());
     // A rotation without its prior in the robot file: file, line and field.
     let text_robot = std::fs::read_to_string(p("robot.toml")).expect("robot");
     let cut: String = text_robot

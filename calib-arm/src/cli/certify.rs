@@ -157,6 +157,23 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                     .into());
                 }
             }
+            if arm.tool_rotation.is_none() {
+                return Err(format!(
+                    "{}: [tool] has no rpy_deg and rotation_radius: 6-DoF measurements need the \
+                     measured frame's rotation on the flange (`arm register \
+                     --orientation-columns …` finds it)",
+                    a.files.robot.display()
+                )
+                .into());
+            }
+            if pose_u.orient_deg.is_none() {
+                return Err(format!(
+                    "{}: no orient_deg: 6-DoF measurements need the orientation's error bound \
+                     (degrees, the half-width of each measured Euler angle)",
+                    a.uncertainty.display()
+                )
+                .into());
+            }
             let readings: Vec<PoseReading> = data
                 .readings
                 .iter()
@@ -203,8 +220,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let (q, run) = match &pose {
         Some((readings, bounds)) => certify_pose(&arm, readings, bounds, &request),
         None => certify_request(&arm, &data.readings, &u, &request),
-    }
-    .map_err(|e| format!("{}: {e}", a.files.robot.display()))?;
+    }?;
     bar.finish_and_clear();
     if let Some((_, bounds)) = &pose {
         println!(
