@@ -35,7 +35,7 @@ pub struct Arm {
 
 /// The rotation of the measured frame on the flange, `R_tool = Rz(rz) Ry(ry) Rx(rx)` (the base's
 /// convention), and its prior: what a 6-DoF probe's orientation adds to the parameters
-/// (`tool_rx, tool_ry, tool_rz`, see [`crate::pose::model`]).
+/// (`tool_rx, tool_ry, tool_rz`, see [`crate::pose`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ToolRotation {
     /// Nominal `rx, ry, rz`, degrees.
