@@ -55,6 +55,18 @@ fn tracker(rows: &str) -> Vec<String> {
     .to_vec()
 }
 
+/// `arm import` of UR's YAML into `out`.
+fn import_nominal(out: &str) {
+    let o = arm(&[
+        "import",
+        "--ur-yaml",
+        &data("ur10_default_kinematics.yaml"),
+        "--out",
+        out,
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+}
+
 fn run(args: &[&str], extra: &[String]) -> Output {
     let mut all: Vec<&str> = args.to_vec();
     all.extend(extra.iter().map(String::as_str));
@@ -65,14 +77,7 @@ fn run(args: &[&str], extra: &[String]) -> Output {
 fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
     let dir = tempdir("pipeline");
     let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
-    let o = arm(&[
-        "import",
-        "--ur-yaml",
-        &data("ur10_default_kinematics.yaml"),
-        "--out",
-        &p("nominal.toml"),
-    ]);
-    assert!(o.status.success(), "{}", text(&o));
+    import_nominal(&p("nominal.toml"));
     let o = run(
         &[
             "register",
@@ -153,14 +158,7 @@ fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
 fn wrong_units_and_columns_are_named_and_nothing_is_written() {
     let dir = tempdir("mistakes");
     let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
-    let o = arm(&[
-        "import",
-        "--ur-yaml",
-        &data("ur10_default_kinematics.yaml"),
-        "--out",
-        &p("nominal.toml"),
-    ]);
-    assert!(o.status.success(), "{}", text(&o));
+    import_nominal(&p("nominal.toml"));
     // Millimetres read as metres: the row, its line and the column, and the fix.
     let mut args = tracker("1-60");
     args.extend(["--length-unit".into(), "m".into()]);
@@ -244,14 +242,7 @@ const ORIENTATION: &str = "measurement_rx,measurement_ry,measurement_rz";
 fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
     let dir = tempdir("six-dof");
     let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
-    let o = arm(&[
-        "import",
-        "--ur-yaml",
-        &data("ur10_default_kinematics.yaml"),
-        "--out",
-        &p("nominal.toml"),
-    ]);
-    assert!(o.status.success(), "{}", text(&o));
+    import_nominal(&p("nominal.toml"));
     let mut six = tracker("1-40");
     six.extend(["--orientation-columns".into(), ORIENTATION.into()]);
     let o = run(
