@@ -154,19 +154,27 @@ fn kabsch(from: &[Vector3<f64>], to: &[Vector3<f64>]) -> Option<Frame> {
         .zip(to)
         .map(|(a, b)| (a - cf) * (b - ct).transpose())
         .sum();
-    let svd = h.svd(true, true);
-    let (u, v_t) = (svd.u?, svd.v_t?);
-    let mut s = svd.singular_values;
+    let mut s = h.singular_values();
     s.as_mut_slice().sort_by(|a, b| b.total_cmp(a));
     if s[1] <= 1e-9 * s[0].max(1e-300) {
         return None;
     }
-    let v = v_t.transpose();
-    let d = (v * u.transpose()).determinant().signum();
-    let r = v * Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, d)) * u.transpose();
-    let rotation = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r));
+    // The rotation R maximising Σ (b - ct)·R(a - cf) = tr(R H) is the one nearest to Hᵀ.
+    let r = nearest_rotation(&h.transpose())?;
+    let rotation = UnitQuaternion::from_rotation_matrix(&r);
     let translation = ct - rotation * cf;
     Some(Frame::from_parts(Translation3::from(translation), rotation))
+}
+
+/// The rotation nearest to `m` in the Frobenius norm: `U diag(1, 1, det(U Vᵀ)) Vᵀ` for
+/// `m = U Σ Vᵀ` (`None` when the SVD fails).
+fn nearest_rotation(m: &Matrix3<f64>) -> Option<Rotation3<f64>> {
+    let svd = m.svd(true, true);
+    let (u, v_t) = (svd.u?, svd.v_t?);
+    let d = (u * v_t).determinant().signum();
+    Some(Rotation3::from_matrix_unchecked(
+        u * Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, d)) * v_t,
+    ))
 }
 
 /// RMS over every coordinate of `pose · flange_k · t − p_k`.
@@ -209,12 +217,7 @@ pub fn register_tool_rotation(
         .iter()
         .map(|(f, m)| (f.inverse() * m).into_inner())
         .sum();
-    let svd = sum.svd(true, true);
-    let (u, v_t) = (svd.u.ok_or("no SVD")?, svd.v_t.ok_or("no SVD")?);
-    let d = (u * v_t).determinant().signum();
-    let tool = Rotation3::from_matrix_unchecked(
-        u * Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, d)) * v_t,
-    );
+    let tool = nearest_rotation(&sum).ok_or("no orientation to register the tool frame from")?;
     let angles: Vec<f64> = pairs
         .iter()
         .map(|(f, m)| (f * tool).angle_to(m).to_degrees())
