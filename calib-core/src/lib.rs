@@ -57,6 +57,7 @@ pub mod lp;
 pub mod maximum;
 mod model;
 pub mod outliers;
+pub mod outlined;
 mod push;
 pub mod quadratic;
 mod scalar;

@@ -29,6 +29,11 @@ pub trait Scalar:
     /// The `#[interval_model]` code generator emits this for every literal.
     fn enclose(nearest: f64, lo: f64, hi: f64) -> Self;
 
+    /// Whether the large generated evaluators call this type's operations out of line
+    /// ([`crate::outlined`]): `true` (the default) for every type whose operations are more than
+    /// a few instructions, `false` for `f64`.
+    const OUT_OF_LINE: bool = true;
+
     /// The square `self * self` (tighter than the product for intervals containing zero).
     fn sqr(self) -> Self;
 
@@ -49,6 +54,7 @@ pub trait Scalar:
 }
 
 impl Scalar for f64 {
+    const OUT_OF_LINE: bool = false;
     #[inline(always)]
     fn cst(v: f64) -> Self {
         v

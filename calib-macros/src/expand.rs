@@ -10,6 +10,11 @@ use crate::rewrite::constant_tokens;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
+/// Bodies with more operations than this call `calib_core::outlined`'s arithmetic instead of the
+/// operators: inlined interval arithmetic makes LLVM's optimisation of a long body superlinear
+/// (`calib_core::outlined` has the measurements). The arm's models exceed it, the Gough leg's do not.
+const OUTLINE_ABOVE: usize = 700;
+
 /// The struct name: `gough_leg` becomes `GoughLeg`.
 pub fn camel_case(name: &Ident) -> Ident {
     let s: String = name
@@ -298,6 +303,8 @@ fn evaluator(
     }
     let var = |id: Id| format_ident!("__v{}", id);
     let scalar = quote!(<#s as ::calib_core::Scalar>);
+    // Large bodies call out-of-line arithmetic: see `calib_core::outlined`.
+    let outline = needed.iter().filter(|&&n| n).count() > OUTLINE_ABOVE;
     let lets = (0..graph.len()).filter(|&id| needed[id]).map(|id| {
         let v = var(id);
         let rhs = match graph.node(id) {
@@ -309,6 +316,20 @@ fn evaluator(
                 f64::from_bits(c.lo),
                 f64::from_bits(c.hi),
             ),
+            Node::Add(a, b) if outline => outlined("add", &[var(a), var(b)]),
+            Node::Sub(a, b) if outline => outlined("sub", &[var(a), var(b)]),
+            Node::Mul(a, b) if outline => outlined("mul", &[var(a), var(b)]),
+            Node::Div(a, b) if outline => outlined("div", &[var(a), var(b)]),
+            Node::Neg(a) if outline => outlined("neg", &[var(a)]),
+            Node::Sqr(a) if outline => outlined("sqr", &[var(a)]),
+            Node::Sqrt(a) if outline => outlined("sqrt", &[var(a)]),
+            Node::Sin(a) if outline => outlined("sin", &[var(a)]),
+            Node::Cos(a) if outline => outlined("cos", &[var(a)]),
+            Node::Tan(a) if outline => outlined("tan", &[var(a)]),
+            Node::Powi(a, n) if outline => {
+                let a = var(a);
+                quote!(::calib_core::outlined::powi(#a, #n))
+            }
             Node::Add(a, b) => binary(var(a), quote!(+), var(b)),
             Node::Sub(a, b) => binary(var(a), quote!(-), var(b)),
             Node::Mul(a, b) => binary(var(a), quote!(*), var(b)),
@@ -336,6 +357,12 @@ fn evaluator(
     });
     let tail = finish(outs.collect());
     quote!(#(#lets)* #tail)
+}
+
+/// A call to `calib_core::outlined::<op>` with the given operands.
+fn outlined(op: &str, operands: &[Ident]) -> TokenStream {
+    let op = Ident::new(op, Span::call_site());
+    quote!(::calib_core::outlined::#op(#(#operands),*))
 }
 
 fn binary(a: Ident, op: TokenStream, b: Ident) -> TokenStream {
