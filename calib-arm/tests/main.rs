@@ -16,7 +16,6 @@ mod files;
 mod identify;
 mod kernel;
 mod model;
-#[cfg(feature = "six-dof")]
 mod pose;
 mod real_ur10;
 mod unit;

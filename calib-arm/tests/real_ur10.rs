@@ -294,7 +294,7 @@ fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
     );
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     assert!(text(&o).contains("positions only"), "{}", text(&o));
-    // Certification with the orientations: 6-DoF where the feature is built, else how to build it.
+    // Certification with the orientations: six equations per configuration.
     let o = run(
         &[
             "certify",
@@ -307,15 +307,9 @@ fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
         ],
         &six,
     );
-    if cfg!(feature = "six-dof") {
-        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-        assert!(text(&o).contains("6-DoF"), "{}", text(&o));
-        assert!(dir.join("six.json").exists());
-    } else {
-        assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-        assert!(text(&o).contains("--features six-dof"), "{}", text(&o));
-        assert!(!dir.join("six.json").exists());
-    }
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(text(&o).contains("6-DoF"), "{}", text(&o));
+    assert!(dir.join("six.json").exists());
     assert!(!dir.join("never.json").exists());
     // Orientations need the tool frame's rotation and a bound for them: each file named.
     std::fs::write(p("u_pos.toml"), "joint_deg = 0.001\npos = 0.6\n").expect("write");

@@ -1,8 +1,6 @@
 //! What several test files share: an independent forward kinematics of the arm.
 
-#[cfg(feature = "six-dof")]
-use nalgebra::Matrix3;
-use nalgebra::{Matrix4, Vector4};
+use nalgebra::{Matrix3, Matrix4, Vector4};
 
 fn rot_x(a: f64) -> Matrix4<f64> {
     let (c, s) = (a.cos(), a.sin());
@@ -40,7 +38,6 @@ pub fn forward(x: &[f64], q: &[f64]) -> [f64; 3] {
     [p[0], p[1], p[2]]
 }
 
-#[cfg(feature = "six-dof")]
 /// The tool frame's rotation `R_base · Π A_i(q_i) · R_tool` by matrix products, for the 6-DoF
 /// model's parameters (the point model's, then `tool_rx, tool_ry, tool_rz`: `Rz Ry Rx`).
 pub fn tool_rotation(x: &[f64], q: &[f64]) -> Matrix3<f64> {
