@@ -269,17 +269,24 @@ pub fn verdict_only(
     readings: &[Reading],
     u: &Uncertainty,
 ) -> Result<calib_core::Status, String> {
+    let (settings, options) = verdict_settings(readings.len())?;
+    Ok(certify_arm(arm, readings, u, options, &settings)?
+        .outcome
+        .status)
+}
+
+/// The settings and options of a verdict-only certification on `configs` configurations: x1,
+/// no inner bounds, no search of conflicting configurations.
+pub(crate) fn verdict_settings(configs: usize) -> Result<(Settings, RunOptions), String> {
     let mut settings = CertifyRequest::default()
-        .settings(readings.len())?
+        .settings(configs)?
         .with_conflict_sets(false);
     settings.inner_bounds = false;
     let options = RunOptions {
         depth: Depth::Fast,
         lsq: false,
     };
-    Ok(certify_arm(arm, readings, u, options, &settings)?
-        .outcome
-        .status)
+    Ok((settings, options))
 }
 
 fn dispatch(

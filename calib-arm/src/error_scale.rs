@@ -1,9 +1,12 @@
 //! `--error-scale auto` for arms: the smallest factor of the uncertainty file's bounds (all of
-//! them, the tracker's or the encoders') for which the data are consistent, as a proved bracket
-//! ([`calib_pipeline::error_scale`]), each trial a verdict-only certification
-//! ([`crate::certification::verdict_only`]).
+//! them, the tracker's, the encoders' or, for 6-DoF data, the orientations') for which the data
+//! are consistent, as a proved bracket ([`calib_pipeline::error_scale`]), each trial a
+//! verdict-only certification ([`crate::certification::verdict_only`]; for 6-DoF data
+//! [`crate::pose::certification::verdict_only_pose`]).
 
 use crate::certification::{padded_box, verdict_only, MAX_JOINTS, NM};
+use crate::pose::certification::{padded_pose, verdict_only_pose, NM6};
+use crate::pose::{Arm7Pose, PoseReading, PoseUncertainty};
 use crate::robot::Arm;
 use crate::simulate::{measurement_box, Reading, Uncertainty};
 use crate::Arm7Point;
@@ -20,23 +23,42 @@ pub enum ScaleBounds {
     /// The joint readings' (`joint_deg`).
     #[value(name = "joint_deg")]
     JointDeg,
+    /// The measured orientations' (`orient_deg`; 6-DoF data only).
+    #[value(name = "orient_deg")]
+    OrientDeg,
 }
 
 impl ScaleBounds {
+    /// Whether the factor multiplies the tracked point's bound.
+    fn scales_pos(self) -> bool {
+        matches!(self, ScaleBounds::All | ScaleBounds::Pos)
+    }
+
+    /// Whether the factor multiplies the joint readings' bound.
+    fn scales_joints(self) -> bool {
+        matches!(self, ScaleBounds::All | ScaleBounds::JointDeg)
+    }
+
+    /// Whether the factor multiplies the orientations' bound.
+    fn scales_orientation(self) -> bool {
+        matches!(self, ScaleBounds::All | ScaleBounds::OrientDeg)
+    }
+
     /// `u` with the chosen bounds multiplied by `s` (rounded up).
     pub fn scale(self, u: &Uncertainty, s: f64) -> Uncertainty {
-        let times = |v: f64| (Interval::point(v) * Interval::point(s)).sup();
         Uncertainty {
-            joint_deg: if self == ScaleBounds::Pos {
-                u.joint_deg
-            } else {
-                times(u.joint_deg)
-            },
-            pos: if self == ScaleBounds::JointDeg {
-                u.pos
-            } else {
-                times(u.pos)
-            },
+            joint_deg: times_if(self.scales_joints(), u.joint_deg, s),
+            pos: times_if(self.scales_pos(), u.pos, s),
+        }
+    }
+
+    /// 6-DoF bounds `u` with the chosen bounds multiplied by `s` (rounded up).
+    pub fn scale_pose(self, u: &PoseUncertainty, s: f64) -> PoseUncertainty {
+        PoseUncertainty {
+            position: self.scale(&u.position, s),
+            orient_deg: u
+                .orient_deg
+                .map(|o| times_if(self.scales_orientation(), o, s)),
         }
     }
 
@@ -44,13 +66,20 @@ impl ScaleBounds {
     /// readings, then the tracked point) an arm of `joints` joints scales.
     pub fn mask(self, joints: usize) -> [bool; NM] {
         core::array::from_fn(|i| {
-            let joint = i < MAX_JOINTS;
-            match self {
-                ScaleBounds::All => !joint || i < joints,
-                ScaleBounds::Pos => !joint,
-                ScaleBounds::JointDeg => joint && i < joints,
+            if i < MAX_JOINTS {
+                self.scales_joints() && i < joints
+            } else {
+                self.scales_pos()
             }
         })
+    }
+
+    /// Which of the padded 6-DoF model's measured quantities
+    /// ([`crate::pose::certification::NM6`]: the point model's, then the Euler angles) an arm of
+    /// `joints` joints scales.
+    pub fn mask_pose(self, joints: usize) -> [bool; NM6] {
+        let point = self.mask(joints);
+        core::array::from_fn(|i| point.get(i).copied().unwrap_or(self.scales_orientation()))
     }
 
     /// The name used in the JSON, the messages and the command line.
@@ -59,18 +88,57 @@ impl ScaleBounds {
             ScaleBounds::All => "all",
             ScaleBounds::Pos => "pos",
             ScaleBounds::JointDeg => "joint_deg",
+            ScaleBounds::OrientDeg => "orient_deg",
         }
     }
 
     /// The bounds scaled by `s`, in words: `pos 0.3851 mm`.
     pub fn describe(self, u: &Uncertainty, s: f64) -> String {
-        let b = self.scale(u, s);
-        match self {
-            ScaleBounds::All => format!("pos {:.4} mm and joints {:.5}°", b.pos, b.joint_deg),
-            ScaleBounds::Pos => format!("pos {:.4} mm", b.pos),
-            ScaleBounds::JointDeg => format!("joints {:.5}°", b.joint_deg),
-        }
+        self.describe_pose(
+            &PoseUncertainty {
+                position: *u,
+                orient_deg: None,
+            },
+            s,
+        )
     }
+
+    /// The 6-DoF bounds scaled by `s`, in words: `pos 0.3851 mm and orientations 0.0500°`.
+    pub fn describe_pose(self, u: &PoseUncertainty, s: f64) -> String {
+        let b = self.scale_pose(u, s);
+        let mut parts = Vec::new();
+        if self.scales_pos() {
+            parts.push(format!("pos {:.4} mm", b.position.pos));
+        }
+        if self.scales_joints() {
+            parts.push(format!("joints {:.5}°", b.position.joint_deg));
+        }
+        if let Some(o) = b.orient_deg.filter(|_| self.scales_orientation()) {
+            parts.push(format!("orientations {o:.4}°"));
+        }
+        parts.join(" and ")
+    }
+}
+
+/// `v × s` rounded up where `scaled`, else `v`.
+fn times_if(scaled: bool, v: f64, s: f64) -> f64 {
+    if scaled {
+        (Interval::point(v) * Interval::point(s)).sup()
+    } else {
+        v
+    }
+}
+
+/// The error when `which` scales no bound of these data (orientations without 6-DoF data).
+fn check_scaled(which: ScaleBounds, six_dof: bool) -> Result<(), String> {
+    if which == ScaleBounds::OrientDeg && !six_dof {
+        return Err(
+            "--scale-bounds orient_deg scales the orientations' bound: it needs 6-DoF \
+                    data (--orientation-columns)"
+                .to_string(),
+        );
+    }
+    Ok(())
 }
 
 /// Searches the smallest consistent factor of `which` bounds of `u` for `arm` on `readings`
@@ -84,6 +152,7 @@ pub fn search(
     which: ScaleBounds,
     on_trial: impl FnMut(f64),
 ) -> Result<ErrorScale, String> {
+    check_scaled(which, false)?;
     let joints = arm.joints.len();
     if !(3..=MAX_JOINTS).contains(&joints) || readings.iter().any(|r| r.joints_deg.len() != joints)
     {
@@ -106,6 +175,35 @@ pub fn search(
     search_from_estimate(
         &[problem],
         |_, s| verdict_only(arm, readings, &which.scale(u, s)),
+        on_trial,
+    )
+}
+
+/// [`search`] on 6-DoF measurements: the factor of `which` bounds of `u` (which must give
+/// `orient_deg`, and `arm` a tool rotation) for which `arm` fits `readings`' positions and
+/// orientations, through [`Arm7Pose`].
+pub fn search_pose(
+    arm: &Arm,
+    readings: &[PoseReading],
+    u: &PoseUncertainty,
+    which: ScaleBounds,
+    on_trial: impl FnMut(f64),
+) -> Result<ErrorScale, String> {
+    check_scaled(which, true)?;
+    let x0 = padded_pose(arm, readings, u)?.x0;
+    let boxes = |s: f64| -> Vec<[Interval; NM6]> {
+        // The shape was checked by `padded_pose` above: every scaled problem is built.
+        padded_pose(arm, readings, &which.scale_pose(u, s)).map_or_else(|_| Vec::new(), |p| p.boxes)
+    };
+    let problem = ScaledProblem {
+        model: &Arm7Pose,
+        x0,
+        boxes: &boxes,
+        scaled: which.mask_pose(arm.joints.len()),
+    };
+    search_from_estimate(
+        &[problem],
+        |_, s| verdict_only_pose(arm, readings, &which.scale_pose(u, s)),
         on_trial,
     )
 }

@@ -8,8 +8,9 @@ use crate::common::{forward, tool_rotation};
 use crate::kernel::random_arm;
 use crate::model::random_arm as random_geometry;
 use calib_arm::certification::CertifyRequest;
+use calib_arm::error_scale::{search, search_pose, ScaleBounds};
 use calib_arm::params::{self, Unit};
-use calib_arm::pose::certification::certify_pose_request;
+use calib_arm::pose::certification::{certify_pose_request, verdict_only_pose};
 use calib_arm::pose::orientation::{from_euler_xyz, to_euler_xyz};
 use calib_arm::pose::Arm7Pose;
 use calib_arm::pose::{PoseReading, PoseUncertainty};
@@ -124,6 +125,48 @@ fn a_turned_orientation_is_proved_inconsistent() {
     let (_, run) =
         certify_pose_request(&arm, &readings, &BOUNDS, &CertifyRequest::default()).unwrap();
     assert_eq!(run.outcome.status, Status::Empty);
+}
+
+#[test]
+fn the_six_dof_error_scale_brackets_the_bound_the_truth_needs() {
+    let mut rng = StdRng::seed_from_u64(11);
+    let arm = pose_arm(&mut rng);
+    let (_, readings) = simulate(&arm, 10, &mut rng);
+    let plain: Vec<Reading> = readings.iter().map(|r| r.reading.clone()).collect();
+    for which in [ScaleBounds::All, ScaleBounds::OrientDeg] {
+        // The chosen bounds four times too tight for the noise: the truth fits at × 4.
+        let tight = which.scale_pose(&BOUNDS, 0.25);
+        let found = search_pose(&arm, &readings, &tight, which, |_| {}).expect("search");
+        let (lo, hi) = (found.s_lo.expect("s_lo"), found.s_hi.expect("s_hi"));
+        assert!(
+            lo < hi && lo < 4.0,
+            "{which:?}: {lo} {hi}: the truth fits at × 4"
+        );
+        assert!(
+            hi <= 4.0 * 1.02,
+            "{which:?}: s_hi {hi} above the truth's × 4"
+        );
+        let at_hi = which.scale_pose(&tight, hi);
+        assert_ne!(
+            verdict_only_pose(&arm, &readings, &at_hi).expect("verdict"),
+            Status::Empty,
+            "{which:?}"
+        );
+        // The orientations' bound is the only one scaled by orient_deg.
+        if which == ScaleBounds::OrientDeg {
+            assert_eq!(at_hi.position, BOUNDS.position);
+        }
+    }
+    // Positions alone have no orientation bound to scale.
+    let e = search(
+        &arm,
+        &plain,
+        &BOUNDS.position,
+        ScaleBounds::OrientDeg,
+        |_| {},
+    )
+    .unwrap_err();
+    assert!(e.contains("--orientation-columns"), "{e}");
 }
 
 #[test]

@@ -7,7 +7,7 @@ use super::DataFiles;
 use calib_arm::calibrated::{calibrated_arm, calibrated_toml, PointChoice};
 use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{certify_request, CertifyRequest};
-use calib_arm::error_scale::{search, ScaleBounds};
+use calib_arm::error_scale::{search, search_pose, ScaleBounds};
 use calib_arm::files::{parse_pose_uncertainty, parse_robot};
 use calib_arm::pose::{certify_pose, PoseReading, PoseUncertainty};
 use calib_arm::simulate::Uncertainty;
@@ -82,8 +82,8 @@ pub struct Args {
     /// this size.
     #[arg(long, value_name = "auto", value_enum)]
     error_scale: Option<ErrorScaleMode>,
-    /// With --error-scale: which bounds to scale: `all`, `pos` (the tracker's) or `joint_deg`
-    /// (the encoders').
+    /// With --error-scale: which bounds to scale: `all`, `pos` (the tracker's), `joint_deg`
+    /// (the encoders') or, with --orientation-columns, `orient_deg` (the orientations').
     #[arg(long, value_name = "WHICH", value_enum, default_value = "all")]
     scale_bounds: ScaleBounds,
     /// With --error-scale: certify at s_hi times this factor (>= 1: a margin over the smallest
@@ -99,28 +99,42 @@ enum ErrorScaleMode {
     Auto,
 }
 
-/// Finds the smallest consistent scale of `u`'s bounds, prints it in words, and returns the
-/// bracket's JSON, the bounds to certify with and the words (for the certificate).
+/// Finds the smallest consistent scale of `u`'s bounds (and, for 6-DoF data `pose`, of their
+/// orientation bound), prints it in words, and returns the bracket's JSON, the bounds to certify
+/// with and the words (for the certificate).
 fn error_scale(
     a: &Args,
     arm: &calib_arm::Arm,
     readings: &[calib_arm::simulate::Reading],
     u: &Uncertainty,
-) -> Result<(serde_json::Value, Uncertainty, Vec<String>), Box<dyn std::error::Error>> {
+    pose: Option<&(Vec<PoseReading>, PoseUncertainty)>,
+) -> Result<(serde_json::Value, PoseUncertainty, Vec<String>), Box<dyn std::error::Error>> {
     check_margin(a.scale_margin)?;
     let which = a.scale_bounds;
     let started = std::time::Instant::now();
     let bar = spinner("finding the smallest consistent error bounds");
-    let found = search(arm, readings, u, which, |s| {
-        bar.set_message(format!("certifying with the error bounds × {s:.4}"))
-    });
+    let on_trial = |s: f64| bar.set_message(format!("certifying with the error bounds × {s:.4}"));
+    let (found, bounds) = match pose {
+        Some((readings, bounds)) => (search_pose(arm, readings, bounds, which, on_trial), *bounds),
+        None => (
+            search(arm, readings, u, which, on_trial),
+            PoseUncertainty {
+                position: *u,
+                orient_deg: None,
+            },
+        ),
+    };
     bar.finish_and_clear();
     let found = found?;
     let seconds = started.elapsed().as_secs_f64();
-    let describe = |s: f64| which.describe(u, s);
+    let describe = |s: f64| which.describe_pose(&bounds, s);
     let done = scale_report(&found, which.name(), seconds, a.scale_margin, &describe)?;
     done.words.iter().for_each(|w| println!("{w}"));
-    Ok((done.json, which.scale(u, done.certify_at), done.words))
+    Ok((
+        done.json,
+        which.scale_pose(&bounds, done.certify_at),
+        done.words,
+    ))
 }
 
 fn parse_choice(s: &str) -> Result<PointChoice, String> {
@@ -145,17 +159,11 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let u = data.slack.widen(&pose_u.position);
     let pose = match &data.orientations {
         Some(orientations) => {
-            for (given, option) in [
-                (a.write_calibrated.is_some(), "--write-calibrated"),
-                (a.error_scale.is_some(), "--error-scale"),
-            ] {
-                if given {
-                    return Err(format!(
-                        "{option} works on positions only for now: drop --orientation-columns \
-                         (a 6-DoF run reports the certified bounds, verdict and fit)"
-                    )
+            if a.write_calibrated.is_some() {
+                return Err("--write-calibrated works on positions only for now: drop \
+                            --orientation-columns (a 6-DoF run reports the certified bounds, \
+                            verdict and fit)"
                     .into());
-                }
             }
             if arm.tool_rotation.is_none() {
                 return Err(format!(
@@ -191,12 +199,13 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         }
         None => None,
     };
-    let (scale_json, u, scale_words) = match a.error_scale {
+    let (scale_json, u, pose, scale_words) = match a.error_scale {
         Some(ErrorScaleMode::Auto) => {
-            let (json, scaled, words) = error_scale(&a, &arm, &data.readings, &u)?;
-            (Some(json), scaled, words)
+            let (json, scaled, words) = error_scale(&a, &arm, &data.readings, &u, pose.as_ref())?;
+            let pose = pose.map(|(readings, _)| (readings, scaled));
+            (Some(json), scaled.position, pose, words)
         }
-        None => (None, u, Vec::new()),
+        None => (None, u, pose, Vec::new()),
     };
     let request = CertifyRequest {
         depth: if a.hull { Depth::Hull } else { Depth::Fast },

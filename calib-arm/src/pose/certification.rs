@@ -8,8 +8,8 @@
 
 use super::{Arm7Pose, PoseReading, PoseUncertainty};
 use crate::certification::{
-    check_shape, padded_box, padded_index, padded_nominal, run_model, ArmRun, CertifyRequest, Job,
-    Padded, NM, NX,
+    check_shape, padded_box, padded_index, padded_nominal, run_model, verdict_settings, ArmRun,
+    CertifyRequest, Job, Padded, NM, NX,
 };
 use crate::params::{self, Unit};
 use crate::robot::Arm;
@@ -58,8 +58,24 @@ pub fn certify_pose_request(
     )
 }
 
+/// Only the verdict of certifying `arm` against 6-DoF `readings` with the error bounds `u` (x1,
+/// no inner bounds, no conflict search; see [`crate::certification::verdict_only`]).
+pub fn verdict_only_pose(
+    arm: &Arm,
+    readings: &[PoseReading],
+    u: &PoseUncertainty,
+) -> Result<calib_core::Status, String> {
+    let p = padded_pose(arm, readings, u)?;
+    let (settings, options) = verdict_settings(readings.len())?;
+    let prior: Vec<Interval> = p.index.iter().map(|&i| p.x0[i]).collect();
+    let names = names(arm.joints.len());
+    let job = Job::Certify(options);
+    let (run, _) = run_model(&Arm7Pose, &p, names, &prior, job, &settings);
+    Ok(run.outcome.status)
+}
+
 /// The padded 6-DoF problem, or what is missing for it.
-fn padded_pose(
+pub(crate) fn padded_pose(
     arm: &Arm,
     readings: &[PoseReading],
     u: &PoseUncertainty,
