@@ -349,15 +349,36 @@ fn evaluator(
                 quote!(#scalar::powi(#a, #n))
             }
         };
-        quote!(let #v: #s = #rhs;)
+        (v, rhs)
     });
-    let lets: Vec<TokenStream> = lets.collect();
+    let lets = nest_shallowly(&lets.collect::<Vec<_>>(), s);
     let outs = outputs.iter().map(|&id| {
         let v = var(id);
         quote!(#v)
     });
     let tail = finish(outs.collect());
-    quote!(#(#lets)* #tail)
+    quote!(#lets #tail)
+}
+
+/// The `let` bindings of one body, `var = rhs` in order, at a nesting depth of at most ~2√n scopes.
+///
+/// Every `let` opens a scope nested in the previous one, and the debug information of a body
+/// with thousands of them (the arm's six-row pose model: ~4,100) overflows rustc's stack (measured:
+/// `cargo build` with `debug = true` or `"line-tables-only"`). Groups of `√n` bindings are computed
+/// in a block that returns them as a tuple bound by one `let`: the same values, shallow scopes.
+fn nest_shallowly(lets: &[(Ident, TokenStream)], s: &Ident) -> TokenStream {
+    let group = (lets.len() as f64).sqrt().ceil().max(1.0) as usize;
+    if lets.len() <= 64 {
+        let flat = lets.iter().map(|(v, rhs)| quote!(let #v: #s = #rhs;));
+        return quote!(#(#flat)*);
+    }
+    let groups = lets.chunks(group).map(|chunk| {
+        let vars: Vec<&Ident> = chunk.iter().map(|(v, _)| v).collect();
+        let types = chunk.iter().map(|_| s);
+        let inner = chunk.iter().map(|(v, rhs)| quote!(let #v: #s = #rhs;));
+        quote!(let (#(#vars,)*): (#(#types,)*) = { #(#inner)* (#(#vars,)*) };)
+    });
+    quote!(#(#groups)*)
 }
 
 /// A call to `calib_core::outlined::<op>` with the given operands.
@@ -373,4 +394,45 @@ fn binary(a: Ident, op: TokenStream, b: Ident) -> TokenStream {
 fn unary(scalar: &TokenStream, method: &str, a: Ident) -> TokenStream {
     let m = Ident::new(method, Span::call_site());
     quote!(#scalar::#m(#a))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proc_macro2::TokenTree;
+
+    /// The `let`s directly in `tokens`, and the deepest chain of `let`s inside one of its groups.
+    fn lets_and_depth(tokens: TokenStream) -> (usize, usize) {
+        let (mut lets, mut inner) = (0, 0);
+        for t in tokens {
+            match t {
+                TokenTree::Ident(i) if i == "let" => lets += 1,
+                TokenTree::Group(g) => {
+                    let (l, d) = lets_and_depth(g.stream());
+                    inner = inner.max(l.max(d));
+                }
+                _ => {}
+            }
+        }
+        (lets, inner)
+    }
+
+    #[test]
+    fn thousands_of_bindings_nest_about_twice_their_square_root_deep() {
+        let s = Ident::new("S", Span::call_site());
+        let lets: Vec<(Ident, TokenStream)> = (0..4100usize)
+            .map(|k| (format_ident!("__v{}", k), quote!(x + 1.0)))
+            .collect();
+        let (outer, inner) = lets_and_depth(nest_shallowly(&lets, &s));
+        assert!(
+            outer <= 65 && inner <= 65,
+            "{outer} groups of up to {inner}"
+        );
+        // Every binding is still made, once.
+        let all = nest_shallowly(&lets, &s).to_string();
+        assert_eq!(all.matches("let __v").count(), 4100);
+        // A small body stays flat.
+        let (flat, _) = lets_and_depth(nest_shallowly(&lets[..64], &s));
+        assert_eq!(flat, 64);
+    }
 }
