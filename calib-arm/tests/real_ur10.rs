@@ -309,6 +309,10 @@ fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
     );
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     assert!(text(&o).contains("6-DoF"), "{}", text(&o));
+    // Decided at x1: a parameter vector proved to fit all six equations of every configuration
+    // (each configuration's existence proof starts from the centre of its box where the hint's
+    // LP fails).
+    assert!(text(&o).contains("verdict: consistent"), "{}", text(&o));
     assert!(dir.join("six.json").exists());
     assert!(!dir.join("never.json").exists());
     // Orientations need the tool frame's rotation and a bound for them: each file named.

@@ -56,7 +56,8 @@ where
 }
 
 /// The hint of step 1: a reading of `m` that fits every row at the point `x`, as close to the
-/// centre of `m` as successive LPs find (`None` when no reading within `m` was found).
+/// centre of `m` as successive LPs find (where an LP fails, the reading reached before it: the
+/// centre at worst); `None` when `m` is unbounded.
 fn closest_reading<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x: &[f64; NX],
@@ -117,7 +118,11 @@ where
         }
         dual.resize(poly.rows(), 0.0);
         if lp.minimize(&poly, &objective, &mut dual, &mut primal) != LpStatus::Optimal {
-            return None;
+            // A hint only: the reading reached so far (a point of `m`) is still the best start
+            // for the Newton steps and the proof. The dense simplex fails on some of these thin
+            // LPs (the rows are equalities) that are feasible: on the real UR10's 6-DoF data,
+            // bounds ×100, 19 of 60 configurations, each fitted once started from the centre.
+            break;
         }
         let mut step = 0.0f64;
         for i in 0..NM {
