@@ -388,6 +388,27 @@ fn arm_measurements(
     calib_arm::files::read_tracker_measurements(path, joints, &m).map_err(value_error)
 }
 
+/// The orientation columns (three names) and their convention (`euler-xyz-deg` or
+/// `euler-xyz-rad`), when given (what `--orientation-columns` and `--orientation-convention` do).
+fn orientation_layout(
+    columns: Option<Vec<String>>,
+    convention: &str,
+) -> PyResult<Option<([String; 3], calib_arm::tracker_file::OrientationConvention)>> {
+    let Some(o) = columns else {
+        return Ok(None);
+    };
+    let names = <[String; 3]>::try_from(o).map_err(|o| {
+        value_error(format!(
+            "orientation_columns: expected three names, found {}",
+            o.len()
+        ))
+    })?;
+    let convention = convention
+        .parse()
+        .map_err(|e: String| value_error(format!("orientation_convention: {e}")))?;
+    Ok(Some((names, convention)))
+}
+
 /// The layout `columns` gives an arm of `joints` joints.
 fn arm_columns(joints: usize, c: Columns) -> PyResult<calib_arm::tracker_file::MeasurementColumns> {
     use calib_arm::tracker_file::MeasurementColumns;
@@ -510,18 +531,7 @@ fn arm_register(
 ) -> PyResult<String> {
     let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
     let mut layout = arm_columns(arm.joints.len(), columns)?;
-    if let Some(o) = orientation_columns {
-        let names = <[String; 3]>::try_from(o).map_err(|o| {
-            value_error(format!(
-                "orientation_columns: expected three names, found {}",
-                o.len()
-            ))
-        })?;
-        let convention = orientation_convention
-            .parse()
-            .map_err(|e: String| value_error(format!("orientation_convention: {e}")))?;
-        layout.orientation = Some((names, convention));
-    }
+    layout.orientation = orientation_layout(orientation_columns, orientation_convention)?;
     let data =
         calib_arm::files::read_tracker_measurements(&measurements, arm.joints.len(), &layout)
             .map_err(value_error)?;
@@ -567,8 +577,11 @@ fn arm_register(
 }
 
 /// The smallest consistent factor of the error bounds, as `arm certify --error-scale auto`
-/// finds it: JSON (`bounds`, `s_lo`, `s_hi`, `ratio`, `trials`, …).
+/// finds it (with `orientation_columns`, on positions and orientations): JSON (`bounds`, `s_lo`,
+/// `s_hi`, `ratio`, `trials`, …).
 #[pyfunction]
+#[pyo3(signature = (robot, measurements, uncertainty, columns, scale_bounds, orientation_columns=None, orientation_convention="euler-xyz-deg"))]
+#[allow(clippy::too_many_arguments)] // the command line's options, one argument each
 fn arm_error_scale(
     py: Python<'_>,
     robot: PathBuf,
@@ -576,28 +589,55 @@ fn arm_error_scale(
     uncertainty: PathBuf,
     columns: Columns,
     scale_bounds: &str,
+    orientation_columns: Option<Vec<String>>,
+    orientation_convention: &str,
 ) -> PyResult<String> {
-    use calib_arm::error_scale::{search, ScaleBounds};
+    use calib_arm::error_scale::{search, search_pose, ScaleBounds};
+    use calib_arm::pose::{PoseReading, PoseUncertainty};
     use calib_pipeline::error_scale::to_json;
     let which = match scale_bounds {
         "all" => ScaleBounds::All,
         "pos" => ScaleBounds::Pos,
         "joint_deg" => ScaleBounds::JointDeg,
+        "orient_deg" => ScaleBounds::OrientDeg,
         other => {
             return Err(value_error(format!(
-                "scale_bounds: `all`, `pos` or `joint_deg`, not `{other}`"
+                "scale_bounds: `all`, `pos`, `joint_deg` or `orient_deg`, not `{other}`"
             )))
         }
     };
     let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
-    let data = arm_measurements(&measurements, arm.joints.len(), columns)?;
-    let u = data
-        .slack
-        .widen(&calib_arm::files::read_uncertainty(&uncertainty).map_err(value_error)?);
+    let mut layout = arm_columns(arm.joints.len(), columns)?;
+    layout.orientation = orientation_layout(orientation_columns, orientation_convention)?;
+    let data =
+        calib_arm::files::read_tracker_measurements(&measurements, arm.joints.len(), &layout)
+            .map_err(value_error)?;
+    let text = std::fs::read_to_string(&uncertainty)
+        .map_err(|e| value_error(format!("{}: cannot read: {e}", uncertainty.display())))?;
+    let bounds =
+        calib_arm::files::parse_pose_uncertainty(&uncertainty, &text).map_err(value_error)?;
+    let u = data.slack.widen(&bounds.position);
     let started = Instant::now();
-    let found = py
-        .detach(|| search(&arm, &data.readings, &u, which, |_| {}))
-        .map_err(value_error)?;
+    let found = match &data.orientations {
+        Some(orientations) => {
+            let readings: Vec<PoseReading> = data
+                .readings
+                .iter()
+                .zip(orientations)
+                .map(|(r, o)| PoseReading {
+                    reading: r.clone(),
+                    euler_xyz_deg: *o,
+                })
+                .collect();
+            let bounds = PoseUncertainty {
+                position: u,
+                orient_deg: bounds.orient_deg.map(|o| data.slack.widen_orientation(o)),
+            };
+            py.detach(|| search_pose(&arm, &readings, &bounds, which, |_| {}))
+        }
+        None => py.detach(|| search(&arm, &data.readings, &u, which, |_| {})),
+    }
+    .map_err(value_error)?;
     Ok(to_json(&found, which.name(), None, started.elapsed().as_secs_f64()).to_string())
 }
 

@@ -87,6 +87,17 @@ def test_register_finds_the_tool_frame_from_the_tmac_orientations(tmp_path):
                    check=True, capture_output=True)
     assert robot.read_text().split("\n", 1)[1] == cli.read_text().split("\n", 1)[1]
     assert "rotation_radius = [0.3, 0.3, 0.3]" in robot.read_text()
+    # How much error positions and orientations need together: both ends proofs of their kind.
+    u = tmp_path / "u6.toml"
+    u.write_text("joint_deg = 0.001\npos = 0.05\norient_deg = 0.01\n")
+    scale = certicalib.error_scale_arm(robot, SERIES, u, rows="1-20",
+                                       orientation_columns=orientation, **TRACKER)
+    verdict = {t["scale"]: t["verdict"] for t in scale["trials"]}
+    assert verdict[scale["s_lo"]] == "empty" and verdict[scale["s_hi"]] == "consistent"
+    assert 1.0 < scale["s_lo"] < scale["s_hi"] and scale["bounds"] == "all"
+    with pytest.raises(ValueError, match="--orientation-columns"):
+        certicalib.error_scale_arm(robot, SERIES, u, rows="1-20", scale_bounds="orient_deg",
+                                   **TRACKER)
     assert certicalib.register_arm(nominal, SERIES, tmp_path / "p.toml", rows="1-40",
                                    **TRACKER)["tool_rotation"] is None
     with pytest.raises(ValueError, match="orientation_convention"):

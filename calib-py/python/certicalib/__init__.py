@@ -613,14 +613,22 @@ def error_scale(robot: PathLike, measurements: PathLike, uncertainty: PathLike, 
 def error_scale_arm(robot: PathLike, measurements: PathLike, uncertainty: PathLike, *,
                     scale_bounds: str = "all", joint_columns: Optional[Sequence[str]] = None,
                     point_columns: Optional[Sequence[str]] = None, joint_unit: str = "deg",
-                    length_unit: str = "mm", rows: Optional[str] = None) -> Dict[str, Any]:
+                    length_unit: str = "mm", rows: Optional[str] = None,
+                    orientation_columns: Optional[Sequence[str]] = None,
+                    orientation_convention: str = "euler-xyz-deg") -> Dict[str, Any]:
     """How much error must the data be allowed? The smallest factor of the uncertainty file's
-    bounds (``scale_bounds``: ``"all"``, ``"pos"`` or ``"joint_deg"``) for which the data are
-    consistent, as ``arm certify --error-scale auto`` finds it: ``s_lo`` proved inconsistent,
-    ``s_hi`` certified consistent, with every certification tried (``trials``)."""
+    bounds (``scale_bounds``: ``"all"``, ``"pos"``, ``"joint_deg"`` or, with
+    ``orientation_columns``, ``"orient_deg"``) for which the data are consistent, as ``arm certify
+    --error-scale auto`` finds it: ``s_lo`` proved inconsistent, ``s_hi`` certified consistent,
+    with every certification tried (``trials``). With ``orientation_columns`` (a 6-DoF probe's
+    Euler angles, ``orientation_convention`` ``"euler-xyz-deg"`` or ``"euler-xyz-rad"``) the data
+    are positions and orientations: the robot file needs the tool frame's rotation
+    (:func:`register_arm` with ``orientation_columns``) and the uncertainty file ``orient_deg``."""
     cols = _columns(joint_columns, point_columns, joint_unit, length_unit, rows)
-    return json.loads(_native.arm_error_scale(os.fspath(robot), os.fspath(measurements),
-                                              os.fspath(uncertainty), cols, str(scale_bounds)))
+    return json.loads(_native.arm_error_scale(
+        os.fspath(robot), os.fspath(measurements), os.fspath(uncertainty), cols,
+        str(scale_bounds), None if orientation_columns is None else list(orientation_columns),
+        str(orientation_convention)))
 
 
 def predict(robot: PathLike, uncertainty: PathLike, *, poses: Optional[PathLike] = None,
