@@ -3,7 +3,7 @@
 //! field.
 
 use crate::certification::{padded_box, padded_index, padded_quantities, ArmSet, NM, NX};
-use crate::pose::PoseUncertainty;
+use crate::pose::{PoseReading, PoseUncertainty};
 use crate::robot::{Arm, Joint, ToolRotation};
 use crate::simulate::{Reading, Uncertainty};
 pub use crate::tracker_file::{parse_tracker_measurements, MeasurementColumns, Slack};
@@ -386,6 +386,32 @@ pub struct Measurements {
     /// The measured orientation of each configuration (6-DoF probes), intrinsic Euler angles
     /// `XYZ` in degrees; `None` when the file was read for positions only.
     pub orientations: Option<Vec<[f64; 3]>>,
+}
+
+impl Measurements {
+    /// The 6-DoF readings (each reading with its orientation) and the bounds `u` widened by the
+    /// file's conversion slack ([`Slack::widen`], [`Slack::widen_orientation`]); `None` when the
+    /// file was read for positions only.
+    pub fn pose_readings(
+        &self,
+        u: &PoseUncertainty,
+    ) -> Option<(Vec<PoseReading>, PoseUncertainty)> {
+        let orientations = self.orientations.as_ref()?;
+        let readings = self
+            .readings
+            .iter()
+            .zip(orientations)
+            .map(|(r, o)| PoseReading {
+                reading: r.clone(),
+                euler_xyz_deg: *o,
+            })
+            .collect();
+        let bounds = PoseUncertainty {
+            position: self.slack.widen(&u.position),
+            orient_deg: u.orient_deg.map(|o| self.slack.widen_orientation(o)),
+        };
+        Some((readings, bounds))
+    }
 }
 
 /// Reads `measurements.csv` (see [`parse_measurements`]).

@@ -593,7 +593,6 @@ fn arm_error_scale(
     orientation_convention: &str,
 ) -> PyResult<String> {
     use calib_arm::error_scale::{search, search_pose, ScaleBounds};
-    use calib_arm::pose::{PoseReading, PoseUncertainty};
     use calib_pipeline::error_scale::to_json;
     let which = match scale_bounds {
         "all" => ScaleBounds::All,
@@ -616,26 +615,15 @@ fn arm_error_scale(
         .map_err(|e| value_error(format!("{}: cannot read: {e}", uncertainty.display())))?;
     let bounds =
         calib_arm::files::parse_pose_uncertainty(&uncertainty, &text).map_err(value_error)?;
-    let u = data.slack.widen(&bounds.position);
     let started = Instant::now();
-    let found = match &data.orientations {
-        Some(orientations) => {
-            let readings: Vec<PoseReading> = data
-                .readings
-                .iter()
-                .zip(orientations)
-                .map(|(r, o)| PoseReading {
-                    reading: r.clone(),
-                    euler_xyz_deg: *o,
-                })
-                .collect();
-            let bounds = PoseUncertainty {
-                position: u,
-                orient_deg: bounds.orient_deg.map(|o| data.slack.widen_orientation(o)),
-            };
+    let found = match data.pose_readings(&bounds) {
+        Some((readings, bounds)) => {
             py.detach(|| search_pose(&arm, &readings, &bounds, which, |_| {}))
         }
-        None => py.detach(|| search(&arm, &data.readings, &u, which, |_| {})),
+        None => {
+            let u = data.slack.widen(&bounds.position);
+            py.detach(|| search(&arm, &data.readings, &u, which, |_| {}))
+        }
     }
     .map_err(value_error)?;
     Ok(to_json(&found, which.name(), None, started.elapsed().as_secs_f64()).to_string())

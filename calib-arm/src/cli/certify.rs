@@ -157,48 +157,32 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         .parse(&a.files.measurements, &data_text, arm.joints.len())?;
     let pose_u = parse_pose_uncertainty(&a.uncertainty, &u_text)?;
     let u = data.slack.widen(&pose_u.position);
-    let pose = match &data.orientations {
-        Some(orientations) => {
-            if a.write_calibrated.is_some() {
-                return Err("--write-calibrated works on positions only for now: drop \
-                            --orientation-columns (a 6-DoF run reports the certified bounds, \
-                            verdict and fit)"
-                    .into());
-            }
-            if arm.tool_rotation.is_none() {
-                return Err(format!(
-                    "{}: [tool] has no rpy_deg and rotation_radius: 6-DoF measurements need the \
-                     measured frame's rotation on the flange (`arm register \
-                     --orientation-columns …` finds it)",
-                    a.files.robot.display()
-                )
+    let pose = data.pose_readings(&pose_u);
+    if pose.is_some() {
+        if a.write_calibrated.is_some() {
+            return Err("--write-calibrated works on positions only for now: drop \
+                        --orientation-columns (a 6-DoF run reports the certified bounds, \
+                        verdict and fit)"
                 .into());
-            }
-            if pose_u.orient_deg.is_none() {
-                return Err(format!(
-                    "{}: no orient_deg: 6-DoF measurements need the orientation's error bound \
-                     (degrees, the half-width of each measured Euler angle)",
-                    a.uncertainty.display()
-                )
-                .into());
-            }
-            let readings: Vec<PoseReading> = data
-                .readings
-                .iter()
-                .zip(orientations)
-                .map(|(r, o)| PoseReading {
-                    reading: r.clone(),
-                    euler_xyz_deg: *o,
-                })
-                .collect();
-            let bounds = PoseUncertainty {
-                position: u,
-                orient_deg: pose_u.orient_deg.map(|o| data.slack.widen_orientation(o)),
-            };
-            Some((readings, bounds))
         }
-        None => None,
-    };
+        if arm.tool_rotation.is_none() {
+            return Err(format!(
+                "{}: [tool] has no rpy_deg and rotation_radius: 6-DoF measurements need the \
+                 measured frame's rotation on the flange (`arm register \
+                 --orientation-columns …` finds it)",
+                a.files.robot.display()
+            )
+            .into());
+        }
+        if pose_u.orient_deg.is_none() {
+            return Err(format!(
+                "{}: no orient_deg: 6-DoF measurements need the orientation's error bound \
+                 (degrees, the half-width of each measured Euler angle)",
+                a.uncertainty.display()
+            )
+            .into());
+        }
+    }
     let (scale_json, u, pose, scale_words) = match a.error_scale {
         Some(ErrorScaleMode::Auto) => {
             let (json, scaled, words) = error_scale(&a, &arm, &data.readings, &u, pose.as_ref())?;
