@@ -1,7 +1,10 @@
 //! Code generation: the kept function, the unit struct and its `Model` implementation.
 //!
 //! Every evaluator is one generic straight-line function over the scalar type (instantiated for
-//! `f64` and for `Interval`): a `let` per needed graph node, in topological order, then the outputs.
+//! `f64`, `Interval`, and the affine and quadratic forms): a `let` per needed graph node, in
+//! topological order, then the outputs. Long bodies call out-of-line arithmetic
+//! ([`OUTLINE_ABOVE`]) and bind their values in groups ([`nest_shallowly`]): both keep rustc's
+//! and LLVM's work on a body proportional to its length.
 
 use crate::diff::Gradient;
 use crate::graph::{Arg, Graph, Id, Node};
