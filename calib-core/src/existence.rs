@@ -67,6 +67,17 @@ where
     M: VectorModel<NX, NM, NR>,
 {
     let centre = m.map(|v| v.mid());
+    // The LP's unknowns are the steps in units of each quantity's half-width (`δ_i = r_i z_i`):
+    // joint readings in radians and points in mm differ by four orders of magnitude, on which the
+    // unscaled dense simplex reported feasible LPs infeasible.
+    let unit: [f64; NM] = core::array::from_fn(|i| {
+        let r = m[i].rad();
+        if r > 0.0 {
+            r
+        } else {
+            1.0
+        }
+    });
     let mut reading = centre;
     let mut poly = Polyhedron::default();
     let mut lp = DenseSimplex::default();
@@ -82,8 +93,8 @@ where
         let (values, jm) = model.residuals_and_jacobians_m(x, &reading);
         let scale = values.iter().map(|v| v.abs()).fold(0.0, f64::max);
         for i in 0..NM {
-            lo[i] = m[i].inf() - reading[i];
-            hi[i] = m[i].sup() - reading[i];
+            lo[i] = (m[i].inf() - reading[i]) / unit[i];
+            hi[i] = (m[i].sup() - reading[i]) / unit[i];
         }
         // t: the scaled distance from the centre, at most 2 (beyond, the reading is lost anyway).
         lo[NM] = 0.0;
@@ -97,36 +108,42 @@ where
         }
         poly.reset(&lo, &hi);
         for (value, dm) in values.iter().zip(&jm) {
-            // f + J δ = 0, as two inequalities.
-            row[..NM].copy_from_slice(dm);
+            // f + J δ = 0, as two inequalities, in the scaled unknowns and divided by the row's
+            // largest coefficient.
+            for i in 0..NM {
+                row[i] = dm[i] * unit[i];
+            }
             row[NM] = 0.0;
-            poly.push_row(&row, -value);
+            let norm = row.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            if !(norm > 0.0 && norm.is_finite()) {
+                return Some(reading);
+            }
+            row.iter_mut().for_each(|v| *v /= norm);
+            poly.push_row(&row, -value / norm);
             row.iter_mut().for_each(|v| *v = -*v);
-            poly.push_row(&row, *value);
+            poly.push_row(&row, *value / norm);
         }
         for i in 0..NM {
-            let rad = m[i].rad();
-            if rad > 0.0 {
-                // |reading + δ - centre| <= t rad
+            if m[i].rad() > 0.0 {
+                // |reading + δ - centre| <= t rad, i.e. |z + (reading - centre) / rad| <= t
+                let offset = (reading[i] - centre[i]) / unit[i];
                 row.iter_mut().for_each(|v| *v = 0.0);
                 row[i] = 1.0;
-                row[NM] = -rad;
-                poly.push_row(&row, centre[i] - reading[i]);
+                row[NM] = -1.0;
+                poly.push_row(&row, -offset);
                 row[i] = -1.0;
-                poly.push_row(&row, reading[i] - centre[i]);
+                poly.push_row(&row, offset);
             }
         }
         dual.resize(poly.rows(), 0.0);
         if lp.minimize(&poly, &objective, &mut dual, &mut primal) != LpStatus::Optimal {
             // A hint only: the reading reached so far (a point of `m`) is still the best start
-            // for the Newton steps and the proof. The dense simplex fails on some of these thin
-            // LPs (the rows are equalities) that are feasible: on the real UR10's 6-DoF data,
-            // bounds ×100, 19 of 60 configurations, each fitted once started from the centre.
+            // for the Newton steps and the proof.
             break;
         }
         let mut step = 0.0f64;
         for i in 0..NM {
-            let next = (reading[i] + primal[i]).clamp(m[i].inf(), m[i].sup());
+            let next = (reading[i] + unit[i] * primal[i]).clamp(m[i].inf(), m[i].sup());
             step = step.max((next - reading[i]).abs() / (m[i].rad() + f64::MIN_POSITIVE));
             reading[i] = next;
         }
