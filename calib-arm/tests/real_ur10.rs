@@ -310,8 +310,7 @@ fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     assert!(text(&o).contains("6-DoF"), "{}", text(&o));
     // Decided at x1: a parameter vector proved to fit all six equations of every configuration
-    // (each configuration's existence proof starts from the centre of its box where the hint's
-    // LP fails).
+    // (undecided while a failed LP of an existence proof's hint ended the proof).
     assert!(text(&o).contains("verdict: consistent"), "{}", text(&o));
     assert!(dir.join("six.json").exists());
     assert!(!dir.join("never.json").exists());
