@@ -49,10 +49,15 @@ fi
 # configuration certified.
 "$arm" register --robot nominal.toml --measurements "$series" "${columns[@]}" --rows 1-60 \
                 --orientation-columns measurement_rx,measurement_ry,measurement_rz --out robot6.toml
-printf 'joint_deg = 0.001\npos = 0.6\norient_deg = 0.1\n' > six_bounds.toml
+printf 'joint_deg = 0.001\npos = 0.45\norient_deg = 0.2\n' > six_bounds.toml
 "$arm" certify --robot robot6.toml --measurements "$series" "${columns[@]}" --rows 1-60 \
                --orientation-columns measurement_rx,measurement_ry,measurement_rz \
-               --uncertainty six_bounds.toml
+               --uncertainty six_bounds.toml --write-calibrated calibrated6.toml
+# Its held-out check, as in step 4 (2: a refuting measurement, named).
+status=0
+"$arm" predict --robot calibrated6.toml --measurements "$series" "${columns[@]}" --rows 61- \
+               --uncertainty held_out_bounds.toml --json held_out6.json || status=$?
+[ "$status" -eq 0 ] || [ "$status" -eq 2 ]
 if [ -n "$examples" ]; then
   # A least-squares fit not proved consistent is no calibration: export refuses it.
   if "$arm" export --robot lsq.toml --ur-yaml lsq_kinematics.yaml 2>/dev/null; then

@@ -16,7 +16,9 @@
 
 use crate::certification::{padded_index, padded_quantities, ArmRun, ArmSet, MAX_JOINTS, NM, NX};
 use crate::params::{self, Unit};
-use crate::robot::{Arm, Joint};
+use crate::pose::certification::NX6;
+use crate::pose::Arm7Pose;
+use crate::robot::{Arm, Joint, ToolRotation};
 use crate::units::{deg_to_rad, rad_to_deg, to_deg};
 use crate::Arm7Point;
 use calib_core::{
@@ -92,23 +94,19 @@ fn predictions(joints: &[Vec<f64>], at: &[f64; NX]) -> Vec<[f64; NX]> {
 }
 
 /// The calibrated arm of a certified run (see the module documentation). An error when the data
-/// were proved inconsistent, or when no parameter vector was proved consistent (undecided).
+/// were proved inconsistent, or when no parameter vector was proved consistent (undecided). A
+/// 6-DoF run ([`ArmRun::pose_set`]) goes to [`calibrated_pose_arm`].
 pub fn calibrated_arm(
     arm: &Arm,
     run: &ArmRun,
     joints_deg: &[Vec<f64>],
     choice: PointChoice,
 ) -> Result<CalibratedArm, String> {
-    let outer = run.outcome.outer.as_ref().ok_or(
-        "the data were proved inconsistent with the model and the error bounds: there is no \
-         calibrated geometry to write (re-measure the conflicting configurations, or tolerate \
-         outliers)",
-    )?;
-    let undecided = "no parameter vector was proved consistent with every measurement (the \
-                     certification is undecided), so none can be handed out as calibrated: \
-                     check the error bounds (`--error-scale auto`), allow more time (--hull), \
-                     or tolerate outliers";
-    let mut set = run.set.clone().ok_or(undecided)?;
+    if run.pose_set.is_some() {
+        return calibrated_pose_arm(arm, run, joints_deg, choice);
+    }
+    let outer = certified_outer(run)?;
+    let mut set = run.set.clone().ok_or(UNDECIDED)?;
     let joints = arm.joints.len();
     let index = padded_index(joints);
     if outer.len() != index.len() {
@@ -118,13 +116,9 @@ pub fn calibrated_arm(
             index.len()
         ));
     }
-    let witness = set.points().first().map(|p| p.x).ok_or(undecided)?;
+    let witness = set.points().first().map(|p| p.x).ok_or(UNDECIDED)?;
     let preds = predictions(joints_deg, &witness);
-    let rule = match choice {
-        PointChoice::Centre => PointRule::PredictionCentre(&preds),
-        PointChoice::LeastSquares => PointRule::LeastSquares,
-    };
-    let point = calibrated_point(&Arm7Point, &mut set, rule).ok_or(undecided)?;
+    let point = calibrated_point(&Arm7Point, &mut set, rule(choice, &preds)).ok_or(UNDECIDED)?;
     // The point as the file writes it, proved again as a controller reads it back; else the
     // deepest point, which keeps the most room.
     let kept = set.subset_measurements(point.subset);
@@ -132,12 +126,126 @@ pub fn calibrated_arm(
         .into_iter()
         .map(|x| with_point(arm, outer, &x))
         .find(|a| is_certified_consistent(&Arm7Point, &read_back(a), &kept))
-        .ok_or(undecided)?;
+        .ok_or(UNDECIDED)?;
     Ok(CalibratedArm {
         arm: written,
         set,
         point,
     })
+}
+
+/// The calibrated arm of a certified 6-DoF run: the parameter vector, tool rotation included, is
+/// chosen in the 6-DoF set ([`ArmRun::pose_set`]) by the same rules (the centre rule over the
+/// predicted tool points) and proved consistent with all six equations of every configuration as
+/// the file writes it; the file's `[certified_set]` is the run's positions' set ([`ArmRun::set`],
+/// see [`crate::pose::certification`]), which holds every 6-DoF solution's parameters.
+pub fn calibrated_pose_arm(
+    arm: &Arm,
+    run: &ArmRun,
+    joints_deg: &[Vec<f64>],
+    choice: PointChoice,
+) -> Result<CalibratedArm, String> {
+    let outer = certified_outer(run)?;
+    let mut pose_set = run.pose_set.clone().ok_or(UNDECIDED)?;
+    let set = run.set.clone().ok_or(UNDECIDED)?;
+    let tool = arm.tool_rotation.ok_or(
+        "a 6-DoF calibration needs the tool frame's rotation in the robot file ([tool] rpy_deg)",
+    )?;
+    let index = padded_index(arm.joints.len());
+    if outer.len() != index.len() + 3 {
+        return Err(format!(
+            "the certified box has {} parameters; the arm measured in 6-DoF has {}",
+            outer.len(),
+            index.len() + 3
+        ));
+    }
+    let witness = pose_set
+        .points()
+        .first()
+        .map(|p| head(&p.x))
+        .ok_or(UNDECIDED)?;
+    // The position rows' gradients, the tool rotation's columns 0: the tool points predicted.
+    let preds: Vec<[f64; NX6]> = predictions(joints_deg, &witness)
+        .iter()
+        .map(|g| core::array::from_fn(|i| g.get(i).copied().unwrap_or(0.0)))
+        .collect();
+    let point =
+        calibrated_point(&Arm7Pose, &mut pose_set, rule(choice, &preds)).ok_or(UNDECIDED)?;
+    let kept = pose_set.subset_measurements(point.subset);
+    let (outer_point, outer_tool) = outer.split_at(index.len());
+    let written = [point.x, point.deepest]
+        .into_iter()
+        .map(|x| {
+            let mut a = with_point(arm, outer_point, &head(&x));
+            let rpy_deg: [f64; 3] = core::array::from_fn(|k| to_deg(x[NX + k]));
+            a.tool_rotation = Some(ToolRotation {
+                rpy_deg,
+                radius: core::array::from_fn(|k| {
+                    if tool.radius[k] > 0.0 {
+                        radius_about(rpy_deg[k], outer_tool[k])
+                    } else {
+                        0.0
+                    }
+                }),
+            });
+            a
+        })
+        .find(|a| read_back_pose(a).is_some_and(|x| is_certified_consistent(&Arm7Pose, &x, &kept)))
+        .ok_or(UNDECIDED)?;
+    let point = CalibratedPoint {
+        x: head(&point.x),
+        deepest: head(&point.deepest),
+        target: head(&point.target),
+        margin: point.margin,
+        deepest_misfit: point.deepest_misfit,
+        reached: point.reached,
+        subset: point.subset,
+    };
+    Ok(CalibratedArm {
+        arm: written,
+        set,
+        point,
+    })
+}
+
+/// Why no calibrated vector can be handed out when none was certified.
+const UNDECIDED: &str = "no parameter vector was proved consistent with every measurement (the \
+                         certification is undecided), so none can be handed out as calibrated: \
+                         check the error bounds (`--error-scale auto`), allow more time (--hull), \
+                         or tolerate outliers";
+
+/// The certified outer box, or why there is none (the data were proved inconsistent).
+fn certified_outer(run: &ArmRun) -> Result<&[Interval], String> {
+    run.outcome.outer.as_deref().ok_or_else(|| {
+        "the data were proved inconsistent with the model and the error bounds: there is no \
+         calibrated geometry to write (re-measure the conflicting configurations, or tolerate \
+         outliers)"
+            .to_string()
+    })
+}
+
+/// The point rule of `choice`, with the predicted tool points' gradients `preds`.
+fn rule<const X: usize>(choice: PointChoice, preds: &[[f64; X]]) -> PointRule<'_, X> {
+    match choice {
+        PointChoice::Centre => PointRule::PredictionCentre(preds),
+        PointChoice::LeastSquares => PointRule::LeastSquares,
+    }
+}
+
+/// The point model's parameters of a pose model's vector (without the tool rotation).
+fn head<const X: usize>(x: &[f64; X]) -> [f64; NX] {
+    core::array::from_fn(|i| x[i])
+}
+
+/// The padded pose model's box of the values a controller reads from `arm` ([`read_back`], then
+/// the tool rotation's degrees enclosed in radians); `None` without a tool rotation.
+fn read_back_pose(arm: &Arm) -> Option<[Interval; NX6]> {
+    let point = read_back(arm);
+    let tool = arm.tool_rotation?;
+    Some(core::array::from_fn(|i| match i.checked_sub(NX) {
+        None => point[i],
+        Some(k) => deg_to_rad(Interval::point(tool.rpy_deg[k])),
+    }))
 }
 
 /// The arm with its free parameters at the padded model's point `x` (files' units, shortest

@@ -35,8 +35,13 @@ pub struct ArmRun {
     /// The least-squares fit from the nominal (`None` when not asked for).
     pub fit: Option<Fit>,
     /// The certified set, in the padded model's parameters and units (radians, mm; see
-    /// [`ArmSet`]): `None` when nothing was certified or the data were proved inconsistent.
+    /// [`ArmSet`]): `None` when nothing was certified or the data were proved inconsistent. For a
+    /// 6-DoF run, the set the position equations leave within the projection of the 6-DoF cover
+    /// (it holds every parameter vector of [`ArmRun::pose_set`], without the tool rotation).
     pub set: Option<ArmSet>,
+    /// A 6-DoF run's certified set in the padded pose model (the tool frame's rotation appended,
+    /// [`crate::pose::certification::PoseSet`]); `None` for positions.
+    pub pose_set: Option<crate::pose::certification::PoseSet>,
 }
 
 /// An arm's certified set in the padded model (every arm goes through the 7-joint model): its
@@ -507,6 +512,7 @@ where
         identifiability,
         fit,
         set: None,
+        pose_set: None,
     };
     (run, cover)
 }

@@ -7,7 +7,8 @@
 use crate::common::{forward, tool_rotation};
 use crate::kernel::random_arm;
 use crate::model::random_arm as random_geometry;
-use calib_arm::certification::CertifyRequest;
+use calib_arm::calibrated::{calibrated_arm, read_back, PointChoice};
+use calib_arm::certification::{padded_index, CertifyRequest};
 use calib_arm::error_scale::{search, search_pose, ScaleBounds};
 use calib_arm::params::{self, Unit};
 use calib_arm::pose::certification::{certify_pose_request, verdict_only_pose};
@@ -15,9 +16,10 @@ use calib_arm::pose::orientation::{from_euler_xyz, to_euler_xyz};
 use calib_arm::pose::Arm7Pose;
 use calib_arm::pose::{PoseReading, PoseUncertainty};
 use calib_arm::robot::ToolRotation;
-use calib_arm::simulate::{Reading, Uncertainty};
+use calib_arm::simulate::{measurement_box, Reading, Uncertainty};
+use calib_arm::units::deg_to_rad;
 use calib_arm::{Arm, Arm7Point};
-use calib_core::Status;
+use calib_core::{is_certified_consistent, Status};
 use calib_core::{Interval, VectorModel};
 use nalgebra::Rotation3;
 use rand::rngs::StdRng;
@@ -253,5 +255,67 @@ fn the_six_row_residual_is_the_forward_kinematics_of_the_chain_and_its_orientati
         for k in 0..6 {
             assert!(ri[k].contains(r[k]) && ri[k].wid() < 2.0, "{:?}", ri[k]);
         }
+    }
+}
+
+/// `--write-calibrated` on 6-DoF data: the calibrated vector, tool rotation included, fits all
+/// six equations of every configuration as the file writes it (the values read back as decimals
+/// of degrees), its radii hold the certified outer box, and the file's set — the positions'
+/// set over the 6-DoF cover — holds the truth (the set `predict` works over).
+#[test]
+fn a_six_dof_calibration_fits_all_six_equations_and_its_set_holds_the_truth() {
+    for seed in 0..3u64 {
+        let mut rng = StdRng::seed_from_u64(40 + seed);
+        let arm = pose_arm(&mut rng);
+        let (truth, readings) = simulate(&arm, 10, &mut rng);
+        let (_, run) =
+            certify_pose_request(&arm, &readings, &BOUNDS, &CertifyRequest::default()).unwrap();
+        assert!(run.pose_set.is_some() && run.set.is_some(), "seed {seed}");
+        let joints: Vec<Vec<f64>> = readings
+            .iter()
+            .map(|r| r.reading.joints_deg.clone())
+            .collect();
+        let c = calibrated_arm(&arm, &run, &joints, PointChoice::Centre).expect("consistent");
+        let tool = c.arm.tool_rotation.expect("the tool rotation is written");
+        let point = read_back(&c.arm);
+        let x: [Interval; 47] = core::array::from_fn(|i| match i.checked_sub(44) {
+            None => point[i],
+            Some(k) => deg_to_rad(Interval::point(tool.rpy_deg[k])),
+        });
+        let orient = BOUNDS.orient_deg.unwrap();
+        let boxes: Vec<[Interval; 13]> = readings
+            .iter()
+            .map(|r| {
+                let b: [Interval; 10] = measurement_box(&r.reading, &BOUNDS.position).unwrap();
+                core::array::from_fn(|i| match i.checked_sub(10) {
+                    None => b[i],
+                    Some(k) => deg_to_rad(Interval::mid_rad(r.euler_xyz_deg[k], orient)),
+                })
+            })
+            .collect();
+        assert!(
+            is_certified_consistent(&Arm7Pose, &x, &boxes),
+            "seed {seed}: the written 6-DoF calibration is not proved consistent"
+        );
+        let outer = run.outcome.outer.as_ref().unwrap();
+        let n = outer.len();
+        for k in 0..3 {
+            let (v, r) = (tool.rpy_deg[k], tool.radius[k]);
+            assert!(v - r <= outer[n - 3 + k].inf() && outer[n - 3 + k].sup() <= v + r);
+        }
+        // The truth in the padded point model (radians), inside the file's set.
+        let names = params::names(arm.joints.len());
+        let mut padded = [0.0; 44];
+        for ((&p, v), (_, u)) in padded_index(arm.joints.len())
+            .iter()
+            .zip(&truth)
+            .zip(&names)
+        {
+            padded[p] = if *u == Unit::Deg { v.to_radians() } else { *v };
+        }
+        assert!(
+            c.set.admits(&padded, 1e-9),
+            "seed {seed}: the positions' set lost the truth"
+        );
     }
 }

@@ -304,6 +304,8 @@ fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
             &p("u.toml"),
             "--json",
             &p("six.json"),
+            "--write-calibrated",
+            &p("six_calibrated.toml"),
         ],
         &six,
     );
@@ -313,6 +315,33 @@ fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
     // (undecided while a failed LP of an existence proof's hint ended the proof).
     assert!(text(&o).contains("verdict: consistent"), "{}", text(&o));
     assert!(dir.join("six.json").exists());
+    // The calibrated file carries the tool frame's rotation (calibrated, not the registered one)
+    // and the positions' certified set, which `predict` reads.
+    let (calibrated, set) =
+        calib_arm::files::read_calibrated(&dir.join("six_calibrated.toml")).expect("read back");
+    let registered = calib_arm::files::read_robot(&dir.join("robot.toml")).expect("robot");
+    let (rot, reg) = (
+        calibrated.tool_rotation.unwrap(),
+        registered.tool_rotation.unwrap(),
+    );
+    assert_ne!(
+        rot.rpy_deg, reg.rpy_deg,
+        "the tool rotation was not calibrated"
+    );
+    assert!(set.is_some_and(|s| !s.is_empty()));
+    std::fs::write(p("u_predict.toml"), "joint_deg = 0.001\npos = 0.6\n").expect("write");
+    let o = run(
+        &[
+            "predict",
+            "--robot",
+            &p("six_calibrated.toml"),
+            "--uncertainty",
+            &p("u_predict.toml"),
+        ],
+        &tracker("61-80"),
+    );
+    assert!(matches!(o.status.code(), Some(0 | 2)), "{}", text(&o));
+    assert!(text(&o).contains("20 configurations"), "{}", text(&o));
     assert!(!dir.join("never.json").exists());
     // Orientations need the tool frame's rotation and a bound for them: each file named.
     std::fs::write(p("u_pos.toml"), "joint_deg = 0.001\npos = 0.6\n").expect("write");

@@ -63,6 +63,8 @@ pub struct Args {
     /// every measurement (part of each error bound to spare where the data allow), chosen by
     /// --calibrated-point; radii whose boxes contain the certified ones; fixed parameters as in
     /// --robot; and the certified set, so that `arm accuracy` and `arm predict` work over it.
+    /// With --orientation-columns the parameters, the tool frame's rotation included, fit all six
+    /// equations of every configuration, and the set is the positions' (what `predict` needs).
     /// Refused (nothing written) when the data are proved inconsistent or no parameter vector
     /// was proved consistent (undecided).
     #[arg(long, value_name = "FILE")]
@@ -159,12 +161,6 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let u = data.slack.widen(&pose_u.position);
     let pose = data.pose_readings(&pose_u);
     if pose.is_some() {
-        if a.write_calibrated.is_some() {
-            return Err("--write-calibrated works on positions only for now: drop \
-                        --orientation-columns (a 6-DoF run reports the certified bounds, \
-                        verdict and fit)"
-                .into());
-        }
         if arm.tool_rotation.is_none() {
             return Err(format!(
                 "{}: [tool] has no rpy_deg and rotation_radius: 6-DoF measurements need the \
@@ -235,6 +231,14 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     if let Some(path) = &a.write_calibrated {
         let joints: Vec<Vec<f64>> = data.readings.iter().map(|r| r.joints_deg.clone()).collect();
         let calibrated = calibrated_arm(&arm, &run, &joints, a.calibrated_point)?;
+        let (six, set) = if pose.is_some() {
+            (
+                "\n#   (positions and orientations: the tool frame's rotation is calibrated too)",
+                "\n#   (positions' equations over the 6-DoF certification's boxes)",
+            )
+        } else {
+            ("", "")
+        };
         let spare = if calibrated.point.margin > 0.0 {
             format!(
                 " with at least {:.0}% of every error bound to spare",
@@ -245,10 +249,10 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         };
         let comment = format!(
             "# calibrated by certicalib {} from {} and {}:\n\
-             # the parameters: a vector proved consistent with every measurement{spare},\n\
+             # the parameters: a vector proved consistent with every measurement{spare}{six},\n\
              # chosen {};\n\
              # radius: a box around it that contains the certified outer box;\n\
-             # [certified_set]: the certified set `arm accuracy` and `arm predict` work over\n",
+             # [certified_set]: the certified set `arm accuracy` and `arm predict` work over{set}\n",
             calib_pipeline::html::VERSION,
             a.files.robot.display(),
             a.files.measurements.display(),

@@ -3,25 +3,38 @@
 //! measured Euler angles to each configuration's measured quantities, through [`Arm7Pose`].
 //!
 //! The run reports the verdict, the outer and inner bounds, identifiability and the
-//! least-squares fit as the point model's does; it builds no certified set (the calibrated file,
-//! `predict` and `accuracy` work over position-only calibrations).
+//! least-squares fit as the point model's does, and two certified sets:
+//! * the 6-DoF set ([`PoseSet`], in the pose model's parameters): the calibrated vector is chosen
+//!   in it and proved consistent with all six equations of every configuration
+//!   ([`crate::calibrated::calibrated_pose_arm`]);
+//! * its positions' set ([`crate::certification::ArmSet`]), what `predict` and `accuracy` work
+//!   over: the polyhedra of the position equations on the cover's boxes without their tool
+//!   rotation. Every 6-DoF solution `(x, r)` has its `x` in one of these boxes and fits the
+//!   position rows (the pose model's first three rows are [`crate::Arm7Point`]'s on the same
+//!   quantities), so the set holds `x`: a sound outer approximation of the 6-DoF set's projection,
+//!   narrowed by the orientations through the boxes.
 
 use super::{Arm7Pose, PoseReading, PoseUncertainty};
 use crate::certification::{
     check_shape, padded_box, padded_index, padded_nominal, run_model, verdict_settings, ArmRun,
-    CertifyRequest, Job, Padded, NM, NX,
+    ArmSet, CertifyRequest, Cover, Job, Padded, ARM_PIECES, NM, NX,
 };
 use crate::params::{self, Unit};
 use crate::robot::Arm;
 use crate::simulate::{measurement_box, Reading};
 use crate::units::{deg_to_rad, to_rad};
-use calib_core::Interval;
+use crate::Arm7Point;
+use calib_core::{CertifiedSet, Interval};
 use calib_pipeline::smallest_consistent;
 
 /// Parameters of the padded 6-DoF model: the point model's, then `tool_rx, tool_ry, tool_rz`.
 pub const NX6: usize = NX + 3;
 /// Measured quantities of the padded 6-DoF model: the point model's, then the Euler angles.
 pub const NM6: usize = NM + 3;
+
+/// An arm's certified set on 6-DoF data, in the padded pose model ([`NX6`] parameters: the point
+/// model's, then the tool frame's rotation, radians; [`NM6`] measured quantities).
+pub type PoseSet = CertifiedSet<NX6, NM6>;
 
 /// The parameter names of an arm with `joints` joints measured in 6-DoF.
 pub fn names(joints: usize) -> Vec<String> {
@@ -34,8 +47,8 @@ pub fn names(joints: usize) -> Vec<String> {
 /// Certifies `arm` (which must carry a [`crate::robot::ToolRotation`]) against 6-DoF
 /// measurements as [`crate::certification::certify_request`] does against points: with
 /// [`calib_pipeline::OutlierBudget::Auto`], with the smallest number of tolerated outliers not
-/// proved empty. Returns that number and the run (no certified set, see the module's
-/// documentation). `u.orient_deg` must be given.
+/// proved empty. Returns that number and the run, with both certified sets (see the module's
+/// documentation) unless the data were proved inconsistent. `u.orient_deg` must be given.
 pub fn certify_pose_request(
     arm: &Arm,
     readings: &[PoseReading],
@@ -52,9 +65,47 @@ pub fn certify_pose_request(
         |q| {
             let settings = settings.clone().with_max_outliers(q);
             let job = Job::Certify(options);
-            Ok(run_model(&Arm7Pose, &p, names.clone(), &prior, job, &settings).0)
+            let (mut run, cover) = run_model(&Arm7Pose, &p, names.clone(), &prior, job, &settings);
+            if let Some(cover) = cover {
+                (run.set, run.pose_set) = certified_sets(&p.boxes, &cover);
+            }
+            Ok(run)
         },
         |run: &ArmRun| run.outcome.status == calib_core::Status::Empty,
+    )
+}
+
+/// The 6-DoF set of a certified `cover` against `boxes` and its positions' set (module
+/// documentation), each `None` when empty.
+fn certified_sets(
+    boxes: &[[Interval; NM6]],
+    (cover, points): &Cover<NX6>,
+) -> (Option<ArmSet>, Option<PoseSet>) {
+    let pose = PoseSet::new(&Arm7Pose, cover, boxes, points, ARM_PIECES);
+    let head = |b: &[Interval; NX6]| -> [Interval; NX] { core::array::from_fn(|i| b[i]) };
+    let projected = calib_core::Cover {
+        boxes: cover.boxes.iter().map(head).collect(),
+        subsets: cover.subsets.clone(),
+        dropped: cover.dropped.clone(),
+    };
+    let point_boxes: Vec<[Interval; NM]> = boxes
+        .iter()
+        .map(|m| core::array::from_fn(|i| m[i]))
+        .collect();
+    let point_params: Vec<[f64; NX]> = points
+        .iter()
+        .map(|x| core::array::from_fn(|i| x[i]))
+        .collect();
+    let positions = ArmSet::new(
+        &Arm7Point,
+        &projected,
+        &point_boxes,
+        &point_params,
+        ARM_PIECES,
+    );
+    (
+        (!positions.is_empty()).then_some(positions),
+        (!pose.is_empty()).then_some(pose),
     )
 }
 

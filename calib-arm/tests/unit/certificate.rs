@@ -39,6 +39,7 @@ fn run(fit: f64) -> ArmRun {
             evaluations: 5,
         }),
         set: None,
+        pose_set: None,
     }
 }
 
