@@ -103,11 +103,24 @@ fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
             &p("u.toml"),
             "--write-calibrated",
             &p("calibrated.toml"),
+            "--json",
+            &p("certified.json"),
         ],
         &tracker("1-60"),
     );
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     assert!(text(&o).contains("verdict: consistent"), "{}", text(&o));
+    // The inner bounds reach where the consistent set does: certified points found towards the
+    // first-order extremes (towards the contraction's extremes alone they stopped at half the
+    // outer width, outer/inner 2.0-2.5 on every parameter at x1).
+    let certified: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(p("certified.json")).expect("json"))
+            .expect("json");
+    let params = certified["parameters"].as_array().expect("parameters");
+    for q in params.iter().filter(|q| q["fixed"] == false) {
+        let ratio = q["ratio"].as_f64().expect("a ratio");
+        assert!(ratio < 1.6, "{}: outer/inner {ratio}", q["name"]);
+    }
     // Held-out rows: every measurement inside its certified prediction with the error bounds,
     // and the written model's residuals reported.
     let o = run(

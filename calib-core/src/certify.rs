@@ -3,6 +3,7 @@
 use crate::certificate::{find_witness, inner_points};
 use crate::certified_set::Cover;
 use crate::contract::{contract, EmptinessProof, Workspace};
+use crate::first_order::wider_inner_points;
 use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
 use crate::{Interval, Settings, VectorModel};
 
@@ -249,7 +250,7 @@ fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, c
                 out.status = Status::Consistent;
                 out.witness = Some(w);
                 if settings.inner_bounds {
-                    let points = inner_points(
+                    let mut points = inner_points(
                         model,
                         &w,
                         &outer,
@@ -257,6 +258,14 @@ fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, c
                         measurements,
                         settings.inner_bisections,
                     );
+                    points.extend(wider_inner_points(
+                        model,
+                        &w,
+                        &outer,
+                        measurements,
+                        &points,
+                        settings.inner_bisections,
+                    ));
                     out.inner = Some(points.iter().fold(w.map(Interval::point), |h, p| {
                         core::array::from_fn(|i| h[i].hull(Interval::point(p[i])))
                     }));

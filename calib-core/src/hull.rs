@@ -42,6 +42,7 @@ use crate::certificate::{find_witness, inner_points};
 use crate::certified_set::Cover;
 use crate::certify::{certify, hull_box, MAX_SUBSETS};
 use crate::contract::{contract, is_fixed, EmptinessProof, Workspace};
+use crate::first_order::wider_inner_points;
 use crate::lp::{DenseSimplex, LpBackend};
 use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
 use crate::push::push_towards;
@@ -352,13 +353,13 @@ where
         }
         refiner.add_points(witness.as_slice(), piece.set);
         if NR >= 2 {
-            // Vector models: the segment search of `certify` (witness to each LP extreme point)
-            // seeds the inner box too. Their pushes below solve LPs over every coupling direction
+            // Vector models: the segment search of `certify` (witness to each first-order and
+            // LP extreme point) seeds the inner box too. Their pushes below solve LPs over every coupling direction
             // of every configuration (thousands of nearly parallel rows) and alone leave the
             // inner bound of angles far inside (measured on the built-in arm: ratios 2.5-4.8
             // after 90 s, against 1.2-1.3 from the segments in seconds).
             if let Some(w) = witness.or(refiner.witness) {
-                let points = inner_points(
+                let mut points = inner_points(
                     model,
                     &w,
                     &piece.b,
@@ -366,6 +367,14 @@ where
                     &sets[piece.set],
                     settings.inner_bisections,
                 );
+                points.extend(wider_inner_points(
+                    model,
+                    &w,
+                    &piece.b,
+                    &sets[piece.set],
+                    &points,
+                    settings.inner_bisections,
+                ));
                 refiner.add_points(&points, piece.set);
             }
         }

@@ -49,6 +49,7 @@ pub mod contract;
 pub mod coupling;
 mod dual;
 pub mod existence;
+mod first_order;
 mod hull;
 pub mod interval;
 mod jet;
