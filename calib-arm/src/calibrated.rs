@@ -177,11 +177,19 @@ pub fn calibrated_pose_arm(
         .into_iter()
         .map(|x| {
             let mut a = with_point(arm, outer_point, &head(&x));
-            let rpy_deg: [f64; 3] = core::array::from_fn(|k| to_deg(x[NX + k]));
+            // As `with_point`: a fixed angle keeps its decimal, a free one takes the point's.
+            let free = |k: usize| tool.radius[k] > 0.0;
+            let rpy_deg: [f64; 3] = core::array::from_fn(|k| {
+                if free(k) {
+                    to_deg(x[NX + k])
+                } else {
+                    tool.rpy_deg[k]
+                }
+            });
             a.tool_rotation = Some(ToolRotation {
                 rpy_deg,
                 radius: core::array::from_fn(|k| {
-                    if tool.radius[k] > 0.0 {
+                    if free(k) {
                         radius_about(rpy_deg[k], outer_tool[k])
                     } else {
                         0.0

@@ -263,7 +263,10 @@ mod tests {
         let points = wider_inner_points(&Plane, &w, &outer, &m, &[], 20);
         assert!(!points.is_empty());
         for p in &points {
-            assert!(is_consistent_point(&Plane, p, &m), "{p:?} is not consistent");
+            assert!(
+                is_consistent_point(&Plane, p, &m),
+                "{p:?} is not consistent"
+            );
             assert!(outer[0].contains(p[0]) && outer[1].contains(p[1]));
         }
         let hull = hull_of(&points);
@@ -273,7 +276,12 @@ mod tests {
         // Sides that the points found so far take within a fifth of the outer width of the outer
         // face are not searched again.
         let tight = [Interval::new(0.35, 0.65); 2];
-        let near = [[0.4 + 1e-3, 0.5], [0.6 - 1e-3, 0.5], [0.5, 0.4 + 1e-3], [0.5, 0.6 - 1e-3]];
+        let near = [
+            [0.4 + 1e-3, 0.5],
+            [0.6 - 1e-3, 0.5],
+            [0.5, 0.4 + 1e-3],
+            [0.5, 0.6 - 1e-3],
+        ];
         assert!(wider_inner_points(&Plane, &w, &tight, &m, &near, 20).is_empty());
         assert_eq!(
             wider_inner_points(&Plane, &w, &tight, &m, &near[..3], 20).len(),
