@@ -353,11 +353,12 @@ where
         }
         refiner.add_points(witness.as_slice(), piece.set);
         if NR >= 2 {
-            // Vector models: the segment search of `certify` (witness to each first-order and
-            // LP extreme point) seeds the inner box too. Their pushes below solve LPs over every coupling direction
-            // of every configuration (thousands of nearly parallel rows) and alone leave the
-            // inner bound of angles far inside (measured on the built-in arm: ratios 2.5-4.8
-            // after 90 s, against 1.2-1.3 from the segments in seconds).
+            // Vector models: the segment search of `certify` (witness to each LP extreme point,
+            // then to first-order extremes) seeds the inner box too. Their pushes below solve LPs
+            // over every coupling direction of every configuration (thousands of nearly parallel
+            // rows) and alone leave the inner bound of angles far inside (measured on the
+            // built-in arm: ratios 2.5-4.8 after 90 s, against 1.2-1.3 from the segments in
+            // seconds).
             if let Some(w) = witness.or(refiner.witness) {
                 let mut points = inner_points(
                     model,
