@@ -242,6 +242,16 @@ where
         .copied()
 }
 
+/// The hull of points, each a degenerate box (empty intervals when there is none): the inner box
+/// of certified points.
+pub(crate) fn point_hull<'a, const NX: usize>(
+    points: impl IntoIterator<Item = &'a [f64; NX]>,
+) -> [Interval; NX] {
+    points.into_iter().fold([Interval::EMPTY; NX], |h, p| {
+        core::array::from_fn(|i| h[i].hull(Interval::point(p[i])))
+    })
+}
+
 /// Inner bounds: starting from a certified `witness` in the box `outer`, walks towards each `target`
 /// (the LP extreme points, clamped into `outer`) by bisection on the segment and returns, per
 /// target, the farthest certified point found. Every point tried lies in `outer` (a convex box

@@ -1,6 +1,6 @@
 //! [`certify`]: contraction to a fixed point plus the evidence for the verdict.
 
-use crate::certificate::{find_witness, inner_points};
+use crate::certificate::{find_witness, inner_points, point_hull};
 use crate::certified_set::Cover;
 use crate::contract::{contract, EmptinessProof, Workspace};
 use crate::first_order::wider_inner_points;
@@ -266,9 +266,7 @@ fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, c
                         &points,
                         settings.inner_bisections,
                     ));
-                    out.inner = Some(points.iter().fold(w.map(Interval::point), |h, p| {
-                        core::array::from_fn(|i| h[i].hull(Interval::point(p[i])))
-                    }));
+                    out.inner = Some(point_hull(core::iter::once(&w).chain(&points)));
                 }
             }
         }

@@ -21,7 +21,7 @@
 //! the contraction's extremes). Nothing here is a proof: the points are only targets, and every
 //! inner point is certified on its own by the existence tests.
 
-use crate::certificate::inner_points;
+use crate::certificate::{inner_points, point_hull};
 use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
 use crate::{Interval, VectorModel};
 
@@ -54,14 +54,14 @@ where
 {
     let mut all: Vec<[f64; NX]> = found.to_vec();
     all.push(*w);
-    let hull = hull_of(&all);
+    let hull = point_hull(&all);
     let targets = first_order_extremes(model, w, outer, measurements, |j, u| {
         is_short(outer, &hull, j, u)
     });
     let mut points = inner_points(model, w, outer, &targets, measurements, bisections);
     for _ in 0..MORE_ROUNDS {
         all.extend_from_slice(&points);
-        let hull = hull_of(&all);
+        let hull = point_hull(&all);
         let mut more = Vec::new();
         for j in 0..NX {
             for upper in [false, true] {
@@ -89,15 +89,6 @@ where
         points.extend(more);
     }
     points
-}
-
-/// The hull of points (at least one).
-fn hull_of<const NX: usize>(points: &[[f64; NX]]) -> [Interval; NX] {
-    core::array::from_fn(|i| {
-        points
-            .iter()
-            .fold(Interval::EMPTY, |h, p| h.hull(Interval::point(p[i])))
-    })
 }
 
 /// Whether the side of `inner` (`upper`: the greatest values) along parameter `j` stops more than
@@ -269,7 +260,7 @@ mod tests {
             );
             assert!(outer[0].contains(p[0]) && outer[1].contains(p[1]));
         }
-        let hull = hull_of(&points);
+        let hull = point_hull(&points);
         for h in hull {
             assert!(h.inf() < 0.4 + 1e-4 && h.sup() > 0.6 - 1e-4, "{hull:?}");
         }
