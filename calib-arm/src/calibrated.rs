@@ -207,6 +207,7 @@ pub fn calibrated_pose_arm(
         margin: point.margin,
         deepest_misfit: point.deepest_misfit,
         reached: point.reached,
+        prior_weight: point.prior_weight,
         subset: point.subset,
     };
     Ok(CalibratedArm {

@@ -12,8 +12,9 @@
 //! 2. **A target** `t`, by the [`PointRule`]: the Chebyshev centre of the predictions (the point
 //!    that minimises, to first order, the largest distance from its predictions to the extreme
 //!    predictions of the set: `min_x max_s max(hi_s - g_s·x, g_s·x - lo_s)`, `[lo_s, hi_s]` the
-//!    set's range of the prediction `g_s·x`, one linear program per piece), or the least-squares
-//!    fit of the residuals at the measurements' midpoints.
+//!    set's range of the prediction `g_s·x`, one linear program per piece), or the regularised
+//!    least-squares fit of the residuals within the linearised set
+//!    ([`crate::set_least_squares`]).
 //! 3. **The point itself**: the last point of the segment from `c` to `t` proved consistent with
 //!    every measurement box *narrowed by a margin* (bisection; 5% of every error bound, or 2%, 1%,
 //!    0 when the data leave less room): a vector that fits every measurement with part of each
@@ -25,6 +26,7 @@
 use crate::certificate::least_squares_point;
 use crate::chebyshev::{minimax_point, normalised_misfit};
 use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
+use crate::set_least_squares::least_squares_in_set;
 use crate::{is_consistent_point, CertifiedSet, Interval, VectorModel};
 
 /// How the calibrated point is chosen (see the module documentation).
@@ -35,7 +37,11 @@ pub enum PointRule<'a, const NX: usize> {
     /// with respect to the parameters. The worst prediction error over the set is then as small
     /// as the set allows (to first order).
     PredictionCentre(&'a [[f64; NX]]),
-    /// Towards the least-squares fit of the residuals at the measurements' midpoints.
+    /// Towards the regularised least-squares fit of the residuals at the measurements' midpoints
+    /// within the set, linearised: residuals in units of their error bounds, the prior box
+    /// weighted by cross-validation over the configurations ([`crate::set_least_squares`]). On
+    /// data with errors the model does not hold (gravity, gears), the best predictor of unseen
+    /// configurations among the points the set allows.
     LeastSquares,
 }
 
@@ -58,6 +64,9 @@ pub struct CalibratedPoint<const NX: usize> {
     pub target: [f64; NX],
     /// How far along the segment from `c` to `t` the point lies (1: the target itself).
     pub reached: f64,
+    /// With [`PointRule::LeastSquares`]: the weight `λ` of the prior box in the target's
+    /// regularised fit, chosen by cross-validation ([`crate::set_least_squares`]).
+    pub prior_weight: Option<f64>,
     /// The measurement subset the point fits (see [`crate::Cover`]).
     pub subset: usize,
 }
@@ -96,7 +105,7 @@ pub fn calibrated_point<M, const NX: usize, const NM: usize, const NR: usize>(
     rule: PointRule<'_, NX>,
 ) -> Option<CalibratedPoint<NX>>
 where
-    M: VectorModel<NX, NM, NR>,
+    M: VectorModel<NX, NM, NR> + Sync,
 {
     let region = set.outer()?;
     // The subset (with outliers tolerated) whose deepest point fits best.
@@ -140,11 +149,15 @@ where
             (held, 0.0, kept.clone())
         }
     };
-    let target = match rule {
-        PointRule::LeastSquares => least_squares_point(model, &region, &kept),
-        PointRule::PredictionCentre(predictions) => {
-            prediction_centre(set, subset, predictions).unwrap_or(from)
+    let (target, prior_weight) = match rule {
+        PointRule::LeastSquares => {
+            let fit = least_squares_in_set(model, &region, &boxes, from);
+            (fit.x, Some(fit.prior_weight))
         }
+        PointRule::PredictionCentre(predictions) => (
+            prediction_centre(set, subset, predictions).unwrap_or(from),
+            None,
+        ),
     };
     let at =
         |t: f64| -> [f64; NX] { core::array::from_fn(|j| from[j] + t * (target[j] - from[j])) };
@@ -171,6 +184,7 @@ where
         deepest_misfit: misfit,
         target,
         reached: lo,
+        prior_weight,
         subset,
     })
 }

@@ -62,6 +62,7 @@ pub mod outlined;
 mod push;
 pub mod quadratic;
 mod scalar;
+pub mod set_least_squares;
 mod settings;
 
 pub use affine::Affine;
