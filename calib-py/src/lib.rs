@@ -254,6 +254,10 @@ struct ArmOptions {
     lsq: bool,
     /// Where to write the calibrated robot file (`--write-calibrated`), if anywhere.
     write_calibrated: Option<PathBuf>,
+    /// 6-DoF data: the three orientation columns (`--orientation-columns`), if any.
+    orientation_columns: Option<Vec<String>>,
+    /// Their convention (`--orientation-convention`).
+    orientation_convention: String,
 }
 
 impl TryFrom<ArmOptions> for CertifyRequest {
@@ -274,7 +278,8 @@ impl TryFrom<ArmOptions> for CertifyRequest {
     }
 }
 
-/// Certifies a serial arm from the three files `arm certify` reads; returns the JSON report of
+/// Certifies a serial arm from the three files `arm certify` reads (the measurements with
+/// `columns` and, for 6-DoF data, the options' orientation columns); returns the JSON report of
 /// `arm certify --json`.
 #[pyfunction]
 fn arm_certify_files(
@@ -283,15 +288,37 @@ fn arm_certify_files(
     measurements: PathBuf,
     uncertainty: PathBuf,
     options: ArmOptions,
+    columns: Columns,
 ) -> PyResult<String> {
     let write = options.write_calibrated.clone();
+    let orientation = orientation_layout(
+        options.orientation_columns.clone(),
+        &options.orientation_convention,
+    )?;
     let request: CertifyRequest = options.try_into()?;
     let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
-    let data = calib_arm::files::read_measurements(&measurements, arm.joints.len())
-        .map_err(value_error)?;
-    let u = calib_arm::files::read_uncertainty(&uncertainty).map_err(value_error)?;
+    let mut layout = arm_columns(arm.joints.len(), columns)?;
+    layout.orientation = orientation;
+    let data =
+        calib_arm::files::read_tracker_measurements(&measurements, arm.joints.len(), &layout)
+            .map_err(value_error)?;
+    let text = std::fs::read_to_string(&uncertainty)
+        .map_err(|e| value_error(format!("{}: cannot read: {e}", uncertainty.display())))?;
+    let bounds =
+        calib_arm::files::parse_pose_uncertainty(&uncertainty, &text).map_err(value_error)?;
+    let pose = data.pose_readings(&bounds);
+    if pose.is_some() {
+        calib_arm::pose::require_pose_inputs(&arm, &robot, &bounds, &uncertainty)
+            .map_err(value_error)?;
+    }
     let (q, run) = py
-        .detach(|| certify_request(&arm, &data.readings, &u, &request))
+        .detach(|| match &pose {
+            Some((readings, b)) => calib_arm::pose::certify_pose(&arm, readings, b, &request),
+            None => {
+                let u = data.slack.widen(&bounds.position);
+                certify_request(&arm, &data.readings, &u, &request)
+            }
+        })
         .map_err(value_error)?;
     let file = measurements
         .file_name()
@@ -314,7 +341,8 @@ fn arm_certify_files(
             .map_err(value_error)?;
         let comment = format!(
             "# calibrated by certicalib {} (Python): a parameter vector proved consistent with \
-             every measurement, towards the least-squares fit; [certified_set]: the certified set\n",
+             every measurement, towards the least-squares fit within the set (regularised, \
+             weight by cross-validation); [certified_set]: the certified set\n",
             env!("CARGO_PKG_VERSION")
         );
         calib_pipeline::write_atomically(

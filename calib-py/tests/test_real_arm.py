@@ -105,3 +105,40 @@ def test_register_finds_the_tool_frame_from_the_tmac_orientations(tmp_path):
                                 orientation_columns=orientation,
                                 orientation_convention="quaternion", **TRACKER)
     assert not (tmp_path / "x.toml").exists()
+
+
+def test_certify_six_dof_writes_a_calibrated_tool_frame(tmp_path):
+    nominal = tmp_path / "nominal.toml"
+    certicalib.import_arm(DATA / "ur10_default_kinematics.yaml", nominal)
+    robot = tmp_path / "robot6.toml"
+    orientation = ["measurement_rx", "measurement_ry", "measurement_rz"]
+    certicalib.register_arm(nominal, SERIES, robot, rows="1-30",
+                            orientation_columns=orientation, **TRACKER)
+    u = tmp_path / "u6.toml"
+    u.write_text("joint_deg = 0.001\npos = 0.6\norient_deg = 0.2\n")
+    calibrated = tmp_path / "calibrated6.toml"
+    report = certicalib.certify_arm(robot, SERIES, u, rows="1-30", write_calibrated=calibrated,
+                                    orientation_columns=orientation, **TRACKER)
+    assert report.status == "consistent"
+    # The tool frame's three angles are parameters of the 6-DoF run, and the written file holds
+    # its calibrated rotation; the same run from the command line agrees on the verdict.
+    assert {"tool_rx", "tool_ry", "tool_rz"} <= set(report.names)
+    assert "rpy_deg" in calibrated.read_text()
+    cli = subprocess.run([repo_binary("arm"), "certify", "--robot", str(robot),
+                          "--measurements", str(SERIES), "--joint-columns", ",".join(JOINTS),
+                          "--point-columns", ",".join(POINT), "--joint-unit", "rad",
+                          "--rows", "1-30", "--orientation-columns", ",".join(orientation),
+                          "--uncertainty", str(u)], capture_output=True, text=True)
+    assert cli.returncode == 0 and "verdict: consistent" in cli.stdout
+    # Orientations without their bound, or without the tool frame's rotation: a ValueError
+    # naming the file, and nothing written.
+    (tmp_path / "u_pos.toml").write_text("joint_deg = 0.001\npos = 0.6\n")
+    with pytest.raises(ValueError, match="u_pos.toml.*orient_deg"):
+        certicalib.certify_arm(robot, SERIES, tmp_path / "u_pos.toml", rows="1-30",
+                               write_calibrated=tmp_path / "x.toml",
+                               orientation_columns=orientation, **TRACKER)
+    with pytest.raises(ValueError, match="nominal.toml.*rpy_deg"):
+        certicalib.certify_arm(nominal, SERIES, u, rows="1-30",
+                               write_calibrated=tmp_path / "x.toml",
+                               orientation_columns=orientation, **TRACKER)
+    assert not (tmp_path / "x.toml").exists()

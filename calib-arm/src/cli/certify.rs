@@ -9,7 +9,7 @@ use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{certify_request, CertifyRequest};
 use calib_arm::error_scale::{search, search_pose, ScaleBounds};
 use calib_arm::files::{parse_pose_uncertainty, parse_robot};
-use calib_arm::pose::{certify_pose, PoseReading, PoseUncertainty};
+use calib_arm::pose::{certify_pose, require_pose_inputs, PoseReading, PoseUncertainty};
 use calib_arm::simulate::Uncertainty;
 use calib_core::Status;
 use calib_pipeline::error_scale::{check_margin, report as scale_report};
@@ -163,23 +163,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let u = data.slack.widen(&pose_u.position);
     let pose = data.pose_readings(&pose_u);
     if pose.is_some() {
-        if arm.tool_rotation.is_none() {
-            return Err(format!(
-                "{}: [tool] has no rpy_deg and rotation_radius: 6-DoF measurements need the \
-                 measured frame's rotation on the flange (`arm register \
-                 --orientation-columns …` finds it)",
-                a.files.robot.display()
-            )
-            .into());
-        }
-        if pose_u.orient_deg.is_none() {
-            return Err(format!(
-                "{}: no orient_deg: 6-DoF measurements need the orientation's error bound \
-                 (degrees, the half-width of each measured Euler angle)",
-                a.uncertainty.display()
-            )
-            .into());
-        }
+        require_pose_inputs(&arm, &a.files.robot, &pose_u, &a.uncertainty)?;
     }
     let (scale_json, u, pose, scale_words) = match a.error_scale {
         Some(ErrorScaleMode::Auto) => {

@@ -25,6 +25,32 @@ pub struct PoseReading {
     pub euler_xyz_deg: [f64; 3],
 }
 
+/// Why `arm` and `u` cannot certify 6-DoF measurements, if they cannot: the robot file `robot`
+/// needs the measured frame's rotation on the flange (`[tool] rpy_deg`, `rotation_radius`) and
+/// the uncertainty file `uncertainty` the orientations' bound (`orient_deg`).
+pub fn require_pose_inputs(
+    arm: &Arm,
+    robot: &std::path::Path,
+    u: &PoseUncertainty,
+    uncertainty: &std::path::Path,
+) -> Result<(), String> {
+    if arm.tool_rotation.is_none() {
+        return Err(format!(
+            "{}: [tool] has no rpy_deg and rotation_radius: 6-DoF measurements need the measured \
+             frame's rotation on the flange (`arm register --orientation-columns …` finds it)",
+            robot.display()
+        ));
+    }
+    if u.orient_deg.is_none() {
+        return Err(format!(
+            "{}: no orient_deg: 6-DoF measurements need the orientation's error bound (degrees, \
+             the half-width of each measured Euler angle)",
+            uncertainty.display()
+        ));
+    }
+    Ok(())
+}
+
 /// Certifies `arm` against 6-DoF measurements ([`certification::certify_pose_request`]).
 pub fn certify_pose(
     arm: &Arm,

@@ -505,23 +505,39 @@ def certify_arm(robot: PathLike, measurements: PathLike, uncertainty: PathLike, 
                 hull: bool = False, tolerance: float = 0.10, max_boxes: int = 10_000,
                 max_seconds: Optional[float] = None, max_outliers: Union[int, str] = 0,
                 lsq: bool = False,
-                write_calibrated: Optional[PathLike] = None) -> ArmReport:
+                write_calibrated: Optional[PathLike] = None,
+                joint_columns: Optional[Sequence[str]] = None,
+                point_columns: Optional[Sequence[str]] = None, joint_unit: str = "deg",
+                length_unit: str = "mm", rows: Optional[str] = None,
+                orientation_columns: Optional[Sequence[str]] = None,
+                orientation_convention: str = "euler-xyz-deg") -> ArmReport:
     """Certify a serial arm from the files ``arm certify`` reads (``robot.toml``,
     ``measurements.csv``, ``uncertainty.toml``; mm and degrees), with the same options: ``hull``
     refines to the tight hull (``tolerance``, ``max_boxes``, ``max_seconds``), ``max_outliers``
     tolerates bad configurations (``"auto"``: the smallest number not proved empty), ``lsq`` adds
     the least-squares fit. ``write_calibrated``: write the calibrated robot file there, as
     ``--write-calibrated`` does (a parameter vector proved consistent with every measurement,
-    towards the least-squares fit, and the certified set). The interpreter is released while the
-    work runs. Malformed input raises ``ValueError`` naming the file, the line and the field."""
+    towards the least-squares fit within the set, and the certified set). A tracker's file as it
+    comes: ``joint_columns``, ``point_columns``, ``joint_unit`` (``"deg"``/``"rad"``),
+    ``length_unit`` (``"mm"``/``"m"``), ``rows`` (``"1-60"``), as ``arm certify`` takes them.
+    With ``orientation_columns`` (a 6-DoF probe's Euler angles, ``orientation_convention``
+    ``"euler-xyz-deg"`` or ``"euler-xyz-rad"``) six equations per configuration: the robot file
+    needs the tool frame's rotation (:func:`register_arm` with ``orientation_columns``) and the
+    uncertainty file ``orient_deg``; the calibrated file then holds the tool frame's rotation too.
+    The interpreter is released while the work runs. Malformed input raises ``ValueError``
+    naming the file, the line and the field."""
     opts = dict(hull=bool(hull), tolerance=float(tolerance), max_boxes=int(max_boxes),
                 max_seconds=max_seconds,
                 max_outliers=str(max_outliers) if isinstance(max_outliers, str)
                 else str(int(max_outliers)), lsq=bool(lsq),
                 write_calibrated=None if write_calibrated is None
-                else os.fspath(write_calibrated))
+                else os.fspath(write_calibrated),
+                orientation_columns=None if orientation_columns is None
+                else [str(c) for c in orientation_columns],
+                orientation_convention=str(orientation_convention))
+    cols = _columns(joint_columns, point_columns, joint_unit, length_unit, rows)
     return ArmReport(_native.arm_certify_files(os.fspath(robot), os.fspath(measurements),
-                                               os.fspath(uncertainty), opts))
+                                               os.fspath(uncertainty), opts, cols))
 
 
 def simulate_arm(out: PathLike, *, configs: int = 50, seed: int = 1,
