@@ -56,6 +56,7 @@ printf 'joint_deg = 0.001\npos = 0.45\norient_deg = 0.2\n' > six_bounds.toml
 # Its held-out check, as in step 4 (2: a refuting measurement, named).
 status=0
 "$arm" predict --robot calibrated6.toml --measurements "$series" "${columns[@]}" --rows 61- \
+               --orientation-columns measurement_rx,measurement_ry,measurement_rz \
                --uncertainty held_out_bounds.toml --json held_out6.json || status=$?
 [ "$status" -eq 0 ] || [ "$status" -eq 2 ]
 if [ -n "$examples" ]; then

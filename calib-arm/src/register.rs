@@ -11,7 +11,7 @@
 //! parameters together ([`crate::certification::fit_arm`]).
 
 use crate::certification::fit_arm;
-use crate::pose::orientation::from_euler_xyz;
+use crate::pose::orientation::{from_euler_xyz, orientation_errors_deg};
 use crate::robot::{Arm, ToolRotation};
 use crate::simulate::Reading;
 use crate::vendor::{arm_flange, base_frame, base_parameters, Frame};
@@ -218,10 +218,7 @@ pub fn register_tool_rotation(
         .map(|(f, m)| (f.inverse() * m).into_inner())
         .sum();
     let tool = nearest_rotation(&sum).ok_or("no orientation to register the tool frame from")?;
-    let angles: Vec<f64> = pairs
-        .iter()
-        .map(|(f, m)| (f * tool).angle_to(m).to_degrees())
-        .collect();
+    let angles = orientation_errors_deg(arm, &tool, readings, euler_xyz_deg);
     let rms = (angles.iter().map(|a| a * a).sum::<f64>() / angles.len().max(1) as f64).sqrt();
     let max = angles.iter().fold(0.0_f64, |a, b| a.max(*b));
     let (roll, pitch, yaw) = tool.euler_angles();

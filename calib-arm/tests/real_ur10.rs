@@ -324,12 +324,10 @@ fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
     .expect("write");
     let o = run(
         &[
-            "predict",
+            "lsq",
             "--robot",
             &p("robot.toml"),
-            "--uncertainty",
-            &p("u.toml"),
-            "--json",
+            "--out",
             &p("never.json"),
         ],
         &six,
@@ -384,6 +382,56 @@ fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
     );
     assert!(matches!(o.status.code(), Some(0 | 2)), "{}", text(&o));
     assert!(text(&o).contains("20 configurations"), "{}", text(&o));
+    // With the orientations: their held-out residuals against the calibrated tool frame, in
+    // the JSON too, and smaller than against the registered (uncalibrated) robot file's frame.
+    let mut held_out = tracker("61-80");
+    held_out.extend(["--orientation-columns".into(), ORIENTATION.into()]);
+    let orientation_rms = |robot: &str, json: &str| -> f64 {
+        let o = run(
+            &[
+                "predict",
+                "--robot",
+                &p(robot),
+                "--uncertainty",
+                &p("u_predict.toml"),
+                "--json",
+                &p(json),
+            ],
+            &held_out,
+        );
+        assert!(matches!(o.status.code(), Some(0 | 2)), "{}", text(&o));
+        assert!(text(&o).contains("measured orientations"), "{}", text(&o));
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(p(json)).expect("json")).expect("json");
+        let r = &v["orientation_residuals"];
+        assert_eq!(r["per_row_deg"].as_array().map(Vec::len), Some(20), "{r}");
+        r["rms_deg"].as_f64().expect("rms")
+    };
+    let (calibrated_rms, registered_rms) = (
+        orientation_rms("six_calibrated.toml", "six_check.json"),
+        orientation_rms("robot.toml", "registered_check.json"),
+    );
+    assert!(
+        0.0 < calibrated_rms && calibrated_rms < registered_rms,
+        "calibrated {calibrated_rms}°, registered {registered_rms}°"
+    );
+    // A file without the tool frame's rotation cannot check orientations: named, exit 1.
+    let o = run(
+        &[
+            "predict",
+            "--robot",
+            &p("nominal.toml"),
+            "--uncertainty",
+            &p("u_predict.toml"),
+        ],
+        &held_out,
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        err.contains("nominal.toml") && err.contains("rpy_deg"),
+        "{err}"
+    );
     assert!(!dir.join("never.json").exists());
     // Orientations need the tool frame's rotation and a bound for them: each file named.
     std::fs::write(p("u_pos.toml"), "joint_deg = 0.001\npos = 0.6\n").expect("write");

@@ -236,7 +236,8 @@ impl ColumnArgs {
         match &self.orientation_columns {
             Some(_) => Err(format!(
                 "--orientation-columns: `arm {command}` uses the tracked positions only; \
-                 orientations are used by `arm certify` and `arm register`"
+                 orientations are used by `arm certify`, `arm register` and `arm predict \
+                 --measurements`"
             )),
             None => Ok(()),
         }

@@ -1,6 +1,7 @@
 //! `arm predict`.
 
 use calib_arm::files::{read_calibrated, read_uncertainty};
+use calib_arm::pose::orientation::{orientation_errors_deg, tool_rotation};
 use calib_arm::predict::{predict, predictions_csv, predictions_json, refuting, residuals};
 use calib_pipeline::{parse_number_table, read_text, write_atomically};
 use std::path::PathBuf;
@@ -15,7 +16,9 @@ pub struct Args {
     #[arg(long, value_name = "FILE", required_unless_present = "measurements")]
     joints: Option<PathBuf>,
     /// Measured configurations to check (q1,…,qN,px,py,pz, as `certify` reads): their joint
-    /// readings are predicted, and each tracked point outside its prediction is named.
+    /// readings are predicted, and each tracked point outside its prediction is named. With
+    /// --orientation-columns (a 6-DoF calibrated file, its tool frame's rotation included) the
+    /// measured orientations' residuals against the file's values are reported too.
     #[arg(long, value_name = "FILE", conflicts_with = "joints")]
     measurements: Option<PathBuf>,
     #[command(flatten)]
@@ -34,15 +37,34 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
-    a.columns.positions_only("predict")?;
+    if a.measurements.is_none() {
+        a.columns.positions_only("predict --joints")?;
+    }
     let (arm, set) = read_calibrated(&a.robot)?;
     let u = read_uncertainty(&a.uncertainty)?;
     let n = arm.joints.len();
     let mut slack = calib_arm::files::Slack::default();
+    let mut orientation_errors = None;
     let (joints, points, lines, source) = match (&a.measurements, &a.joints) {
         (Some(path), _) => {
             let m = a.columns.read(path, n)?;
             slack = m.slack;
+            if let Some(measured) = &m.orientations {
+                let tool = arm.tool_rotation.ok_or_else(|| {
+                    format!(
+                        "{}: [tool] has no rpy_deg: checking measured orientations needs the \
+                         tool frame's rotation (a 6-DoF calibration: `arm certify \
+                         --orientation-columns … --write-calibrated`)",
+                        a.robot.display()
+                    )
+                })?;
+                orientation_errors = Some(orientation_errors_deg(
+                    &arm,
+                    &tool_rotation(tool.rpy_deg),
+                    &m.readings,
+                    measured,
+                ));
+            }
             let joints = m.readings.iter().map(|r| r.joints_deg.clone()).collect();
             let points: Vec<[f64; 3]> = m.readings.iter().map(|r| r.point).collect();
             (joints, Some(points), Some(m.lines), path)
@@ -82,6 +104,16 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
              max {max:.4} mm (every coordinate)"
         );
     }
+    let orientation_summary = orientation_errors.as_deref().map(|e| {
+        let rms = (e.iter().map(|a| a * a).sum::<f64>() / e.len().max(1) as f64).sqrt();
+        let max = e.iter().fold(0.0_f64, |m, a| m.max(*a));
+        println!(
+            "the robot file's values predict the measured orientations with residuals rms \
+             {rms:.4}°, max {max:.4}° (the angle between the measured and the predicted frame; \
+             from the file's values only: the certified set holds the positions' equations)"
+        );
+        (rms, max)
+    });
     if points.is_some() {
         if bad.is_empty() {
             println!(
@@ -131,7 +163,14 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("predictions written to {}", path.display());
     }
     if let Some(path) = &a.json {
-        let json = predictions_json(&predictions, set.is_some(), lines.as_deref());
+        let mut json = predictions_json(&predictions, set.is_some(), lines.as_deref());
+        if let (Some((rms, max)), Some(errors)) = (orientation_summary, &orientation_errors) {
+            json["orientation_residuals"] = serde_json::json!({
+                "rms_deg": rms,
+                "max_deg": max,
+                "per_row_deg": errors,
+            });
+        }
         write_atomically(path, &format!("{json:#}\n"))
             .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
         println!("JSON written to {}", path.display());
