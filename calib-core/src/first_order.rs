@@ -192,32 +192,8 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{is_consistent_point, Model};
-
-    /// `m0 x0 + m1 x1 - m2`: a plane whose coefficients are measured quantities (given as points)
-    /// and whose value `m2` is known within a bound. Linear in `x`: its linearisation is exact.
-    struct Plane;
-
-    impl Model<2, 3> for Plane {
-        fn residual(&self, x: &[f64; 2], m: &[f64; 3]) -> f64 {
-            m[0] * x[0] + m[1] * x[1] - m[2]
-        }
-        fn residual_interval(&self, x: &[Interval; 2], m: &[Interval; 3]) -> Interval {
-            m[0] * x[0] + m[1] * x[1] - m[2]
-        }
-        fn jacobian_x(&self, _x: &[f64; 2], m: &[f64; 3]) -> [f64; 2] {
-            [m[0], m[1]]
-        }
-        fn jacobian_m(&self, x: &[f64; 2], _m: &[f64; 3]) -> [f64; 3] {
-            [x[0], x[1], -1.0]
-        }
-        fn jacobian_x_interval(&self, _x: &[Interval; 2], m: &[Interval; 3]) -> [Interval; 2] {
-            [m[0], m[1]]
-        }
-        fn jacobian_m_interval(&self, x: &[Interval; 2], _m: &[Interval; 3]) -> [Interval; 3] {
-            [x[0], x[1], Interval::point(-1.0)]
-        }
-    }
+    use crate::is_consistent_point;
+    use crate::test_models::Plane;
 
     /// `|x0 + x1 - 1| <= 0.1` and `|x0 - x1| <= 0.1`: a square turned by 45°, `[0.4, 0.6]` in
     /// each coordinate, inside a wide outer box.

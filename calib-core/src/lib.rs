@@ -64,6 +64,8 @@ pub mod quadratic;
 mod scalar;
 pub mod set_least_squares;
 mod settings;
+#[cfg(test)]
+mod test_models;
 
 pub use affine::Affine;
 pub use bisection::{pave, sweep, Paving, SweepResult};

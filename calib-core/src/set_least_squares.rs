@@ -22,7 +22,7 @@
 //! point is the last point of the segment towards it that [`crate::is_consistent_point`] accepts.
 
 use crate::coupling::for_each_linearised_row;
-use crate::{Interval, VectorModel};
+use crate::{Evaluation, Interval, VectorModel};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
@@ -116,9 +116,17 @@ fn scaled_rows<M, const NX: usize, const NM: usize, const NR: usize>(
 where
     M: VectorModel<NX, NM, NR>,
 {
-    model
-        .evaluate_rows(p, &m.map(|v| v.mid()))
-        .iter()
+    scaled(&model.evaluate_rows(p, &m.map(|v| v.mid())), x, m, live)
+}
+
+/// [`scaled_rows`] of the evaluated rows `e` of the configuration `m`.
+fn scaled<const NX: usize, const NM: usize, const NR: usize>(
+    e: &[Evaluation<f64, NX, NM>; NR],
+    x: &[Interval; NX],
+    m: &[Interval; NM],
+    live: &[usize],
+) -> Vec<ScaledRow> {
+    e.iter()
         .filter_map(|r| {
             let w: f64 = (0..NM).map(|i| r.dm[i].abs() * m[i].rad()).sum();
             (w > 0.0).then(|| ScaledRow {
@@ -144,12 +152,10 @@ where
     let (mut sum, mut fits) = (0.0, true);
     for m in measurements {
         let e = model.evaluate_rows(p, &m.map(|v| v.mid()));
-        for r in &e {
-            let w: f64 = (0..NM).map(|i| r.dm[i].abs() * m[i].rad()).sum();
-            if w > 0.0 {
-                sum += (r.value / w).powi(2);
-            }
-        }
+        sum += scaled(&e, x, m, &[])
+            .iter()
+            .map(|r| r.value * r.value)
+            .sum::<f64>();
         for_each_linearised_row(&e, &m.map(|v| v.rad()), |value, _, w| {
             fits &= value.abs() <= w;
         });
@@ -337,32 +343,8 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_models::Plane as Line;
     use crate::{is_consistent_point, Model};
-
-    /// `m0 x0 + m1 x1 - m2`: a line `y = x0 t + x1 s` through measured points (`m0 = t`,
-    /// `m1 = s`, `m2 = y`, the last within a bound). Linear in `x`: its linearisation is exact.
-    struct Line;
-
-    impl Model<2, 3> for Line {
-        fn residual(&self, x: &[f64; 2], m: &[f64; 3]) -> f64 {
-            m[0] * x[0] + m[1] * x[1] - m[2]
-        }
-        fn residual_interval(&self, x: &[Interval; 2], m: &[Interval; 3]) -> Interval {
-            m[0] * x[0] + m[1] * x[1] - m[2]
-        }
-        fn jacobian_x(&self, _x: &[f64; 2], m: &[f64; 3]) -> [f64; 2] {
-            [m[0], m[1]]
-        }
-        fn jacobian_m(&self, x: &[f64; 2], _m: &[f64; 3]) -> [f64; 3] {
-            [x[0], x[1], -1.0]
-        }
-        fn jacobian_x_interval(&self, _x: &[Interval; 2], m: &[Interval; 3]) -> [Interval; 2] {
-            [m[0], m[1]]
-        }
-        fn jacobian_m_interval(&self, x: &[Interval; 2], _m: &[Interval; 3]) -> [Interval; 3] {
-            [x[0], x[1], Interval::point(-1.0)]
-        }
-    }
 
     /// Twelve points `y = 0.5 t + 0.2` with a deterministic ±0.05 zigzag, `y` within `bound`;
     /// `s = 1` (an intercept) or `s = 0` (no data on `x1`).

@@ -296,16 +296,8 @@ fn arm_certify_files(
         &options.orientation_convention,
     )?;
     let request: CertifyRequest = options.try_into()?;
-    let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
-    let mut layout = arm_columns(arm.joints.len(), columns)?;
-    layout.orientation = orientation;
-    let data =
-        calib_arm::files::read_tracker_measurements(&measurements, arm.joints.len(), &layout)
-            .map_err(value_error)?;
-    let text = std::fs::read_to_string(&uncertainty)
-        .map_err(|e| value_error(format!("{}: cannot read: {e}", uncertainty.display())))?;
-    let bounds =
-        calib_arm::files::parse_pose_uncertainty(&uncertainty, &text).map_err(value_error)?;
+    let (arm, data, bounds) =
+        arm_pose_inputs(&robot, &measurements, &uncertainty, columns, orientation)?;
     let pose = data.pose_readings(&bounds);
     if pose.is_some() {
         calib_arm::pose::require_pose_inputs(&arm, &robot, &bounds, &uncertainty)
@@ -435,6 +427,31 @@ fn orientation_layout(
         .parse()
         .map_err(|e: String| value_error(format!("orientation_convention: {e}")))?;
     Ok(Some((names, convention)))
+}
+
+/// The arm of `robot`, its measurements read with `columns` and `orientation`, and the bounds of
+/// `uncertainty` (orientations' included): what the 6-DoF-aware arm functions read.
+fn arm_pose_inputs(
+    robot: &std::path::Path,
+    measurements: &std::path::Path,
+    uncertainty: &std::path::Path,
+    columns: Columns,
+    orientation: Option<([String; 3], calib_arm::tracker_file::OrientationConvention)>,
+) -> PyResult<(
+    calib_arm::robot::Arm,
+    calib_arm::files::Measurements,
+    calib_arm::pose::PoseUncertainty,
+)> {
+    let arm = calib_arm::files::read_robot(robot).map_err(value_error)?;
+    let mut layout = arm_columns(arm.joints.len(), columns)?;
+    layout.orientation = orientation;
+    let data = calib_arm::files::read_tracker_measurements(measurements, arm.joints.len(), &layout)
+        .map_err(value_error)?;
+    let text = std::fs::read_to_string(uncertainty)
+        .map_err(|e| value_error(format!("{}: cannot read: {e}", uncertainty.display())))?;
+    let bounds =
+        calib_arm::files::parse_pose_uncertainty(uncertainty, &text).map_err(value_error)?;
+    Ok((arm, data, bounds))
 }
 
 /// The layout `columns` gives an arm of `joints` joints.
@@ -633,16 +650,9 @@ fn arm_error_scale(
             )))
         }
     };
-    let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
-    let mut layout = arm_columns(arm.joints.len(), columns)?;
-    layout.orientation = orientation_layout(orientation_columns, orientation_convention)?;
-    let data =
-        calib_arm::files::read_tracker_measurements(&measurements, arm.joints.len(), &layout)
-            .map_err(value_error)?;
-    let text = std::fs::read_to_string(&uncertainty)
-        .map_err(|e| value_error(format!("{}: cannot read: {e}", uncertainty.display())))?;
-    let bounds =
-        calib_arm::files::parse_pose_uncertainty(&uncertainty, &text).map_err(value_error)?;
+    let orientation = orientation_layout(orientation_columns, orientation_convention)?;
+    let (arm, data, bounds) =
+        arm_pose_inputs(&robot, &measurements, &uncertainty, columns, orientation)?;
     let started = Instant::now();
     let found = match data.pose_readings(&bounds) {
         Some((readings, bounds)) => {
