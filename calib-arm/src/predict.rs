@@ -235,3 +235,56 @@ pub fn predictions_json(
         })).collect::<Vec<_>>(),
     })
 }
+
+/// Measured orientations checked against a robot file's values: the angle, degrees, between
+/// each measured frame and the one the file predicts
+/// ([`crate::pose::orientation::orientation_errors_deg`]). From the file's values only, not over
+/// a certified set: a 6-DoF calibrated file stores the positions' set.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OrientationResiduals {
+    /// One angle per configuration, degrees.
+    pub per_row_deg: Vec<f64>,
+    /// Their root mean square, degrees.
+    pub rms_deg: f64,
+    /// The largest, degrees.
+    pub max_deg: f64,
+}
+
+impl OrientationResiduals {
+    /// The residuals of the measured orientations `euler_xyz_deg` (intrinsic `XYZ`, degrees) at
+    /// `readings` against `arm`, the robot file `robot`: an error naming it when it has no tool
+    /// frame's rotation (`[tool] rpy_deg`).
+    pub fn of(
+        arm: &Arm,
+        robot: &std::path::Path,
+        readings: &[crate::simulate::Reading],
+        euler_xyz_deg: &[[f64; 3]],
+    ) -> Result<Self, String> {
+        use crate::pose::orientation::{orientation_errors_deg, tool_rotation};
+        let tool = arm.tool_rotation.ok_or_else(|| {
+            format!(
+                "{}: [tool] has no rpy_deg: checking measured orientations needs the tool \
+                 frame's rotation (a 6-DoF calibration: `arm certify --orientation-columns … \
+                 --write-calibrated`)",
+                robot.display()
+            )
+        })?;
+        let per_row_deg =
+            orientation_errors_deg(arm, &tool_rotation(tool.rpy_deg), readings, euler_xyz_deg);
+        let n = per_row_deg.len().max(1) as f64;
+        Ok(Self {
+            rms_deg: (per_row_deg.iter().map(|a| a * a).sum::<f64>() / n).sqrt(),
+            max_deg: per_row_deg.iter().fold(0.0_f64, |m, a| m.max(*a)),
+            per_row_deg,
+        })
+    }
+
+    /// The JSON object `orientation_residuals` of `arm predict --json`.
+    pub fn json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "rms_deg": self.rms_deg,
+            "max_deg": self.max_deg,
+            "per_row_deg": self.per_row_deg,
+        })
+    }
+}

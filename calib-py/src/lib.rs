@@ -398,16 +398,6 @@ struct Columns {
     rows: Option<String>,
 }
 
-/// Reads an arm's measurements with `columns` (what `--joint-columns` … do on the command line).
-fn arm_measurements(
-    path: &std::path::Path,
-    joints: usize,
-    c: Columns,
-) -> PyResult<calib_arm::files::Measurements> {
-    let m = arm_columns(joints, c)?;
-    calib_arm::files::read_tracker_measurements(path, joints, &m).map_err(value_error)
-}
-
 /// The orientation columns (three names) and their convention (`euler-xyz-deg` or
 /// `euler-xyz-rad`), when given (what `--orientation-columns` and `--orientation-convention` do).
 fn orientation_layout(
@@ -743,17 +733,33 @@ fn predict(
 
 /// Predicts the tracked point at the joint readings of `measurements` (read with `columns`, the
 /// points then checked) over the robot file's certified set, as `arm predict --measurements`
-/// does; returns the JSON of `arm predict --json`.
+/// does; with `orientation_columns` (in `orientation_convention`) the measured orientations'
+/// residuals against the file's values too. Returns the JSON of `arm predict --json`.
 #[pyfunction]
+#[pyo3(signature = (robot, uncertainty, measurements, columns, orientation_columns=None, orientation_convention="euler-xyz-deg"))]
 fn arm_predict(
     py: Python<'_>,
     robot: PathBuf,
     uncertainty: PathBuf,
     measurements: PathBuf,
     columns: Columns,
+    orientation_columns: Option<Vec<String>>,
+    orientation_convention: &str,
 ) -> PyResult<String> {
     let (arm, set) = calib_arm::files::read_calibrated(&robot).map_err(value_error)?;
-    let data = arm_measurements(&measurements, arm.joints.len(), columns)?;
+    let mut layout = arm_columns(arm.joints.len(), columns)?;
+    layout.orientation = orientation_layout(orientation_columns, orientation_convention)?;
+    let data =
+        calib_arm::files::read_tracker_measurements(&measurements, arm.joints.len(), &layout)
+            .map_err(value_error)?;
+    let orientations = data
+        .orientations
+        .as_ref()
+        .map(|o| {
+            calib_arm::predict::OrientationResiduals::of(&arm, &robot, &data.readings, o)
+                .map_err(value_error)
+        })
+        .transpose()?;
     let u = data
         .slack
         .widen(&calib_arm::files::read_uncertainty(&uncertainty).map_err(value_error)?);
@@ -761,10 +767,12 @@ fn arm_predict(
     let points: Vec<[f64; 3]> = data.readings.iter().map(|r| r.point).collect();
     let predictions =
         py.detach(|| calib_arm::predict::predict(&arm, set.as_ref(), &joints, &u, Some(&points)));
-    Ok(
-        calib_arm::predict::predictions_json(&predictions, set.is_some(), Some(&data.lines))
-            .to_string(),
-    )
+    let mut json =
+        calib_arm::predict::predictions_json(&predictions, set.is_some(), Some(&data.lines));
+    if let Some(o) = orientations {
+        json["orientation_residuals"] = o.json();
+    }
+    Ok(json.to_string())
 }
 
 /// Designs the poses to measure, as `gough design` does: writes the poses CSV to `out` and

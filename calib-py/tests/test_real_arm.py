@@ -130,9 +130,17 @@ def test_certify_six_dof_writes_a_calibrated_tool_frame(tmp_path):
                           "--rows", "1-30", "--orientation-columns", ",".join(orientation),
                           "--uncertainty", str(u)], capture_output=True, text=True)
     assert cli.returncode == 0 and "verdict: consistent" in cli.stdout
+    # Held-out orientations against the calibrated tool frame, as `arm predict` reports them.
+    u_pos = tmp_path / "u_pos.toml"
+    u_pos.write_text("joint_deg = 0.001\npos = 0.6\n")
+    check = certicalib.predict_arm(calibrated, u_pos, SERIES, rows="61-80",
+                                   orientation_columns=orientation, **TRACKER)
+    residuals = check["orientation_residuals"]
+    assert len(residuals["per_row_deg"]) == 20 and 0.0 < residuals["rms_deg"] < 0.2
+    assert "orientation_residuals" not in certicalib.predict_arm(calibrated, u_pos, SERIES,
+                                                                 rows="61-80", **TRACKER)
     # Orientations without their bound, or without the tool frame's rotation: a ValueError
     # naming the file, and nothing written.
-    (tmp_path / "u_pos.toml").write_text("joint_deg = 0.001\npos = 0.6\n")
     with pytest.raises(ValueError, match="u_pos.toml.*orient_deg"):
         certicalib.certify_arm(robot, SERIES, tmp_path / "u_pos.toml", rows="1-30",
                                write_calibrated=tmp_path / "x.toml",

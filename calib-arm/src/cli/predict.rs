@@ -1,8 +1,9 @@
 //! `arm predict`.
 
 use calib_arm::files::{read_calibrated, read_uncertainty};
-use calib_arm::pose::orientation::{orientation_errors_deg, tool_rotation};
-use calib_arm::predict::{predict, predictions_csv, predictions_json, refuting, residuals};
+use calib_arm::predict::{
+    predict, predictions_csv, predictions_json, refuting, residuals, OrientationResiduals,
+};
 use calib_pipeline::{parse_number_table, read_text, write_atomically};
 use std::path::PathBuf;
 
@@ -50,20 +51,12 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             let m = a.columns.read(path, n)?;
             slack = m.slack;
             if let Some(measured) = &m.orientations {
-                let tool = arm.tool_rotation.ok_or_else(|| {
-                    format!(
-                        "{}: [tool] has no rpy_deg: checking measured orientations needs the \
-                         tool frame's rotation (a 6-DoF calibration: `arm certify \
-                         --orientation-columns … --write-calibrated`)",
-                        a.robot.display()
-                    )
-                })?;
-                orientation_errors = Some(orientation_errors_deg(
+                orientation_errors = Some(OrientationResiduals::of(
                     &arm,
-                    &tool_rotation(tool.rpy_deg),
+                    &a.robot,
                     &m.readings,
                     measured,
-                ));
+                )?);
             }
             let joints = m.readings.iter().map(|r| r.joints_deg.clone()).collect();
             let points: Vec<[f64; 3]> = m.readings.iter().map(|r| r.point).collect();
@@ -104,16 +97,14 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
              max {max:.4} mm (every coordinate)"
         );
     }
-    let orientation_summary = orientation_errors.as_deref().map(|e| {
-        let rms = (e.iter().map(|a| a * a).sum::<f64>() / e.len().max(1) as f64).sqrt();
-        let max = e.iter().fold(0.0_f64, |m, a| m.max(*a));
+    if let Some(o) = &orientation_errors {
         println!(
             "the robot file's values predict the measured orientations with residuals rms \
-             {rms:.4}°, max {max:.4}° (the angle between the measured and the predicted frame; \
-             from the file's values only: the certified set holds the positions' equations)"
+             {:.4}°, max {:.4}° (the angle between the measured and the predicted frame; from \
+             the file's values only: the certified set holds the positions' equations)",
+            o.rms_deg, o.max_deg
         );
-        (rms, max)
-    });
+    }
     if points.is_some() {
         if bad.is_empty() {
             println!(
@@ -164,12 +155,8 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     }
     if let Some(path) = &a.json {
         let mut json = predictions_json(&predictions, set.is_some(), lines.as_deref());
-        if let (Some((rms, max)), Some(errors)) = (orientation_summary, &orientation_errors) {
-            json["orientation_residuals"] = serde_json::json!({
-                "rms_deg": rms,
-                "max_deg": max,
-                "per_row_deg": errors,
-            });
+        if let Some(o) = &orientation_errors {
+            json["orientation_residuals"] = o.json();
         }
         write_atomically(path, &format!("{json:#}\n"))
             .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;

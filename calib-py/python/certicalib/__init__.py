@@ -666,12 +666,19 @@ def predict(robot: PathLike, uncertainty: PathLike, *, poses: Optional[PathLike]
 def predict_arm(robot: PathLike, uncertainty: PathLike, measurements: PathLike, *,
                 joint_columns: Optional[Sequence[str]] = None,
                 point_columns: Optional[Sequence[str]] = None, joint_unit: str = "deg",
-                length_unit: str = "mm", rows: Optional[str] = None) -> Dict[str, Any]:
+                length_unit: str = "mm", rows: Optional[str] = None,
+                orientation_columns: Optional[Sequence[str]] = None,
+                orientation_convention: str = "euler-xyz-deg") -> Dict[str, Any]:
     """Check held-out measurements of an arm, as ``arm predict --measurements`` does: per
     configuration the certified range of each tool-point coordinate over ``robot``'s certified
     set, the same widened by the error bounds, whether the measured point lies inside, and the
     robot file's own residuals (``residuals``: ``rms_mm``, ``max_mm``). The file is read with the
-    same column and unit options as :func:`register_arm`."""
+    same column and unit options as :func:`register_arm`. With ``orientation_columns`` (a 6-DoF
+    calibrated ``robot``, its tool frame's rotation included) also ``orientation_residuals``
+    (``rms_deg``, ``max_deg``, ``per_row_deg``: the angle between each measured frame and the one
+    the file's values predict)."""
     cols = _columns(joint_columns, point_columns, joint_unit, length_unit, rows)
-    return json.loads(_native.arm_predict(os.fspath(robot), os.fspath(uncertainty),
-                                          os.fspath(measurements), cols))
+    return json.loads(_native.arm_predict(
+        os.fspath(robot), os.fspath(uncertainty), os.fspath(measurements), cols,
+        None if orientation_columns is None else [str(c) for c in orientation_columns],
+        str(orientation_convention)))
