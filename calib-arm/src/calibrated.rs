@@ -31,12 +31,15 @@ use rand::{Rng, SeedableRng};
 /// How the calibrated parameter vector is chosen (see [`calib_core::calibrated_point()`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum PointChoice {
-    /// Towards the Chebyshev centre of the predicted tool points (the default): the worst
-    /// prediction error over the certified set is as small as the data allow.
-    #[default]
+    /// Towards the Chebyshev centre of the predicted tool points: the worst prediction error
+    /// over the certified set is as small as the data allow.
     Centre,
-    /// Towards the least-squares fit: on held-out data with errors the model does not hold
-    /// (gravity, gears), the fit of the average error.
+    /// The default (as `arm certify --calibrated-point lsq`): towards the least-squares fit
+    /// within the set, regularised towards the certified box's
+    /// centre by a weight chosen by cross-validation (`calib_core::set_least_squares`): on
+    /// held-out data with errors the model does not hold (gravity, gears), the best predictor
+    /// (real UR10 at 0.6 mm: held-out rms 0.330 mm, against 0.448 mm towards the centre).
+    #[default]
     LeastSquares,
 }
 
