@@ -116,6 +116,18 @@ fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
     let certified: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(p("certified.json")).expect("json"))
             .expect("json");
+    // The JSON says which vector the calibrated file holds and how it was chosen.
+    let chosen = &certified["calibrated"];
+    assert_eq!(chosen["rule"], "lsq", "{chosen}");
+    let weight = chosen["prior_weight"].as_f64().expect("a prior weight");
+    assert!(
+        calib_core::set_least_squares::WEIGHTS.contains(&weight),
+        "{chosen}"
+    );
+    assert!(
+        chosen["margin"].as_f64().is_some_and(|m| m > 0.0),
+        "{chosen}"
+    );
     let params = certified["parameters"].as_array().expect("parameters");
     for q in params.iter().filter(|q| q["fixed"] == false) {
         let ratio = q["ratio"].as_f64().expect("a ratio");

@@ -49,7 +49,9 @@ pub struct Args {
     /// Also fit by least squares and show where the fit stands against the certified box.
     #[arg(long)]
     lsq: bool,
-    /// Write the JSON report to this file.
+    /// Write the JSON report to this file (with --error-scale, its bracket under `error_scale`;
+    /// with --write-calibrated, under `calibrated`: the file, the rule, the prior weight
+    /// cross-validation chose, the margin kept and how far towards the target the vector is).
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
     /// Write the calibration certificate to this file: one self-contained HTML page (figures
@@ -214,6 +216,10 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("{}", verdict::auto_outliers(q, run.outcome.status));
     }
     print_outcome(&run, &names, q);
+    let mut extra = serde_json::Map::new();
+    if let Some(scale) = scale_json {
+        extra.insert("error_scale".into(), scale);
+    }
     if let Some(path) = &a.write_calibrated {
         let joints: Vec<Vec<f64>> = data.readings.iter().map(|r| r.joints_deg.clone()).collect();
         let calibrated = calibrated_arm(&arm, &run, &joints, a.calibrated_point)?;
@@ -260,9 +266,23 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
              {chosen}",
             path.display()
         );
+        let point = &calibrated.point;
+        extra.insert(
+            "calibrated".into(),
+            serde_json::json!({
+                "file": path.display().to_string(),
+                "rule": match a.calibrated_point {
+                    PointChoice::Centre => "centre",
+                    PointChoice::LeastSquares => "lsq",
+                },
+                "prior_weight": point.prior_weight,
+                "margin": point.margin,
+                "reached": point.reached,
+            }),
+        );
     }
     if let Some(path) = &a.json {
-        write_json(path, &run, &names, q, scale_json)?;
+        write_json(path, &run, &names, q, extra)?;
         println!("wrote {}", path.display());
     }
     if let Some(path) = &a.report {

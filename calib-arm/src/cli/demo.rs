@@ -82,7 +82,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     }
     if let Some(dir) = &a.out {
         let path = dir.join("report.json");
-        write_json(&path, &run, &names, 0, None)?;
+        write_json(&path, &run, &names, 0, serde_json::Map::new())?;
         println!("wrote the data set and report.json to {}", dir.display());
     }
     let pages: Vec<PathBuf> = a

@@ -123,19 +123,22 @@ pub fn print_outcome(run: &ArmRun, names: &ConfigurationNames<'_>, max_outliers:
     );
 }
 
-/// Writes the JSON report of a run.
+/// Writes the JSON report of a run, with the `extra` top-level entries (`error_scale`,
+/// `calibrated`) merged in.
 pub fn write_json(
     path: &Path,
     run: &ArmRun,
     names: &ConfigurationNames<'_>,
     max_outliers: usize,
-    error_scale: Option<serde_json::Value>,
+    extra: serde_json::Map<String, serde_json::Value>,
 ) -> Result<(), String> {
     let mut text = json_report(run, names, max_outliers);
-    if let Some(scale) = error_scale {
+    if !extra.is_empty() {
         let mut v: serde_json::Value =
             serde_json::from_str(&text).map_err(|e| format!("the JSON report: {e}"))?;
-        v["error_scale"] = scale;
+        for (key, value) in extra {
+            v[key] = value;
+        }
         text = format!("{v:#}\n");
     }
     write_atomically(path, &text).map_err(|e| format!("{}: cannot write: {e}", path.display()))
