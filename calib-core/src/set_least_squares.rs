@@ -269,7 +269,9 @@ where
         .collect();
     let (mut a_rows, mut b_vec): (Vec<Vec<f64>>, Vec<f64>) = (Vec::new(), Vec::new());
     for m in measurements {
-        for row in scaled_rows(model, x, m, p, live) {
+        // One evaluation per configuration: the objective's rows and the constraints.
+        let e = model.evaluate_rows(p, &m.map(|v| v.mid()));
+        for row in scaled(&e, x, m, live) {
             for a in 0..n {
                 linear[a] += row.gradient[a] * row.value;
                 for b in 0..n {
@@ -277,13 +279,13 @@ where
                 }
             }
         }
-        let e = model.evaluate_rows(p, &m.map(|v| v.mid()));
+        // `f + g·y <= θ w` and `-(f + g·y) <= θ w`.
         for_each_linearised_row(&e, &m.map(|v| v.rad()), |value, dx, w| {
             let row: Vec<f64> = live.iter().map(|&j| dx[j] * x[j].rad()).collect();
+            a_rows.push(row.clone());
+            a_rows.push(row.iter().map(|v| -v).collect());
             b_vec.push(SHRINK * w - value);
             b_vec.push(SHRINK * w + value);
-            a_rows.push(row.iter().map(|v| -v).collect());
-            a_rows.insert(a_rows.len() - 1, row);
         });
     }
     let scale = (0..n).map(|a| normal[a * n + a]).fold(0.0, f64::max);
