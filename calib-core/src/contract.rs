@@ -32,7 +32,7 @@
 use crate::affine::rounding;
 use crate::coupling::{coupling_directions, Directions};
 use crate::interval::round::{add_up, mul_up};
-use crate::lp::{proves_infeasible, safe_lower_bound, LpBackend, LpStatus, Polyhedron};
+use crate::lp::{proves_infeasible, safe_lower_bound, LpBackend, LpMemory, LpStatus, Polyhedron};
 use crate::{Interval, LinearEnclosure, Relaxation, Settings, VectorModel};
 
 /// Which test proved a box empty.
@@ -107,6 +107,14 @@ impl<const NX: usize> Workspace<NX> {
     }
 }
 
+impl<const NX: usize> Workspace<NX> {
+    /// The LP bases the last contraction ended with, to start another box's contraction from
+    /// ([`contract_from`]).
+    pub fn lp_memory(&self) -> LpMemory {
+        self.lp.memory()
+    }
+}
+
 /// The result of contracting one box.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Contraction<const NX: usize> {
@@ -133,11 +141,30 @@ pub fn contract<M, const NX: usize, const NM: usize, const NR: usize>(
 where
     M: VectorModel<NX, NM, NR>,
 {
+    contract_from(model, x, measurements, settings, ws, &LpMemory::default())
+}
+
+/// [`contract`], with the LPs of the first step starting from `start` (the bases an earlier
+/// contraction left, [`Workspace::lp_memory`]) instead of from scratch: the hull hands a box's
+/// bases to its halves. The box is the same whatever `start` is, up to where the engine's
+/// walks end (every bound is rigorous either way); it depends only on `start`, not on which
+/// boxes the workspace contracted before.
+pub fn contract_from<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    settings: &Settings,
+    ws: &mut Workspace<NX>,
+    start: &LpMemory,
+) -> Contraction<NX>
+where
+    M: VectorModel<NX, NM, NR>,
+{
     let mut current = *x;
     let mut iterations = 0;
-    // Each box's LPs warm-start only from this box's earlier steps: the result must not depend
-    // on which boxes a worker thread contracted before.
-    ws.lp.forget();
+    // Each box's LPs warm-start only from `start` and this box's earlier steps: the result must
+    // not depend on which boxes a worker thread contracted before.
+    ws.lp.restore(start);
     if current.iter().any(|v| v.is_empty()) {
         return Contraction {
             result: Err(EmptinessProof::EmptyIntersection {

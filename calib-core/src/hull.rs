@@ -41,14 +41,15 @@ use crate::bisection::split_widest;
 use crate::certificate::{find_witness, inner_points};
 use crate::certified_set::Cover;
 use crate::certify::{certify, hull_box, MAX_SUBSETS};
-use crate::contract::{contract, is_fixed, EmptinessProof, Workspace};
+use crate::contract::{contract_from, is_fixed, EmptinessProof, Workspace};
 use crate::first_order::wider_inner_points;
-use crate::lp::{DenseSimplex, LpBackend};
+use crate::lp::{DenseSimplex, LpBackend, LpMemory};
 use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
 use crate::push::push_towards;
 use crate::{Interval, Settings, Status, VectorModel};
 use rayon::prelude::*;
 use std::marker::PhantomData;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// The result of [`hull`].
@@ -96,14 +97,19 @@ pub struct Hull<const NX: usize> {
     pub cover: Cover<NX>,
 }
 
-/// A box of the cover, with whether it is too small to split further and which measurement subset
-/// it belongs to.
-#[derive(Clone, Copy)]
+/// A box of the cover, with whether it is too small to split further, which measurement subset
+/// it belongs to and the LP bases its contraction ended with.
+#[derive(Clone)]
 struct Piece<const NX: usize> {
     b: [Interval; NX],
     atomic: bool,
     /// The measurement subset whose solutions it covers (0 without outliers).
     set: usize,
+    /// Where its halves' first Newton/LP step starts ([`contract_from`]): a half's polyhedron is
+    /// its parent's over a smaller box, so the parent's optimal bases are a few pivots from the
+    /// half's (measured on the built-in arm: see `benches/README.md`). Handed down the tree, not
+    /// shared between workers, so that the result does not depend on the thread schedule.
+    bases: Arc<LpMemory>,
 }
 
 /// A face of the outer box: parameter `j`, lower (`upper == false`) or upper side.
@@ -261,13 +267,13 @@ where
         .collect();
     // x1 of every subset (one subset without outliers), with its LP extreme points.
     let first = |ws: &mut Workspace<NX>, set: &Vec<[Interval; NM]>| {
-        let c = contract(model, x0, set, settings, ws);
+        let c = contract_from(model, x0, set, settings, ws, &LpMemory::default());
         let extremes = if c.iterations > 0 {
             ws.extreme_points.clone()
         } else {
             Vec::new()
         };
-        (c, extremes)
+        (c, extremes, Arc::new(ws.lp_memory()))
     };
     let firsts: Vec<_> = if settings.parallel && sets.len() > 1 {
         sets.par_iter()
@@ -280,7 +286,7 @@ where
     out.boxes_contracted = sets.len();
     let mut cover = Vec::new();
     let mut x1: Option<[Interval; NX]> = None;
-    for (set, (c, _)) in firsts.iter().enumerate() {
+    for (set, (c, _, bases)) in firsts.iter().enumerate() {
         out.iterations += c.iterations;
         match c.result {
             Err(proof) => {
@@ -292,6 +298,7 @@ where
                     b,
                     atomic: false,
                     set,
+                    bases: Arc::clone(bases),
                 });
             }
         }
@@ -638,7 +645,7 @@ where
             let reaches = thresholds.iter().any(|(f, t)| f.reach(&p.b[f.j]) > *t);
             if !reaches {
                 retired_sets[p.set] = true;
-                retired_pieces.push(*p);
+                retired_pieces.push(p.clone());
                 retired = Some(match retired {
                     None => p.b,
                     Some(h) => core::array::from_fn(|j| h[j].hull(p.b[j])),
@@ -653,14 +660,14 @@ where
     /// surviving halves and pushes their LP extreme points towards the picking faces.
     fn refine(&mut self, picked: &[(usize, Vec<Face>)]) {
         let outer = self.outer().unwrap_or(*self.x0);
-        let mut jobs: Vec<([Interval; NX], &[Face], usize)> = Vec::with_capacity(2 * picked.len());
+        let mut jobs: Vec<Job<'_, NX>> = Vec::with_capacity(2 * picked.len());
         let mut atomic = Vec::new();
         for (i, faces) in picked {
-            let Piece { b, set, .. } = self.cover[*i];
-            match split_widest(&b, &outer) {
+            let Piece { b, set, bases, .. } = &self.cover[*i];
+            match split_widest(b, &outer) {
                 Some((l, r)) => {
-                    jobs.push((l, faces, set));
-                    jobs.push((r, faces, set));
+                    jobs.push((l, faces, *set, Arc::clone(bases)));
+                    jobs.push((r, faces, *set, Arc::clone(bases)));
                 }
                 None => atomic.push(*i),
             }
@@ -669,8 +676,8 @@ where
             self.cover[i].atomic = true;
         }
         let inner = self.inner;
-        let work = |ws: &mut Workspace<NX>, (b, faces, set): &([Interval; NX], &[Face], usize)| {
-            let c = contract(self.model, b, &self.sets[*set], self.settings, ws);
+        let work = |ws: &mut Workspace<NX>, (b, faces, set, bases): &Job<'_, NX>| {
+            let c = contract_from(self.model, b, &self.sets[*set], self.settings, ws, bases);
             let Ok(child) = c.result else {
                 return None;
             };
@@ -687,7 +694,8 @@ where
             } else {
                 Vec::new()
             };
-            Some((child, self.push_all(&child, &seeds, *set), *set))
+            let bases = Arc::new(ws.lp_memory());
+            Some((child, self.push_all(&child, &seeds, *set), *set, bases))
         };
         let results: Vec<Option<Refined<NX>>> = if self.settings.parallel {
             jobs.par_iter()
@@ -707,11 +715,12 @@ where
         for i in replaced.into_iter().rev() {
             self.cover.swap_remove(i);
         }
-        for (child, points, set) in results.into_iter().flatten() {
+        for (child, points, set, bases) in results.into_iter().flatten() {
             self.cover.push(Piece {
                 b: child,
                 atomic: false,
                 set,
+                bases,
             });
             self.add_points(&points, set);
         }
@@ -719,4 +728,8 @@ where
 }
 
 /// A contracted half, the certified points pushed from its LP extreme points, and its subset.
-type Refined<const NX: usize> = ([Interval; NX], Vec<[f64; NX]>, usize);
+type Refined<const NX: usize> = ([Interval; NX], Vec<[f64; NX]>, usize, Arc<LpMemory>);
+
+/// A half to contract: its box, the faces that picked its parent, its subset and the parent's
+/// LP bases.
+type Job<'a, const NX: usize> = ([Interval; NX], &'a [Face], usize, Arc<LpMemory>);

@@ -23,7 +23,7 @@
 
 use super::basis::{Basis, Constraints};
 use super::scaled_simplex::ScaledSimplex;
-use super::{LpBackend, LpStatus, Polyhedron};
+use super::{LpBackend, LpMemory, LpStatus, Polyhedron};
 
 /// The dense simplex engine (see the module documentation).
 #[derive(Clone, Debug, Default)]
@@ -352,6 +352,16 @@ impl LpBackend for DenseSimplex {
     fn forget(&mut self) {
         self.warm = None;
         self.large.forget();
+    }
+
+    /// The large engine's remembered bases (the small one remembers none).
+    fn memory(&self) -> LpMemory {
+        self.large.memory()
+    }
+
+    fn restore(&mut self, memory: &LpMemory) {
+        self.warm = None;
+        self.large.restore(memory);
     }
 
     /// The small engine walks on from the previous objective's optimum; the large one

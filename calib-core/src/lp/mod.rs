@@ -53,6 +53,22 @@ pub trait LpBackend: Send {
     /// order, and the results must not depend on it. The default has nothing to forget.
     fn forget(&mut self) {}
 
+    /// What later solves would start from (the remembered optimal bases, rows by their tags), to
+    /// start another engine's solves from the same place with [`LpBackend::restore`]: the hull
+    /// hands a box's bases to its halves, so that their first Newton/LP step starts warm and the
+    /// result still depends only on the box's own history. The default remembers nothing.
+    fn memory(&self) -> LpMemory {
+        LpMemory::default()
+    }
+
+    /// Forgets everything (as [`LpBackend::forget`]) and then starts later solves from `memory`
+    /// (from [`LpBackend::memory`] of an engine of the same kind; an empty memory is a plain
+    /// forget). The default only forgets.
+    fn restore(&mut self, memory: &LpMemory) {
+        let _ = memory;
+        self.forget();
+    }
+
     /// Whether the contraction should skip an LP whose bound an optimal point of an earlier LP of
     /// the same step already attains (for problems of `dim` variables). Skipping never changes
     /// the box the LP would give, but it changes where the engine's next solve starts: an engine
@@ -61,6 +77,29 @@ pub trait LpBackend: Send {
     /// slower). The default does not skip.
     fn skips_attained_bounds(&self, _dim: usize) -> bool {
         false
+    }
+}
+
+/// A constraint of a remembered basis: a row by its tag ([`Polyhedron::begin_group`]), or a box
+/// bound by its offset `2j` (upper) or `2j + 1` (lower).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Remembered {
+    Row(u64),
+    Bound(usize),
+}
+
+/// The optimal bases an engine remembers per unit objective `±y_j` (slot `2j`, `2j + 1`), to start
+/// later solves of the same objective from ([`LpBackend::memory`], [`LpBackend::restore`]). Only a
+/// hint for where a walk starts: any memory gives the same rigorous bounds.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct LpMemory {
+    pub(super) bases: Vec<Option<Vec<Remembered>>>,
+}
+
+impl LpMemory {
+    /// Whether it remembers no basis.
+    pub fn is_empty(&self) -> bool {
+        self.bases.iter().all(Option::is_none)
     }
 }
 

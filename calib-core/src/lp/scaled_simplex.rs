@@ -27,7 +27,7 @@
 
 use super::basis::{Basis, Constraints};
 use super::polyhedron::power_of_two_scale;
-use super::{LpStatus, Polyhedron};
+use super::{LpMemory, LpStatus, Polyhedron, Remembered};
 
 /// The engine (see the module documentation).
 #[derive(Clone, Debug, Default)]
@@ -683,6 +683,19 @@ impl ScaledSimplex {
         self.memory.iter_mut().for_each(|m| *m = None);
     }
 
+    /// The remembered bases (see [`super::LpBackend::memory`]).
+    pub(super) fn memory(&self) -> LpMemory {
+        LpMemory {
+            bases: self.memory.clone(),
+        }
+    }
+
+    /// Forgets, then remembers `memory`'s bases (see [`super::LpBackend::restore`]).
+    pub(super) fn restore(&mut self, memory: &LpMemory) {
+        self.warm = None;
+        self.memory.clone_from(&memory.bases);
+    }
+
     /// Saves the current basis and loads the optimum remembered for objective `slot`, its rows
     /// found again by their tags; false (nothing changed) when there is none, or one of its rows
     /// is not in `p`.
@@ -731,14 +744,6 @@ impl ScaledSimplex {
             }
         }));
     }
-}
-
-/// A constraint of a remembered basis: a row by its tag, or a bound by its offset `2j` (upper) or
-/// `2j + 1` (lower).
-#[derive(Clone, Copy, Debug)]
-enum Remembered {
-    Row(u64),
-    Bound(usize),
 }
 
 /// `2j` for the objective `+e_j` (times a positive factor), `2j + 1` for `-e_j`, `None` for any
@@ -847,6 +852,41 @@ mod tests {
                 2 * warm_pivots < cold_pivots,
                 "seed {seed}: {warm_pivots} pivots warm, {cold_pivots} cold"
             );
+        }
+    }
+
+    /// The bases one engine remembers, handed to a fresh engine ([`ScaledSimplex::memory`],
+    /// [`ScaledSimplex::restore`], the hull's parent-to-half hand-over), start its solves as
+    /// exactly as the first engine's own memory (the same pivots), with the cold bounds in fewer
+    /// pivots, and a restored empty memory forgets.
+    #[test]
+    fn handed_over_bases_start_another_engine_warm() {
+        for seed in 0..3 {
+            let polys = sequence(seed, 24, 40, 3);
+            let mut parent = ScaledSimplex::default();
+            bounds(&mut parent, &polys[0]);
+            bounds(&mut parent, &polys[1]);
+            let memory = parent.memory();
+            assert!(!memory.is_empty());
+            let mut child = ScaledSimplex::default();
+            child.restore(&memory);
+            assert_eq!(child.memory(), memory);
+            let (handed, handed_pivots) = bounds(&mut child, &polys[2]);
+            let (_, own_pivots) = bounds(&mut parent, &polys[2]);
+            let (cold, cold_pivots) = bounds(&mut ScaledSimplex::default(), &polys[2]);
+            for (a, b) in handed.iter().zip(&cold) {
+                assert!(
+                    (a - b).abs() <= 1e-7 * (1.0 + b.abs()),
+                    "{seed}: {a} vs {b}"
+                );
+            }
+            assert_eq!(handed_pivots, own_pivots, "seed {seed}");
+            assert!(
+                2 * handed_pivots < cold_pivots,
+                "seed {seed}: {handed_pivots} pivots handed over, {cold_pivots} cold"
+            );
+            child.restore(&LpMemory::default());
+            assert!(child.memory().is_empty());
         }
     }
 
