@@ -43,7 +43,7 @@
 use crate::bisection::split_widest;
 use crate::contract::{build_relaxation, contract, Workspace};
 use crate::lp::{safe_lower_bound, DenseSimplex, LpBackend, LpStatus, Polyhedron};
-use crate::push::push_towards;
+use crate::push::{push_towards, PushEngines};
 use crate::{is_consistent_point, Interval, Relaxation, Settings, VectorModel};
 
 /// Boxes whose union contains every solution of a certification, with the measurement subset
@@ -375,7 +375,7 @@ impl<const NX: usize, const NM: usize> CertifiedSet<NX, NM> {
             .max_by(|a, b| dot(&a.x).total_cmp(&dot(&b.x)))?;
         let region = self.outer()?;
         let kept = self.subset_measurements(start.subset);
-        let mut lp = DenseSimplex::default();
+        let mut lp = PushEngines::default();
         let pushed = push_towards(model, &mut lp, &start.x, direction, &region, &kept)?;
         if dot(&pushed) > dot(&start.x) {
             self.points.push(CertifiedPoint {

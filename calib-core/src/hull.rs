@@ -43,9 +43,9 @@ use crate::certified_set::Cover;
 use crate::certify::{certify, hull_box, MAX_SUBSETS};
 use crate::contract::{contract_from, is_fixed, EmptinessProof, Workspace};
 use crate::first_order::wider_inner_points;
-use crate::lp::{DenseSimplex, LpBackend, LpMemory};
+use crate::lp::{LpBackend, LpMemory};
 use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
-use crate::push::push_towards;
+use crate::push::{push_towards, PushEngines};
 use crate::{Interval, Settings, Status, VectorModel};
 use rayon::prelude::*;
 use std::marker::PhantomData;
@@ -555,7 +555,7 @@ where
         if region.iter().any(|v| v.is_empty()) {
             return Vec::new();
         }
-        let push = |lp: &mut DenseSimplex, (face, seed): &(Face, [f64; NX])| {
+        let push = |lp: &mut PushEngines, (face, seed): &(Face, [f64; NX])| {
             push_towards(
                 self.model,
                 lp,
@@ -570,10 +570,10 @@ where
         let found: Vec<Option<[f64; NX]>> = if self.settings.parallel {
             seeds
                 .par_iter()
-                .map_init(DenseSimplex::default, push)
+                .map_init(PushEngines::default, push)
                 .collect()
         } else {
-            let mut lp = DenseSimplex::default();
+            let mut lp = PushEngines::default();
             seeds.iter().map(|s| push(&mut lp, s)).collect()
         };
         found.into_iter().flatten().collect()

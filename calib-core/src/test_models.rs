@@ -27,3 +27,61 @@ impl Model<2, 3> for Plane {
         [x[0], x[1], Interval::point(-1.0)]
     }
 }
+
+/// Parameters of [`Hyperplane`].
+pub(crate) const HYPERPLANE_DIM: usize = 20;
+
+/// `Σ_j m_j x_j - m_20`: [`Plane`] in [`HYPERPLANE_DIM`] parameters, more than the small LP
+/// engine takes. Linear in `x`.
+pub(crate) struct Hyperplane;
+
+impl Model<HYPERPLANE_DIM, { HYPERPLANE_DIM + 1 }> for Hyperplane {
+    fn residual(&self, x: &[f64; HYPERPLANE_DIM], m: &[f64; HYPERPLANE_DIM + 1]) -> f64 {
+        x.iter().zip(m).map(|(a, b)| a * b).sum::<f64>() - m[HYPERPLANE_DIM]
+    }
+    fn residual_interval(
+        &self,
+        x: &[Interval; HYPERPLANE_DIM],
+        m: &[Interval; HYPERPLANE_DIM + 1],
+    ) -> Interval {
+        let mut r = -m[HYPERPLANE_DIM];
+        for (a, b) in x.iter().zip(m) {
+            r += *a * *b;
+        }
+        r
+    }
+    fn jacobian_x(
+        &self,
+        _x: &[f64; HYPERPLANE_DIM],
+        m: &[f64; HYPERPLANE_DIM + 1],
+    ) -> [f64; HYPERPLANE_DIM] {
+        core::array::from_fn(|j| m[j])
+    }
+    fn jacobian_m(
+        &self,
+        x: &[f64; HYPERPLANE_DIM],
+        _m: &[f64; HYPERPLANE_DIM + 1],
+    ) -> [f64; HYPERPLANE_DIM + 1] {
+        core::array::from_fn(|j| if j < HYPERPLANE_DIM { x[j] } else { -1.0 })
+    }
+    fn jacobian_x_interval(
+        &self,
+        _x: &[Interval; HYPERPLANE_DIM],
+        m: &[Interval; HYPERPLANE_DIM + 1],
+    ) -> [Interval; HYPERPLANE_DIM] {
+        core::array::from_fn(|j| m[j])
+    }
+    fn jacobian_m_interval(
+        &self,
+        x: &[Interval; HYPERPLANE_DIM],
+        _m: &[Interval; HYPERPLANE_DIM + 1],
+    ) -> [Interval; HYPERPLANE_DIM + 1] {
+        core::array::from_fn(|j| {
+            if j < HYPERPLANE_DIM {
+                x[j]
+            } else {
+                Interval::point(-1.0)
+            }
+        })
+    }
+}

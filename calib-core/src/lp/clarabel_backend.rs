@@ -16,18 +16,35 @@ use clarabel::solver::{
 #[derive(Default)]
 pub struct ClarabelLp {
     solver: Option<(u64, DefaultSolver<f64>)>,
+    /// Whether iterative refinement is off ([`ClarabelLp::for_hints`]).
+    hints_only: bool,
 }
 
-fn settings() -> DefaultSettings<f64> {
+impl ClarabelLp {
+    /// An engine whose answers serve only as hints checked elsewhere (the candidate points of the
+    /// hull's pushes, each certified afterwards): the KKT solves skip iterative refinement.
+    /// Measured on the built-in arm's hull (`arm demo --hull`): the same boxes and ratios in 22 s
+    /// instead of 31 s. Its multipliers still give rigorous bounds through
+    /// [`super::safe_lower_bound`], only possibly weaker ones.
+    pub fn for_hints() -> Self {
+        ClarabelLp {
+            solver: None,
+            hints_only: true,
+        }
+    }
+}
+
+fn settings(hints_only: bool) -> DefaultSettings<f64> {
     DefaultSettingsBuilder::default()
         .verbose(false)
         .presolve_enable(false)
         .input_sparse_dropzeros(false)
+        .iterative_refinement_enable(!hints_only)
         .build()
         .expect("static clarabel settings are valid")
 }
 
-fn build(p: &Polyhedron, c: &[f64]) -> Option<DefaultSolver<f64>> {
+fn build(p: &Polyhedron, c: &[f64], hints_only: bool) -> Option<DefaultSolver<f64>> {
     let (n, m) = (p.dim(), p.rows());
     let rows = m + 2 * n;
     // Column-major (CSC) A: column j holds G[i][j] for all i, then +1 at m + 2j, -1 at m + 2j + 1.
@@ -54,7 +71,7 @@ fn build(p: &Polyhedron, c: &[f64]) -> Option<DefaultSolver<f64>> {
     }
     let pmat = CscMatrix::zeros((n, n));
     let cones = [SupportedConeT::NonnegativeConeT(rows)];
-    DefaultSolver::new(&pmat, c, &a, &b, &cones, settings()).ok()
+    DefaultSolver::new(&pmat, c, &a, &b, &cones, settings(hints_only)).ok()
 }
 
 impl LpBackend for ClarabelLp {
@@ -78,7 +95,7 @@ impl LpBackend for ClarabelLp {
             }
         }
         if !matches!(&self.solver, Some((g, _)) if *g == p.generation()) {
-            match build(p, c) {
+            match build(p, c, self.hints_only) {
                 Some(s) => self.solver = Some((p.generation(), s)),
                 None => return LpStatus::Failed,
             }

@@ -16,6 +16,7 @@ mod scaled_simplex;
 
 pub use clarabel_backend::ClarabelLp;
 pub use dense_simplex::DenseSimplex;
+pub(crate) use dense_simplex::SMALL_DIM;
 pub use polyhedron::Polyhedron;
 pub use safe_bound::{proves_infeasible, safe_lower_bound};
 
