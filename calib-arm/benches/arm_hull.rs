@@ -8,15 +8,21 @@
 //! And the kernel's unit of work at real-arm size (issue 36's target: ≤ 30 ms): one Newton/LP
 //! step (`calib_core::contract` with one iteration, cold LP bases) of the built-in arm's prior
 //! against 50 configurations (27 free parameters, 150 residual rows), and the whole contraction
-//! to its fixed point (its number of steps printed once).
+//! to its fixed point (its number of steps printed once); one step of a hull box (a half of x1
+//! whose LPs start from x1's bases, `calib_core::contract_from`, the hull's unit of work); and the
+//! built-in arm's whole hull (`arm demo --hull`: 50 configurations, tolerance 0.10; issue 36's
+//! target ≤ 20 s on 2 cores, ~20 s per run, so this one alone takes minutes).
 //!
 //! `cargo bench -p calib-arm --bench arm_hull`.
 
-use calib_arm::certification::{certify_arm, padded_box, RunOptions, NM};
+use calib_arm::certification::{arm_settings, certify_arm, padded_box, RunOptions, NM};
 use calib_arm::error_scale::ScaleBounds;
 use calib_arm::simulate::{measurement_box, simulate, Uncertainty};
 use calib_arm::{builtin_arm, Arm, Arm7Point, Joint};
-use calib_core::{contract, is_consistent_point, smallest_scale, Interval, Settings, Workspace};
+use calib_core::bisection::split_widest;
+use calib_core::{
+    contract, contract_from, is_consistent_point, smallest_scale, Interval, Settings, Workspace,
+};
 use calib_pipeline::Depth;
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
@@ -114,6 +120,23 @@ fn bench(c: &mut Criterion) {
     )
     .iterations;
     eprintln!("the built-in arm's contraction to its fixed point takes {steps} Newton/LP steps");
+    let mut parent = Workspace::new(&settings);
+    let x1 = contract(&Arm7Point, &x0, &at_one, &settings, &mut parent)
+        .result
+        .expect("the simulated data are consistent");
+    let bases = parent.lp_memory();
+    let (half, _) = split_widest(&x1, &x1).expect("x1 is wider than a point");
+    g.bench_function(
+        "built-in one Newton/LP step of a half of x1 from x1's bases, 50 configurations",
+        |b| {
+            b.iter(|| {
+                let mut ws = Workspace::new(&one_step);
+                black_box(contract_from(
+                    &Arm7Point, &half, &at_one, &one_step, &mut ws, &bases,
+                ))
+            })
+        },
+    );
     g.bench_function(
         "built-in contraction to the fixed point, 50 configurations",
         |b| {
@@ -123,6 +146,28 @@ fn bench(c: &mut Criterion) {
             })
         },
     );
+    let hull_settings = arm_settings()
+        .with_hull_tolerance(0.10)
+        .with_hull_budget(10_000, Some(120.0));
+    let hull_options = RunOptions {
+        depth: Depth::Hull,
+        lsq: false,
+    };
+    let demo = simulate(&arm, 50, 1, Uncertainty::TRACKER, 1.0, &[]);
+    g.bench_function("built-in hull, 50 configurations (arm demo --hull)", |b| {
+        b.iter(|| {
+            black_box(
+                certify_arm(
+                    &arm,
+                    &demo.readings,
+                    &demo.uncertainty,
+                    hull_options,
+                    &hull_settings,
+                )
+                .expect("6 joints"),
+            )
+        })
+    });
     g.finish();
 }
 

@@ -78,7 +78,7 @@ pub use certified_set::{
 };
 pub use certify::{certify, certify_with, Certification, Status};
 pub use chebyshev::{smallest_scale, ScaleEstimate};
-pub use contract::{contract, is_fixed, Contraction, EmptinessProof, Workspace};
+pub use contract::{contract, contract_from, is_fixed, Contraction, EmptinessProof, Workspace};
 pub use dual::Dual;
 pub use hull::{hull, hull_with, Hull};
 pub use interval::Interval;
