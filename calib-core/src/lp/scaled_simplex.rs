@@ -49,6 +49,8 @@ pub(super) struct ScaledSimplex {
     along: Vec<f64>,
     /// The edge direction over the live columns.
     live_direction: Vec<f64>,
+    /// The dual simplex's vertex over the live columns, for its pricing.
+    live_vertex: Vec<f64>,
     scaled: Scaled,
     /// The polyhedron generation of the last optimal solve (its basis can warm-start the next).
     warm: Option<u64>,
@@ -274,6 +276,17 @@ fn violation(s: &Scaled, p: &Polyhedron, k: usize, z: &[f64]) -> f64 {
     }
 }
 
+/// [`violation`] with the rows' products over the live columns (`z_live`: `z` there), the
+/// dual simplex's pricing: every row is zero in the frozen columns.
+#[inline(always)]
+fn live_violation(s: &Scaled, p: &Polyhedron, k: usize, z: &[f64], z_live: &[f64]) -> f64 {
+    if k < s.rhs.len() {
+        dot(s.compact_row(k), z_live) - s.rhs[k]
+    } else {
+        violation(s, p, k, z)
+    }
+}
+
 /// `a_k · d`, scaled.
 #[inline(always)]
 fn along(s: &Scaled, k: usize, d: &[f64]) -> f64 {
@@ -424,8 +437,11 @@ impl ScaledSimplex {
             // Most violated constraint outside the basis (Dantzig), or the first violated one once
             // degenerate pivots pile up even after the perturbation (Bland's rule: no cycling).
             let bland = degenerate > 2 * n;
+            self.live_vertex.clear();
+            self.live_vertex
+                .extend(self.scaled.live.iter().map(|&j| self.b.y[j]));
             let entering = self.b.most_violated(FEASIBILITY_TOL, bland, |k| {
-                violation(&self.scaled, p, k, &self.b.y)
+                live_violation(&self.scaled, p, k, &self.b.y, &self.live_vertex)
             });
             let Some(k) = entering else {
                 status = LpStatus::Optimal;
