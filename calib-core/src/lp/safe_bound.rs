@@ -122,13 +122,9 @@ mod tests {
     /// point.
     #[test]
     fn wide_problems_get_sound_bounds_on_both_paths() {
-        let mut seed = 7u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
+        use rand::{rngs::StdRng, Rng, SeedableRng};
+        let mut rng = StdRng::seed_from_u64(7);
+        let mut rnd = || rng.random_range(-1.0..1.0);
         for n in [40usize, 70] {
             // Rows through a known feasible point y0 (slack 0.1), over the box [-1, 1]^n.
             let y0: Vec<f64> = (0..n).map(|_| 0.5 * rnd()).collect();
