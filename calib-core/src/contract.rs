@@ -105,9 +105,7 @@ impl<const NX: usize> Workspace<NX> {
             lp_failures: 0,
         }
     }
-}
 
-impl<const NX: usize> Workspace<NX> {
     /// The LP bases the last contraction ended with, to start another box's contraction from
     /// ([`contract_from`]).
     pub fn lp_memory(&self) -> LpMemory {

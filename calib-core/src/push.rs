@@ -11,11 +11,12 @@
 //!
 //! The LPs are posed over the parameters the region leaves free ([`PushEngines`]); above
 //! [`SMALL_DIM`] of them they go to the interior-point engine ([`ClarabelLp::for_hints`]). Its
-//! optimum lies inside the optimal face rather than at one of its vertices, and the thin slabs `|f_k + g_k·d| <= θ w_k` (pairs of nearly parallel rows thousands of times) do not
-//! stall it. Measured on the built-in arm's hull (`arm demo --hull`, 27 free parameters of 44): the
+//! optimum lies inside the optimal face rather than at one of its vertices, and the thin slabs
+//! `|f_k + g_k·d| <= θ w_k` (hundreds of pairs of nearly parallel rows) do not stall it.
+//! Measured on the built-in arm's hull (`arm demo --hull`, 27 free parameters of 44): the
 //! simplex failed 43% of the push LPs after 676 pivots on average, and the pushes it finished
-//! stopped short (largest outer/inner ratio 1.25 after 60 s); with the interior-point engine none
-//! failed and the first pushes alone reach 1.12 (see `benches/README.md`).
+//! stopped short (largest outer/inner ratio 1.25 after 60 s); with the interior-point engine
+//! none failed and the first pushes alone reach 1.12 (see `benches/README.md`).
 
 use crate::certificate::FailFirst;
 use crate::coupling::for_each_linearised_row;
@@ -197,8 +198,9 @@ impl<const NX: usize> PushLp<'_, NX> {
     ///
     /// The LP is posed over the live columns only (`lo_j < hi_j`); a pinned one keeps `d_j = lo_j`.
     fn solve(self, rows: &mut [LinearisedRow<NX>]) -> bool {
-        let live: Vec<usize> = (0..NX).filter(|&j| self.lo[j] < self.hi[j]).collect();
-        for j in (0..NX).filter(|j| !live.contains(j)) {
+        let (live, pinned): (Vec<usize>, Vec<usize>) =
+            (0..NX).partition(|&j| self.lo[j] < self.hi[j]);
+        for &j in &pinned {
             self.primal[j] = self.lo[j];
         }
         let pick = |v: &[f64; NX]| -> Vec<f64> { live.iter().map(|&j| v[j]).collect() };
@@ -210,11 +212,7 @@ impl<const NX: usize> PushLp<'_, NX> {
             for r in rows.iter().filter(|r| r.active) {
                 // f + g·d <= θw  and  -(f + g·d) <= θw, with the pinned columns' share moved
                 // to the right-hand side.
-                let pinned: f64 = (0..NX)
-                    .filter(|j| !live.contains(j))
-                    .map(|j| r.dx[j] * self.lo[j])
-                    .sum();
-                let value = r.value + pinned;
+                let value = r.value + pinned.iter().map(|&j| r.dx[j] * self.lo[j]).sum::<f64>();
                 for (c, &j) in row.iter_mut().zip(&live) {
                     *c = r.dx[j];
                 }

@@ -91,7 +91,8 @@ pub(super) enum Remembered {
 
 /// The optimal bases an engine remembers per unit objective `±y_j` (slot `2j`, `2j + 1`), to start
 /// later solves of the same objective from ([`LpBackend::memory`], [`LpBackend::restore`]). Only a
-/// hint for where a walk starts: any memory gives the same rigorous bounds.
+/// hint for where a walk starts: the bounds are rigorous whatever it holds (where the walks end,
+/// and so the bounds' last digits, may differ).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct LpMemory {
     pub(super) bases: Vec<Option<Vec<Remembered>>>,
