@@ -41,7 +41,7 @@ use crate::bisection::split_widest;
 use crate::certificate::{find_witness, inner_points};
 use crate::certified_set::Cover;
 use crate::certify::{certify, hull_box, MAX_SUBSETS};
-use crate::contract::{contract_from, is_fixed, EmptinessProof, Workspace};
+use crate::contract::{contract, contract_from, is_fixed, EmptinessProof, Workspace};
 use crate::first_order::wider_inner_points;
 use crate::lp::{LpBackend, LpMemory};
 use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
@@ -267,7 +267,7 @@ where
         .collect();
     // x1 of every subset (one subset without outliers), with its LP extreme points.
     let first = |ws: &mut Workspace<NX>, set: &Vec<[Interval; NM]>| {
-        let c = contract_from(model, x0, set, settings, ws, &LpMemory::default());
+        let c = contract(model, x0, set, settings, ws);
         let extremes = if c.iterations > 0 {
             ws.extreme_points.clone()
         } else {
@@ -733,3 +733,54 @@ type Refined<const NX: usize> = ([Interval; NX], Vec<[f64; NX]>, usize, Arc<LpMe
 /// A half to contract: its box, the faces that picked its parent, its subset and the parent's
 /// LP bases.
 type Job<'a, const NX: usize> = ([Interval; NX], &'a [Face], usize, Arc<LpMemory>);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_models::{Hyperplane, HYPERPLANE_DIM as N};
+    use rand::rngs::StdRng;
+    use rand::{Rng, SeedableRng};
+
+    /// Above the small engine's size (the scaled simplex, whose bases the halves inherit, and the
+    /// interior-point pushes) the hull still does not depend on the thread schedule, contracts
+    /// boxes with inherited bases, and keeps the truth.
+    #[test]
+    fn inherited_bases_keep_large_hulls_independent_of_threads() {
+        let mut rng = StdRng::seed_from_u64(3);
+        let truth: [f64; N] = core::array::from_fn(|_| rng.random_range(-1.0..1.0));
+        let x0: [Interval; N] = truth.map(|t| Interval::new(t - 0.3, t + 0.3));
+        let measurements: Vec<[Interval; N + 1]> = (0..40)
+            .map(|_| {
+                let a: [f64; N] = core::array::from_fn(|_| rng.random_range(-1.0..1.0));
+                let v: f64 = a.iter().zip(&truth).map(|(p, q)| p * q).sum::<f64>();
+                // Coefficients known within ±0.002: the relaxation is not exact, boxes split.
+                core::array::from_fn(|j| {
+                    if j < N {
+                        Interval::new(a[j] - 0.002, a[j] + 0.002)
+                    } else {
+                        Interval::new(v - 0.01, v + 0.01)
+                    }
+                })
+            })
+            .collect();
+        let settings = Settings::default()
+            .with_hull_tolerance(0.01)
+            .with_hull_budget(24, None);
+        let parallel = hull(&Hyperplane, &x0, &measurements, &settings);
+        let serial = hull(
+            &Hyperplane,
+            &x0,
+            &measurements,
+            &settings.clone().with_parallel(false),
+        );
+        assert!(parallel.boxes_contracted > 1, "no box was split");
+        assert_eq!(parallel.outer, serial.outer);
+        assert_eq!(parallel.inner, serial.inner);
+        assert_eq!(parallel.boxes_contracted, serial.boxes_contracted);
+        assert!(parallel
+            .outer
+            .iter()
+            .zip(&truth)
+            .all(|(o, t)| o.contains(*t)));
+    }
+}

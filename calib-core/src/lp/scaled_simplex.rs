@@ -872,9 +872,9 @@ mod tests {
     }
 
     /// The bases one engine remembers, handed to a fresh engine ([`ScaledSimplex::memory`],
-    /// [`ScaledSimplex::restore`], the hull's parent-to-half hand-over), start its solves as
-    /// exactly as the first engine's own memory (the same pivots), with the cold bounds in fewer
-    /// pivots, and a restored empty memory forgets.
+    /// [`ScaledSimplex::restore`], the hull's parent-to-half hand-over), start its solves exactly
+    /// as the first engine's own memory does (the same pivots), reaching the cold bounds in fewer
+    /// pivots; a restored empty memory forgets.
     #[test]
     fn handed_over_bases_start_another_engine_warm() {
         for seed in 0..3 {
