@@ -37,7 +37,7 @@ macro_rules! serial_arm_model {
         point = [$px:literal, $py:literal, $pz:literal]
     ) => {
         $(#[$doc])*
-        #[calib_core::interval_model]
+        #[calib_core::interval_model(curvature)]
         pub fn $name<S: calib_core::Scalar>(x: &[S; $nx], m: &[S; $nm]) -> [S; 3] {
             let v = [x[$tx], x[$ty], x[$tz]];
             $(

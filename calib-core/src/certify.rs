@@ -4,7 +4,8 @@ use crate::certificate::{find_witness, inner_points, point_hull};
 use crate::certified_set::Cover;
 use crate::contract::{contract, EmptinessProof, Workspace};
 use crate::first_order::wider_inner_points;
-use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
+use crate::outliers::{certified_outliers, conflict_set, conflict_subset, drop_sets, keep_all_but};
+use crate::second_order::second_order_emptiness;
 use crate::{Interval, Settings, VectorModel};
 
 /// The verdict on a box of parameters.
@@ -101,8 +102,30 @@ pub fn certify_with<
     if settings.max_outliers > 0 {
         return certify_relaxed(model, x0, measurements, settings, ws);
     }
-    let mut out = certify_plain(model, x0, measurements, settings, ws);
+    let (mut out, support) = certify_plain_with_support(model, x0, measurements, settings, ws);
     if out.status == Status::Empty && settings.conflict_sets {
+        if let Some(support) = support {
+            // The second-order proof's subsets are tested by the contraction and, where it
+            // leaves a box, by the second-order proof on it; from the configurations the proof
+            // weighed when they alone are proved inconsistent.
+            let mut proves_empty = |kept: &[usize]| {
+                let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
+                match contract(model, x0, &subset, settings, ws).result {
+                    Err(_) => true,
+                    Ok(b) => model
+                        .curvature()
+                        .and_then(|c| second_order_emptiness(model, c, &b, &subset))
+                        .is_some(),
+                }
+            };
+            let start = if proves_empty(&support) {
+                support
+            } else {
+                (0..measurements.len()).collect()
+            };
+            out.conflict = Some(conflict_subset(start, &[], proves_empty));
+            return out;
+        }
         let used = match out.emptiness {
             Some(EmptinessProof::CheapRejection { measurement }) => vec![measurement],
             _ => Vec::new(),
@@ -224,6 +247,23 @@ fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, c
     settings: &Settings,
     ws: &mut Workspace<NX>,
 ) -> Certification<NX> {
+    certify_plain_with_support(model, x0, measurements, settings, ws).0
+}
+
+/// [`certify_plain`], and for a second-order proof of emptiness the measurements it weighed.
+fn certify_plain_with_support<
+    M: VectorModel<NX, NM, NR>,
+    const NX: usize,
+    const NM: usize,
+    const NR: usize,
+>(
+    model: &M,
+    x0: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    settings: &Settings,
+    ws: &mut Workspace<NX>,
+) -> (Certification<NX>, Option<Vec<usize>>) {
+    let mut support = None;
     let (solves, failures) = (ws.lp_solves, ws.lp_failures);
     let c = contract(model, x0, measurements, settings, ws);
     let mut out = Certification {
@@ -274,10 +314,19 @@ fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, c
                     ));
                     out.inner = Some(point_hull(core::iter::once(&w).chain(&points)));
                 }
+            } else if let Some(proof) = model
+                .curvature()
+                .and_then(|c| second_order_emptiness(model, c, &outer, measurements))
+            {
+                out.status = Status::Empty;
+                out.emptiness = Some(EmptinessProof::SecondOrder);
+                out.outer = [Interval::EMPTY; NX];
+                out.cover = Cover::empty();
+                support = Some(proof.support);
             }
         }
     }
     out.lp_solves = ws.lp_solves - solves;
     out.lp_failures = ws.lp_failures - failures;
-    out
+    (out, support)
 }

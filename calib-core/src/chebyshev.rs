@@ -86,7 +86,7 @@ where
         let mm = m.map(|v| v.mid());
         let (fixed, varying) = split_radii(m, scaled);
         let e = model.evaluate_rows(p, &mm);
-        for_each_split_row(&e, &fixed, &varying, |value, _, w_fixed, w_scaled| {
+        for_each_split_row(&e, &fixed, &varying, |_, value, _, w_fixed, w_scaled| {
             let excess = value.abs() - w_fixed;
             let r = if excess <= 0.0 {
                 0.0
@@ -104,6 +104,134 @@ fn split_radii<const NM: usize>(m: &[Interval; NM], scaled: &[bool; NM]) -> ([f6
     let part =
         |want: bool| core::array::from_fn(|i| if scaled[i] == want { m[i].rad() } else { 0.0 });
     (part(false), part(true))
+}
+
+/// Builds in `poly` the LP in `(δ, t)` of a Chebyshev step at `p` (see the module documentation):
+/// for every row and coupling combination `λ·f` of every configuration,
+/// `±(λ·f + λ·∂f/∂x δ) <= w_fixed + w_scaled t`, over `p + δ` in the box, `|δ_j| <= reach ·
+/// rad(x_j)` (a trust region; `∞` for the whole box) and `0 <= t <= 1e6`. `origin` is told, for
+/// every row kept, where it came from. `false` (nothing built) when `p` is not in the box.
+#[allow(clippy::too_many_arguments)]
+fn chebyshev_lp<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    scaled: &[bool; NM],
+    p: &[f64; NX],
+    reach: f64,
+    poly: &mut Polyhedron,
+    row: &mut [f64],
+    mut origin: impl FnMut(RowOrigin<NR>),
+) -> bool
+where
+    M: VectorModel<NX, NM, NR>,
+{
+    let step = |j: usize| reach * x[j].rad();
+    let lo: Vec<f64> = (0..NX)
+        .map(|j| (x[j].inf() - p[j]).max(-step(j)))
+        .chain([0.0])
+        .collect();
+    // t at most 1e6 (the dense simplex answered a wrong "optimal" with a 1e12 bound; the
+    // answer is a hint either way, and no error scale beyond 1e6 is searched).
+    let hi: Vec<f64> = (0..NX)
+        .map(|j| (x[j].sup() - p[j]).min(step(j)))
+        .chain([1e6])
+        .collect();
+    if lo
+        .iter()
+        .zip(&hi)
+        .any(|(l, h)| l > h || !l.is_finite() || !h.is_finite())
+    {
+        return false;
+    }
+    poly.reset(&lo, &hi);
+    for (config, m) in measurements.iter().enumerate() {
+        let mm = m.map(|v| v.mid());
+        let (fixed, varying) = split_radii(m, scaled);
+        let e = model.evaluate_rows(p, &mm);
+        for_each_split_row(&e, &fixed, &varying, |l, value, dx, w_fixed, w_scaled| {
+            let w = w_scaled.max(1e-300);
+            // f + J δ <= w_fixed + w t  and  -(f + J δ) <= w_fixed + w t
+            for sign in [1.0, -1.0] {
+                row[..NX]
+                    .iter_mut()
+                    .zip(dx)
+                    .for_each(|(r, d)| *r = sign * d);
+                row[NX] = -w;
+                if poly.push_row(row, w_fixed - sign * value) {
+                    // The polyhedron stores the row times a power of two.
+                    let largest = |r: &[f64]| r.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                    let stored = largest(poly.row(poly.rows() - 1)) / largest(row);
+                    origin(RowOrigin {
+                        config,
+                        combination: l.map(|v| sign * v * stored),
+                    });
+                }
+            }
+        });
+    }
+    true
+}
+
+/// Where a row of the Chebyshev LP came from: its configuration, and the combination of that
+/// configuration's residuals the stored row is the linearisation of (`λ`, times the row's side and
+/// the power of two the polyhedron scaled it by).
+struct RowOrigin<const NR: usize> {
+    config: usize,
+    combination: [f64; NR],
+}
+
+/// The multipliers of the Chebyshev fit at `point` as weights of the residuals: per
+/// configuration `k`, the weight `c_{k,r}` of each row `f_r(x, M_k)`, from the dual of the
+/// Chebyshev LP linearised at `point` (its rows are the residuals, their coupling combinations
+/// and their sides). At a Chebyshev point the combination `φ(x, M) = Σ_k Σ_r c_{k,r} f_r(x, M_k)`
+/// is stationary in `x` (its gradient is what keeps `x` in the box) and its measurement
+/// half-ranges add up to 1 per unit of scale: the Farkas certificate of the linearised problem at
+/// any scale below the fit's. [`crate::second_order`] turns it into a proof. `None` if the LP
+/// fails or `point` is not in the box.
+pub fn chebyshev_weights<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    scaled: &[bool; NM],
+    point: &[f64; NX],
+) -> Option<Vec<[f64; NR]>>
+where
+    M: VectorModel<NX, NM, NR>,
+{
+    let mut poly = Polyhedron::default();
+    let mut row = vec![0.0; NX + 1];
+    let mut origins = Vec::new();
+    let whole_box = f64::INFINITY;
+    if !chebyshev_lp(
+        model,
+        x,
+        measurements,
+        scaled,
+        point,
+        whole_box,
+        &mut poly,
+        &mut row,
+        |o| origins.push(o),
+    ) {
+        return None;
+    }
+    let mut objective = vec![0.0; NX + 1];
+    objective[NX] = 1.0;
+    let mut dual = vec![0.0; poly.rows()];
+    let mut primal = vec![0.0; NX + 1];
+    if crate::lp::ClarabelLp::default().minimize(&poly, &objective, &mut dual, &mut primal)
+        != LpStatus::Optimal
+    {
+        return None;
+    }
+    let mut weights = vec![[0.0; NR]; measurements.len()];
+    for (y, o) in dual.iter().zip(&origins) {
+        for (w, l) in weights[o.config].iter_mut().zip(&o.combination) {
+            *w += y.max(0.0) * l;
+        }
+    }
+    Some(weights)
 }
 
 /// A point of the box that minimises the largest normalised residual
@@ -133,35 +261,26 @@ where
     let mut objective = vec![0.0; NX + 1];
     objective[NX] = 1.0;
     let mut row = vec![0.0; NX + 1];
-    for _ in 0..if until_consistent { 6 } else { 12 } {
+    // The trust region (a fraction of each half-width): the whole box until a step fails to
+    // lower the misfit, then shrunk below that step, so that the fit converges to a stationary
+    // point, where the LP's own optimum is the step 0 (what [`chebyshev_weights`] needs).
+    let mut reach = f64::INFINITY;
+    for _ in 0..if until_consistent { 6 } else { 40 } {
         if until_consistent && is_consistent_point(model, &p, measurements) {
             return p;
         }
-        let lo: Vec<f64> = (0..NX).map(|j| x[j].inf() - p[j]).chain([0.0]).collect();
-        // t at most 1e6 (the dense simplex answered a wrong "optimal" with a 1e12 bound; the
-        // answer is a hint either way, and no error scale beyond 1e6 is searched).
-        let hi: Vec<f64> = (0..NX).map(|j| x[j].sup() - p[j]).chain([1e6]).collect();
-        if lo
-            .iter()
-            .zip(&hi)
-            .any(|(l, h)| l > h || !l.is_finite() || !h.is_finite())
-        {
+        if !chebyshev_lp(
+            model,
+            x,
+            measurements,
+            scaled,
+            &p,
+            reach,
+            &mut poly,
+            &mut row,
+            |_| {},
+        ) {
             break;
-        }
-        poly.reset(&lo, &hi);
-        for m in measurements {
-            let mm = m.map(|v| v.mid());
-            let (fixed, varying) = split_radii(m, scaled);
-            let e = model.evaluate_rows(&p, &mm);
-            for_each_split_row(&e, &fixed, &varying, |value, dx, w_fixed, w_scaled| {
-                let w = w_scaled.max(1e-300);
-                // f + J δ <= w_fixed + w t  and  -(f + J δ) <= w_fixed + w t
-                row[..NX].copy_from_slice(dx);
-                row[NX] = -w;
-                poly.push_row(&row, w_fixed - value);
-                row[..NX].iter_mut().for_each(|v| *v = -*v);
-                poly.push_row(&row, w_fixed + value);
-            });
         }
         dual.resize(poly.rows(), 0.0);
         if lp.minimize(&poly, &objective, &mut dual, &mut primal) != LpStatus::Optimal {
@@ -173,14 +292,25 @@ where
         if until_consistent || misfit < best.0 {
             p = next;
         }
+        if until_consistent {
+            continue;
+        }
+        let predicted_gain = best.0 - primal[NX];
+        if predicted_gain <= 1e-9 * best.0 {
+            break;
+        }
         if misfit < best.0 {
-            let gain = best.0 - misfit;
             best = (misfit, next);
-            if !until_consistent && gain <= 1e-9 * misfit {
+            reach *= 2.0;
+        } else {
+            let longest = (0..NX)
+                .filter(|&j| x[j].rad() > 0.0)
+                .map(|j| primal[j].abs() / x[j].rad())
+                .fold(0.0f64, f64::max);
+            reach = 0.25 * longest;
+            if reach < 1e-12 {
                 break;
             }
-        } else if !until_consistent {
-            break;
         }
     }
     if until_consistent {

@@ -50,6 +50,10 @@ pub enum EmptinessProof {
         /// The parameter (0-based).
         parameter: usize,
     },
+    /// A weighted sum of the residuals (the Chebyshev fit's LP multipliers) proved positive over
+    /// the contracted box by a second-order Taylor bound ([`crate::second_order`]), where the
+    /// linear relaxation was too loose to decide.
+    SecondOrder,
     /// Every piece of a subdivision of the box was proved empty by one of the tests above
     /// ([`crate::hull`]).
     Subdivision,

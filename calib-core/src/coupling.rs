@@ -130,25 +130,28 @@ pub(crate) fn for_each_linearised_row<const NX: usize, const NM: usize, const NR
     rad: &[f64; NM],
     mut emit: impl FnMut(f64, &[f64; NX], f64),
 ) {
-    for_each_split_row(e, &[0.0; NM], rad, |value, dx, _, w| emit(value, dx, w));
+    for_each_split_row(e, &[0.0; NM], rad, |_, value, dx, _, w| emit(value, dx, w));
 }
 
 /// [`for_each_linearised_row`] with the measurement half-widths split in two parts,
 /// `rad = fixed + scaled`: `emit(value, ∂/∂x, w_fixed, w_scaled)` receives the half-range of each
 /// part, so that the half-range with the `scaled` part multiplied by `s` is `w_fixed + s w_scaled`
-/// (the facet normals of a Minkowski sum of zonotopes do not depend on the factor `s > 0`).
+/// (the facet normals of a Minkowski sum of zonotopes do not depend on the factor `s > 0`). The
+/// first argument of `emit` is the combination `λ` of the rows (a unit vector for a row itself).
 pub(crate) fn for_each_split_row<const NX: usize, const NM: usize, const NR: usize>(
     e: &[Evaluation<f64, NX, NM>; NR],
     fixed: &[f64; NM],
     scaled: &[f64; NM],
-    mut emit: impl FnMut(f64, &[f64; NX], f64, f64),
+    mut emit: impl FnMut(&[f64; NR], f64, &[f64; NX], f64, f64),
 ) {
     let half_range = |g: &dyn Fn(usize) -> f64, rad: &[f64; NM]| -> f64 {
         (0..NM).map(|i| g(i).abs() * rad[i]).sum::<f64>()
     };
-    for r in e {
+    for (row, r) in e.iter().enumerate() {
         let g = |i: usize| r.dm[i];
+        let unit: [f64; NR] = core::array::from_fn(|i| if i == row { 1.0 } else { 0.0 });
         emit(
+            &unit,
             r.value,
             &r.dx,
             half_range(&g, fixed),
@@ -164,7 +167,7 @@ pub(crate) fn for_each_split_row<const NX: usize, const NM: usize, const NR: usi
         let value: f64 = (0..NR).map(|r| l[r] * e[r].value).sum();
         let dx: [f64; NX] = core::array::from_fn(|j| (0..NR).map(|r| l[r] * e[r].dx[j]).sum());
         let g = |i: usize| (0..NR).map(|r| l[r] * e[r].dm[i]).sum::<f64>();
-        emit(value, &dx, half_range(&g, fixed), half_range(&g, scaled));
+        emit(l, value, &dx, half_range(&g, fixed), half_range(&g, scaled));
     }
 }
 

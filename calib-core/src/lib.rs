@@ -62,6 +62,7 @@ pub mod outlined;
 mod push;
 pub mod quadratic;
 mod scalar;
+pub mod second_order;
 pub mod set_least_squares;
 mod settings;
 #[cfg(test)]
@@ -87,4 +88,5 @@ pub use maximum::{maximize, Maximum, MaximumSettings, Objective};
 pub use model::{Evaluation, LinearEnclosure, Model, VectorModel};
 pub use quadratic::Quadratic;
 pub use scalar::Scalar;
+pub use second_order::{second_order_emptiness, Curvature, SecondOrderCertificate};
 pub use settings::{Relaxation, Settings};

@@ -151,6 +151,14 @@ pub trait VectorModel<const NX: usize, const NM: usize, const NR: usize> {
     ) -> Option<[LinearEnclosure<NX, NM>; NR]> {
         None
     }
+
+    /// The rows' second and third derivatives, when the model provides them
+    /// (`#[interval_model(curvature)]`); `None` by default. With them, the kernel tries a
+    /// second-order emptiness proof ([`crate::second_order`]) where the contraction leaves a box
+    /// undecided and no consistent point is found.
+    fn curvature(&self) -> Option<&dyn crate::Curvature<NX, NM, NR>> {
+        None
+    }
 }
 
 /// A linear enclosure of a residual over a box `x` and a measurement box `m`: with

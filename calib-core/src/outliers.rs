@@ -74,12 +74,23 @@ pub(crate) fn certified_outliers(p: usize, drops: &[Vec<usize>], alive: &[bool])
 pub(crate) fn conflict_set(
     p: usize,
     used: &[usize],
+    proves_empty: impl FnMut(&[usize]) -> bool,
+) -> Vec<usize> {
+    conflict_subset((0..p).collect(), used, proves_empty)
+}
+
+/// [`conflict_set`] from the proved set `start` (sorted) instead of every measurement.
+pub(crate) fn conflict_subset(
+    start: Vec<usize>,
+    used: &[usize],
     mut proves_empty: impl FnMut(&[usize]) -> bool,
 ) -> Vec<usize> {
-    let mut set: Vec<usize> = (0..p).collect();
-    let order: Vec<usize> = (0..p)
+    let mut set = start;
+    let order: Vec<usize> = set
+        .iter()
+        .copied()
         .filter(|k| !used.contains(k))
-        .chain(used.iter().copied().filter(|&k| k < p))
+        .chain(used.iter().copied().filter(|k| set.contains(k)))
         .collect();
     // Passes until no single removal keeps the proof (a prover need not be monotone).
     loop {

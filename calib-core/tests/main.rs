@@ -10,5 +10,6 @@ pub mod certified_set;
 pub mod custom_models;
 mod interval_ops;
 mod maximum;
+pub mod second_order;
 pub mod small_models;
 pub mod vector_models;

@@ -44,6 +44,7 @@ pub fn model(
     graph: &Graph,
     outputs: &[Id],
     grads: &[Gradient],
+    curvature: bool,
 ) -> TokenStream {
     let vis = &item.vis;
     let fn_name = &item.sig.ident;
@@ -62,7 +63,7 @@ pub fn model(
     let implementation = if outputs.len() == 1 {
         scalar_model(&name, nx, nm, graph, outputs[0], &grads[0])
     } else {
-        vector_model(&name, nx, nm, graph, outputs, grads)
+        vector_model(&name, nx, nm, graph, outputs, grads, curvature)
     };
     quote! {
         #[doc = #doc]
@@ -164,7 +165,8 @@ fn scalar_model(
 
 /// The evaluator functions and the `VectorModel` implementation of `NR` residuals: every row's
 /// value and Jacobians come from one straight-line body, so subexpressions shared by the rows (a
-/// rotation used by x, y and z) are evaluated once.
+/// rotation used by x, y and z) are evaluated once. With `curvature`, also the
+/// `calib_core::Curvature` implementation: the values' evaluator over second-order jets.
 fn vector_model(
     name: &Ident,
     nx: usize,
@@ -172,6 +174,7 @@ fn vector_model(
     graph: &Graph,
     outputs: &[Id],
     grads: &[Gradient],
+    curvature: bool,
 ) -> TokenStream {
     let nr = outputs.len();
     let n_inputs = nx + nm;
@@ -208,6 +211,11 @@ fn vector_model(
     let args = quote!(__x: &[#s; #nx], __m: &[#s; #nm]);
     let bound = quote!(#s: ::calib_core::Scalar);
     let iv = quote!(::calib_core::Interval);
+    let (curvature_method, curvature_impl) = if curvature {
+        curvature_tokens(name, nx, nm, nr)
+    } else {
+        (quote!(), quote!())
+    };
     quote! {
         #[allow(clippy::all, clippy::pedantic, unused_variables, non_snake_case)]
         // Never inlined: a chain of rotations differentiated in every parameter is a large body,
@@ -276,8 +284,46 @@ fn vector_model(
                     &Self::__values(&ax, &am),
                 ))
             }
+            #curvature_method
         }
+
+        #curvature_impl
     }
+}
+
+/// `VectorModel::curvature` returning the model itself, and the `Curvature` implementation: the
+/// values' evaluator instantiated over `calib_core::second_order`'s jets.
+fn curvature_tokens(name: &Ident, nx: usize, nm: usize, nr: usize) -> (TokenStream, TokenStream) {
+    let iv = quote!(::calib_core::Interval);
+    let so = quote!(::calib_core::second_order);
+    let method = quote! {
+        fn curvature(&self) -> ::core::option::Option<&dyn ::calib_core::Curvature<#nx, #nm, #nr>> {
+            ::core::option::Option::Some(self)
+        }
+    };
+    let implementation = quote! {
+        impl ::calib_core::Curvature<#nx, #nm, #nr> for #name {
+            fn second_derivatives(
+                &self,
+                x: &[f64; #nx],
+                m: &[f64; #nm],
+                symbols: &[usize],
+            ) -> ::core::option::Option<::std::vec::Vec<#iv>> {
+                #so::second_derivatives(Self::__values::<#so::Second>, x, m, symbols)
+            }
+            fn third_derivatives_along(
+                &self,
+                x: &[#iv; #nx],
+                m: &[#iv; #nm],
+                x0: &[f64; #nx],
+                m0: &[f64; #nm],
+                symbols: &[usize],
+            ) -> ::core::option::Option<::std::vec::Vec<#iv>> {
+                #so::third_derivatives_along(Self::__values::<#so::Third>, x, m, x0, m0, symbols)
+            }
+        }
+    };
+    (method, implementation)
 }
 
 /// The stub emitted next to a `compile_error!`, so that uses of the struct do not cascade errors.

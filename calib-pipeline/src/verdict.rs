@@ -50,6 +50,9 @@ pub fn proof_in_words(proof: Option<EmptinessProof>, names: &[String]) -> String
             "the certified lower and upper bounds of {} crossed",
             names.get(parameter).map_or("a parameter", String::as_str)
         ),
+        Some(EmptinessProof::SecondOrder) => "a weighted sum of the configurations' residuals \
+             is proved positive over the whole contracted box (second-order Farkas certificate)"
+            .into(),
         Some(EmptinessProof::Subdivision) => {
             "every piece of a subdivision of x0 was proved empty".into()
         }

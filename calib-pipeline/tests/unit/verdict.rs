@@ -59,6 +59,7 @@ fn every_proof_has_words() {
         Some(EmptinessProof::CheapRejection { measurement: 4 }),
         Some(EmptinessProof::LpInfeasible),
         Some(EmptinessProof::EmptyIntersection { parameter: 6 }),
+        Some(EmptinessProof::SecondOrder),
         Some(EmptinessProof::Subdivision),
         Some(EmptinessProof::EverySubset),
         None,
