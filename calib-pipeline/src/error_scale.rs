@@ -161,6 +161,7 @@ pub fn find_error_scale(search: &ScaleSearch, mut decide: impl FnMut(f64) -> Sta
         }
     }
     // Bisection.
+    let mut tried_goal = false;
     while out.trials.len() < search.max_trials {
         let (Some(lo), Some(hi)) = (out.s_lo, out.s_hi) else {
             break;
@@ -170,7 +171,19 @@ pub fn find_error_scale(search: &ScaleSearch, mut decide: impl FnMut(f64) -> Sta
         }
         // Undecided factors outside the bracket are forgotten.
         undecided = undecided.filter(|(a, b)| lo < *a && *b < hi);
+        // Gaps that no longer shrink: both sides within the tolerance of an undecided stretch.
+        // Then one last try where a proof would meet the tolerance: just below `hi / (1 + tol)`.
+        let tight = 1.0 + search.tolerance / 4.0;
+        let stalled = undecided.is_some_and(|(a, b)| a / lo <= tight && hi / b <= tight);
         let s = match undecided {
+            _ if stalled => {
+                let goal = hi / (1.0 + search.tolerance) * (1.0 + 1e-6);
+                if tried_goal || goal <= lo || undecided.is_some_and(|(a, _)| goal >= a) {
+                    break;
+                }
+                tried_goal = true;
+                goal
+            }
             None => (lo * hi).sqrt(),
             // Try the wider of the two gaps around the undecided stretch.
             Some((a, b)) => {
@@ -183,13 +196,6 @@ pub fn find_error_scale(search: &ScaleSearch, mut decide: impl FnMut(f64) -> Sta
         };
         if run(s, &mut out) == Status::Undecided {
             undecided = Some(undecided.map_or((s, s), |(a, b)| (a.min(s), b.max(s))));
-        }
-        // Gaps that no longer shrink: both sides within the tolerance of an undecided stretch.
-        if let (Some((a, b)), Some(lo), Some(hi)) = (undecided, out.s_lo, out.s_hi) {
-            let tight = 1.0 + search.tolerance / 4.0;
-            if a / lo <= tight && hi / b <= tight {
-                break;
-            }
         }
     }
     out

@@ -93,3 +93,34 @@ fn undecided_verdicts_never_become_ends() {
     let s = find_error_scale(&ScaleSearch::default(), |_| Status::Undecided);
     assert!(s.s_hi.is_none() && s.s_lo.is_none() && s.trials.len() <= 24);
 }
+
+#[test]
+fn a_stalled_search_tries_the_factor_that_meets_the_tolerance() {
+    // The real UR10's pattern (`benches/README.md`): consistent just above the estimate 7.6917,
+    // proved empty up to 0.9806 of it, undecided between. The bisection's gaps stop shrinking at
+    // a ratio of 1.0201; one more trial at s_hi / 1.02 closes the bracket.
+    let hi = 7.69175;
+    let s = find_error_scale(&ScaleSearch::from_estimate(7.6917), |s| {
+        if s >= hi {
+            Status::Consistent
+        } else if s > 0.9806 * hi {
+            Status::Undecided
+        } else {
+            Status::Empty
+        }
+    });
+    let (lo, top) = (s.s_lo.unwrap(), s.s_hi.unwrap());
+    assert!(top / lo <= 1.02, "{lo} {top}: {:?}", s.trials);
+    // Where no proof can meet the tolerance, the search still ends, with proofs at both ends.
+    let s = find_error_scale(&ScaleSearch::from_estimate(7.6917), |s| {
+        if s >= hi {
+            Status::Consistent
+        } else if s > 0.97 * hi {
+            Status::Undecided
+        } else {
+            Status::Empty
+        }
+    });
+    let (lo, top) = (s.s_lo.unwrap(), s.s_hi.unwrap());
+    assert!(lo <= 0.97 * hi && top >= hi && s.trials.len() <= 24, "{:?}", s.trials);
+}
