@@ -42,6 +42,7 @@ use crate::certificate::{find_witness, inner_points};
 use crate::certified_set::Cover;
 use crate::certify::{certify, hull_box, MAX_SUBSETS};
 use crate::contract::{contract, contract_from, is_fixed, EmptinessProof, Workspace};
+use crate::second_order::second_order_emptiness;
 use crate::first_order::wider_inner_points;
 use crate::lp::{LpBackend, LpMemory};
 use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
@@ -695,7 +696,20 @@ where
                 Vec::new()
             };
             let bases = Arc::new(ws.lp_memory());
-            Some((child, self.push_all(&child, &seeds, *set), *set, bases))
+            let points = self.push_all(&child, &seeds, *set);
+            // A half with no certified point may hold none: the second-order certificate decides
+            // where the relaxation is too loose (it returns at once where the half's Chebyshev
+            // fit already fits the data).
+            if points.is_empty()
+                && self
+                    .model
+                    .curvature()
+                    .and_then(|k| second_order_emptiness(self.model, k, &child, &self.sets[*set]))
+                    .is_some()
+            {
+                return None;
+            }
+            Some((child, points, *set, bases))
         };
         let results: Vec<Option<Refined<NX>>> = if self.settings.parallel {
             jobs.par_iter()
