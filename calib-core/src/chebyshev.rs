@@ -14,7 +14,7 @@
 
 use crate::certificate::{is_consistent_point, least_squares_point};
 use crate::coupling::for_each_split_row;
-use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
+use crate::lp::{ClarabelLp, DenseSimplex, LpBackend, LpStatus, Polyhedron};
 use crate::{Interval, VectorModel};
 
 /// A first-order estimate of the smallest consistent error scale ([`smallest_scale`]).
@@ -220,7 +220,7 @@ where
     objective[NX] = 1.0;
     let mut dual = vec![0.0; poly.rows()];
     let mut primal = vec![0.0; NX + 1];
-    if crate::lp::ClarabelLp::default().minimize(&poly, &objective, &mut dual, &mut primal)
+    if ClarabelLp::for_hints().minimize(&poly, &objective, &mut dual, &mut primal)
         != LpStatus::Optimal
     {
         return None;

@@ -197,6 +197,36 @@ fn on_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> Option<T> {
     })
 }
 
+/// `f` of every item, in order, computed by as many threads with [`STACK_BYTES`] stacks as the
+/// machine runs in parallel, each taking a contiguous share (so the result does not depend on
+/// the threads). `None` if a thread cannot start or panics.
+fn on_large_stacks<I: Sync, T: Send>(items: &[I], f: impl Fn(&I) -> T + Sync) -> Option<Vec<T>> {
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .clamp(1, items.len().max(1));
+    let share = items.len().div_ceil(threads).max(1);
+    std::thread::scope(|s| {
+        let handles: Vec<_> = items
+            .chunks(share)
+            .map(|chunk| {
+                let f = &f;
+                std::thread::Builder::new()
+                    .stack_size(STACK_BYTES)
+                    .spawn_scoped(s, move || {
+                        LARGE_STACK.with(|l| l.set(true));
+                        chunk.iter().map(f).collect::<Vec<T>>()
+                    })
+                    .ok()
+            })
+            .collect();
+        let mut out = Vec::with_capacity(items.len());
+        for h in handles {
+            out.extend(h?.join().ok()?);
+        }
+        Some(out)
+    })
+}
+
 /// A proof that a box holds no parameter vector consistent with the measurements (see the module
 /// documentation).
 #[derive(Clone, Debug, PartialEq)]
@@ -282,18 +312,13 @@ where
             .collect()
     };
     // Every configuration's derivatives on one thread with a large stack.
-    let derivatives: Vec<Option<(Vec<Interval>, Vec<Interval>)>> = on_large_stack(|| {
-        support
-            .iter()
-            .map(|&k| {
-                let m = &measurements[k];
-                let m0 = m.map(|v| v.mid());
-                let symbols = symbols_of(m);
-                let h = curvature.second_derivatives(&xs, &m0, &symbols)?;
-                let t = curvature.third_derivatives_along(x, m, &xs, &m0, &symbols)?;
-                Some((h, t))
-            })
-            .collect()
+    let derivatives = on_large_stacks(&support, |&k| {
+        let m = &measurements[k];
+        let m0 = m.map(|v| v.mid());
+        let symbols = symbols_of(m);
+        let h = curvature.second_derivatives(&xs, &m0, &symbols)?;
+        let t = curvature.third_derivatives_along(x, m, &xs, &m0, &symbols)?;
+        Some((h, t))
     })?;
     let nx = live_x.len();
     let xp: [Interval; NX] = xs.map(Interval::point);
