@@ -10,6 +10,7 @@ mod params;
 mod pose_orientation;
 mod register;
 mod robot;
+mod second_order;
 mod simulate;
 mod tracker_file;
 mod units;

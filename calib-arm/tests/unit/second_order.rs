@@ -1,0 +1,109 @@
+//! The arm's second and third derivatives (`#[interval_model(curvature)]` on the padded model) and
+//! the second-order certificate on simulated arms with the real data's priors: derivatives agree
+//! with finite differences of the generated Jacobians, and no combination of the residuals, however
+//! weighted, is proved positive over a box that holds the truth.
+
+use calib_arm::certification::{padded_box, NM, NX};
+use calib_arm::simulate::{measurement_box, simulate, Uncertainty};
+use calib_arm::Arm7Point;
+use calib_core::chebyshev::chebyshev_weights;
+use calib_core::second_order::combination_lower_bound;
+use calib_core::{smallest_scale, Curvature, Interval, VectorModel};
+
+/// Every parameter of the built-in arm that is free, then its six joint readings.
+fn symbols(x0: &[Interval; NX]) -> Vec<usize> {
+    (0..NX)
+        .filter(|&j| x0[j].rad() > 0.0)
+        .chain((0..6).map(|i| NX + i))
+        .collect()
+}
+
+#[test]
+fn the_arms_second_derivatives_match_finite_differences() {
+    let arm = calib_arm::builtin_arm();
+    let x0 = padded_box(&arm);
+    let sim = simulate(&arm, 3, 21, Uncertainty::TRACKER, 1.0, &[]);
+    let m: Vec<[f64; NM]> = sim
+        .readings
+        .iter()
+        .filter_map(|r| measurement_box::<NM>(r, &sim.uncertainty))
+        .map(|b| b.map(|v| v.mid()))
+        .collect();
+    let x: [f64; NX] = x0.map(|v| v.mid());
+    let symbols = symbols(&x0);
+    let n = symbols.len();
+    let h = Arm7Point.second_derivatives(&x, &m[0], &symbols).unwrap();
+    let gradient = |x: &[f64; NX], m: &[f64; NM]| -> Vec<Vec<f64>> {
+        Arm7Point
+            .evaluate_rows(x, m)
+            .iter()
+            .map(|e| {
+                symbols
+                    .iter()
+                    .map(|&s| if s < NX { e.dx[s] } else { e.dm[s - NX] })
+                    .collect()
+            })
+            .collect()
+    };
+    for (b, &s) in symbols.iter().enumerate() {
+        let step = 1e-6;
+        let (mut xp, mut xm, mut mp, mut mm) = (x, x, m[0], m[0]);
+        if s < NX {
+            xp[s] += step;
+            xm[s] -= step;
+        } else {
+            mp[s - NX] += step;
+            mm[s - NX] -= step;
+        }
+        let (gp, gm) = (gradient(&xp, &mp), gradient(&xm, &mm));
+        for r in 0..3 {
+            for a in 0..n {
+                let fd = (gp[r][a] - gm[r][a]) / (2.0 * step);
+                let e = h[r * n * n + a * n + b];
+                assert!(
+                    (e.mid() - fd).abs() <= 1e-4 * fd.abs().max(1.0),
+                    "row {r}, symbols {} and {s}: {} against {fd}",
+                    symbols[a],
+                    e.mid()
+                );
+            }
+        }
+    }
+}
+
+/// Simulated arms whose readings hold the truth: the combination with the Chebyshev weights of
+/// bounds 10% too tight (the weights a proof near the threshold would use), and with their
+/// negation, evaluated over the true bounds, is never proved positive.
+#[test]
+fn no_combination_excludes_the_truth_of_a_simulated_arm() {
+    let arm = calib_arm::builtin_arm();
+    let x0 = padded_box(&arm);
+    for seed in [3, 8] {
+        let sim = simulate(&arm, 20, seed, Uncertainty::TRACKER, 1.0, &[]);
+        let boxes_at = |f: f64| -> Vec<[Interval; NM]> {
+            let u = Uncertainty {
+                pos: f * sim.uncertainty.pos,
+                joint_deg: f * sim.uncertainty.joint_deg,
+            };
+            sim.readings
+                .iter()
+                .filter_map(|r| measurement_box(r, &u))
+                .collect()
+        };
+        let (truth_boxes, tight) = (boxes_at(1.0), boxes_at(0.9));
+        let fit = smallest_scale(&Arm7Point, &x0, &tight, &[true; NM]);
+        let weights = chebyshev_weights(&Arm7Point, &x0, &tight, &[true; NM], &fit.point).unwrap();
+        for w in [
+            weights.clone(),
+            weights.iter().map(|c| c.map(|v| -v)).collect(),
+        ] {
+            let bound =
+                combination_lower_bound(&Arm7Point, &Arm7Point, &x0, &truth_boxes, &fit.point, &w)
+                    .unwrap();
+            assert!(
+                bound <= 0.0,
+                "seed {seed}: {bound} > 0 with the truth inside"
+            );
+        }
+    }
+}
