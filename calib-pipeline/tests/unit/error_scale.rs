@@ -122,5 +122,9 @@ fn a_stalled_search_tries_the_factor_that_meets_the_tolerance() {
         }
     });
     let (lo, top) = (s.s_lo.unwrap(), s.s_hi.unwrap());
-    assert!(lo <= 0.97 * hi && top >= hi && s.trials.len() <= 24, "{:?}", s.trials);
+    assert!(
+        lo <= 0.97 * hi && top >= hi && s.trials.len() <= 24,
+        "{:?}",
+        s.trials
+    );
 }
