@@ -67,6 +67,14 @@ const STACK_BYTES: usize = 512 << 20;
 /// `j < NX` is parameter `j`, `NX + i` measured quantity `i`. Both methods return `NR` blocks of
 /// `S × S` enclosures (`S = symbols.len()`, row-major), `None` when `S > MAX_SYMBOLS`.
 pub trait Curvature<const NX: usize, const NM: usize, const NR: usize>: Sync {
+    /// Whether a first derivative of some row depends on `symbol` (index as in `symbols`).
+    /// `false` promises that every second and third derivative involving it is 0: the bounds
+    /// leave it out of the symbols (its first-order term is exact). `true` by default;
+    /// `#[interval_model(curvature)]` reads it off the expression graph.
+    fn curved(&self, _symbol: usize) -> bool {
+        true
+    }
+
     /// Enclosures of `∂²f_r/∂z_a∂z_b` at the point `(x, m)`.
     fn second_derivatives(
         &self,
@@ -304,14 +312,25 @@ where
         .filter(|&k| weights[k].iter().any(|&v| v != 0.0))
         .collect();
     let live_x: Vec<usize> = (0..NX).filter(|&j| x[j].rad() > 0.0).collect();
+    // The symbols of the second-order terms: the live quantities some first derivative depends
+    // on (for the others every second and third derivative is 0).
+    let curved_x: Vec<usize> = live_x
+        .iter()
+        .copied()
+        .filter(|&j| curvature.curved(j))
+        .collect();
     let symbols_of = |m: &[Interval; NM]| -> Vec<usize> {
-        live_x
+        curved_x
             .iter()
             .copied()
-            .chain((0..NM).filter(|&i| m[i].rad() > 0.0).map(|i| NX + i))
+            .chain(
+                (0..NM)
+                    .filter(|&i| m[i].rad() > 0.0 && curvature.curved(NX + i))
+                    .map(|i| NX + i),
+            )
             .collect()
     };
-    // Every configuration's derivatives on one thread with a large stack.
+    // Every configuration's derivatives, on threads with large stacks.
     let derivatives = on_large_stacks(&support, |&k| {
         let m = &measurements[k];
         let m0 = m.map(|v| v.mid());
@@ -320,7 +339,7 @@ where
         let t = curvature.third_derivatives_along(x, m, &xs, &m0, &symbols)?;
         Some((h, t))
     })?;
-    let nx = live_x.len();
+    let nx = curved_x.len();
     let xp: [Interval; NX] = xs.map(Interval::point);
     // δ over the box, per parameter.
     let dx: [Interval; NX] = core::array::from_fn(|j| x[j] - xp[j]);
@@ -383,7 +402,7 @@ where
     for &j in &live_x {
         bound += Interval::point((gx[j] * dx[j]).inf());
     }
-    let deltas: Vec<Interval> = live_x.iter().map(|&j| dx[j]).collect();
+    let deltas: Vec<Interval> = curved_x.iter().map(|&j| dx[j]).collect();
     bound += Interval::point(half_quadratic_lower_bound(&hxx, &deltas));
     Some(bound.inf())
 }

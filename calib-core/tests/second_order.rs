@@ -125,6 +125,17 @@ fn second_derivatives_match_finite_differences() {
 }
 
 #[test]
+fn inputs_that_enter_linearly_are_not_curved() {
+    // The base position and the tracked point enter every row linearly; lengths, offsets, the
+    // base rotation and the joint readings do not.
+    let curved: Vec<bool> = (0..11).map(|s| OffsetArm.curved(s)).collect();
+    assert_eq!(
+        curved,
+        [true, true, true, true, false, false, true, true, true, false, false]
+    );
+}
+
+#[test]
 fn third_derivative_enclosures_contain_sampled_directional_derivatives() {
     let mut rng = StdRng::seed_from_u64(12);
     let symbols: Vec<usize> = (0..11).collect();

@@ -99,3 +99,35 @@ fn local_adjoints(g: &mut Graph, n: Id, adj: Id) -> Vec<(Id, Id)> {
         }
     }
 }
+
+/// Per input (the parameters, then the measurements), whether some derivative in `grads` depends
+/// on it. An input on which no first derivative depends enters every output linearly: every
+/// second and third derivative involving it is 0 (the kernel leaves it out of its second-order
+/// bounds). Structural: a derivative that happens to cancel still counts as depending.
+pub fn curved_inputs(g: &Graph, grads: &[Gradient], nx: usize, nm: usize) -> Vec<bool> {
+    let n = nx + nm;
+    let words = n.div_ceil(64).max(1);
+    let mut depends = vec![0u64; g.len() * words];
+    for id in 0..g.len() {
+        match g.node(id) {
+            Node::Input(arg, i) => {
+                let k = if arg == Arg::X { i } else { nx + i };
+                depends[id * words + k / 64] |= 1 << (k % 64);
+            }
+            node => {
+                for operand in node.operands() {
+                    for w in 0..words {
+                        depends[id * words + w] |= depends[operand * words + w];
+                    }
+                }
+            }
+        }
+    }
+    let mut curved = vec![false; n];
+    for d in grads.iter().flat_map(|gr| gr.x.iter().chain(&gr.m)) {
+        for (k, c) in curved.iter_mut().enumerate() {
+            *c |= depends[d * words + k / 64] & (1 << (k % 64)) != 0;
+        }
+    }
+    curved
+}

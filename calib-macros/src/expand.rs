@@ -212,7 +212,8 @@ fn vector_model(
     let bound = quote!(#s: ::calib_core::Scalar);
     let iv = quote!(::calib_core::Interval);
     let (curvature_method, curvature_impl) = if curvature {
-        curvature_tokens(name, nx, nm, nr)
+        let curved = crate::diff::curved_inputs(graph, grads, nx, nm);
+        curvature_tokens(name, nx, nm, nr, &curved)
     } else {
         (quote!(), quote!())
     };
@@ -292,10 +293,18 @@ fn vector_model(
 }
 
 /// `VectorModel::curvature` returning the model itself, and the `Curvature` implementation: the
-/// values' evaluator instantiated over `calib_core::second_order`'s jets.
-fn curvature_tokens(name: &Ident, nx: usize, nm: usize, nr: usize) -> (TokenStream, TokenStream) {
+/// values' evaluator instantiated over `calib_core::second_order`'s jets, and which inputs the
+/// first derivatives depend on (`curved`, parameters then measurements).
+fn curvature_tokens(
+    name: &Ident,
+    nx: usize,
+    nm: usize,
+    nr: usize,
+    curved: &[bool],
+) -> (TokenStream, TokenStream) {
     let iv = quote!(::calib_core::Interval);
     let so = quote!(::calib_core::second_order);
+    let n = nx + nm;
     let method = quote! {
         fn curvature(&self) -> ::core::option::Option<&dyn ::calib_core::Curvature<#nx, #nm, #nr>> {
             ::core::option::Option::Some(self)
@@ -303,6 +312,10 @@ fn curvature_tokens(name: &Ident, nx: usize, nm: usize, nr: usize) -> (TokenStre
     };
     let implementation = quote! {
         impl ::calib_core::Curvature<#nx, #nm, #nr> for #name {
+            fn curved(&self, symbol: usize) -> bool {
+                const CURVED: [bool; #n] = [#(#curved),*];
+                CURVED.get(symbol).copied().unwrap_or(true)
+            }
             fn second_derivatives(
                 &self,
                 x: &[f64; #nx],

@@ -36,7 +36,7 @@ macro_rules! serial_arm_pose_model {
         euler_xyz = [$ea:literal, $eb:literal, $ec:literal]
     ) => {
         $(#[$doc])*
-        #[calib_core::interval_model]
+        #[calib_core::interval_model(curvature)]
         pub fn $name<S: calib_core::Scalar>(x: &[S; $nx], m: &[S; $nm]) -> [S; 6] {
             // The tool frame's rotation Rz Ry Rx as a quaternion (w, i, j, k).
             let (cx, sx) = ((x[$trx] * 0.5).cos(), (x[$trx] * 0.5).sin());

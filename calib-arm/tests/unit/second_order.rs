@@ -107,3 +107,43 @@ fn no_combination_excludes_the_truth_of_a_simulated_arm() {
         }
     }
 }
+
+/// Both arm models leave the base translation and the tracked point out of the second-order
+/// symbols (they enter linearly), and keep every angle and length: the UR10 with its tool frame
+/// (31 free parameters, 12 measured quantities) fits within `MAX_SYMBOLS`.
+#[test]
+fn the_linear_inputs_of_both_arm_models_are_left_out() {
+    use calib_arm::pose::certification::{NM6, NX6};
+    use calib_arm::pose::Arm7Pose;
+    use calib_core::second_order::MAX_SYMBOLS;
+    // Padded indices: base_x, base_y, base_z are 35–37; the tracked point px, py, pz is 7–9.
+    for j in 0..NX {
+        let linear = (35..38).contains(&j);
+        assert_eq!(Arm7Point.curved(j), !linear, "parameter {j}");
+        assert_eq!(Arm7Pose.curved(j), !linear, "parameter {j} (pose)");
+    }
+    for i in 0..NM6 {
+        let linear = (7..10).contains(&i);
+        if i < NM {
+            assert_eq!(Arm7Point.curved(NX + i), !linear, "reading {i}");
+        }
+        assert_eq!(Arm7Pose.curved(NX6 + i), !linear, "reading {i} (pose)");
+    }
+    // The tool frame's rotation is curved. The built-in arm's free parameters with a free tool
+    // rotation, its six joint readings and three measured angles: within the jets' width.
+    assert!((NX..NX6).all(|j| Arm7Pose.curved(j)));
+    let x0 = padded_box(&calib_arm::builtin_arm());
+    let parameters = (0..NX)
+        .filter(|&j| x0[j].rad() > 0.0 && Arm7Pose.curved(j))
+        .count()
+        + 3;
+    let readings = (0..6)
+        .chain(NM..NM6)
+        .filter(|&i| Arm7Pose.curved(NX6 + i))
+        .count();
+    assert_eq!(readings, 9);
+    assert!(
+        parameters + readings <= MAX_SYMBOLS,
+        "{parameters} + {readings}"
+    );
+}
