@@ -102,7 +102,7 @@ pub fn certify_with<
     if settings.max_outliers > 0 {
         return certify_relaxed(model, x0, measurements, settings, ws);
     }
-    let (mut out, support) = certify_plain_with_support(model, x0, measurements, settings, ws);
+    let (mut out, support) = certify_plain(model, x0, measurements, settings, ws);
     if out.status == Status::Empty && settings.conflict_sets {
         if let Some(support) = support {
             // The second-order proof's subsets are tested by the contraction and, where it
@@ -130,10 +130,9 @@ pub fn certify_with<
             Some(EmptinessProof::CheapRejection { measurement }) => vec![measurement],
             _ => Vec::new(),
         };
-        // The prover of the verdict, the contraction, alone: `certify_plain` is `Empty` exactly
-        // when it fails, and the witness and inner-bound searches it runs on the subsets that
-        // are not proved empty (most of the tests once the set is near minimal) decide nothing
-        // here. On the real UR10 (60 configurations, encoders ±0.01°) the gain is within the
+        // The prover of the verdict, the contraction, alone: the witness and inner-bound
+        // searches `certify_plain` runs on the subsets that are not proved empty (most of the
+        // tests once the set is near minimal) decide nothing here. On the real UR10 (60 configurations, encoders ±0.01°) the gain is within the
         // machine's variance (137 s, against 137–151 s before; the same set): the time is ~120
         // contractions of ~59 configurations.
         out.conflict = Some(conflict_set(measurements.len(), &used, |kept| {
@@ -189,7 +188,7 @@ fn certify_relaxed<
     let mut alive = Vec::with_capacity(drops.len());
     for d in &drops {
         let subset = keep_all_but(measurements, d);
-        let c = certify_plain(model, x0, &subset, settings, ws);
+        let (c, _) = certify_plain(model, x0, &subset, settings, ws);
         out.iterations += c.iterations;
         out.lp_solves += c.lp_solves;
         out.lp_failures += c.lp_failures;
@@ -239,24 +238,9 @@ pub(crate) fn hull_box<const NX: usize>(
     }
 }
 
-/// [`certify_with`] without outliers and without the conflict search.
+/// [`certify_with`] without outliers and without the conflict search; for a second-order proof
+/// of emptiness, also the measurements it weighed.
 fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, const NR: usize>(
-    model: &M,
-    x0: &[Interval; NX],
-    measurements: &[[Interval; NM]],
-    settings: &Settings,
-    ws: &mut Workspace<NX>,
-) -> Certification<NX> {
-    certify_plain_with_support(model, x0, measurements, settings, ws).0
-}
-
-/// [`certify_plain`], and for a second-order proof of emptiness the measurements it weighed.
-fn certify_plain_with_support<
-    M: VectorModel<NX, NM, NR>,
-    const NX: usize,
-    const NM: usize,
-    const NR: usize,
->(
     model: &M,
     x0: &[Interval; NX],
     measurements: &[[Interval; NM]],
