@@ -8,8 +8,9 @@
 
 use calib_core::second_order::combination_lower_bound;
 use calib_core::{
-    certify, contract, interval_model, second_order_emptiness, smallest_scale, Curvature,
-    EmptinessProof, Interval, Scalar, Settings, Status, VectorModel, Workspace,
+    certify, contract, hull, interval_model, is_consistent_point, second_order_emptiness,
+    smallest_scale, Curvature, EmptinessProof, Interval, Scalar, Settings, Status, VectorModel,
+    Workspace,
 };
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -249,4 +250,43 @@ fn data_just_below_their_smallest_consistent_bound_are_proved_empty() {
         second_order_needed > 0,
         "the contraction decided every case: the test does not reach the second-order proof"
     );
+}
+
+/// The hull of a model with curvature splits its boxes across the faces they hold and discards the
+/// halves the certificate proves empty: on data whose readings hold the truth, at bounds just
+/// above their smallest consistent factor, the outer box still contains the truth and the inner
+/// box, and every certified point it reports is consistent.
+#[test]
+fn hulls_with_certificates_keep_the_truth() {
+    let mut rng = StdRng::seed_from_u64(15);
+    for trial in 0..4 {
+        let x = prior(&mut rng);
+        let data = measurements(&mut rng, &TRUTH, 16, 2e-4, 0.3);
+        let fit = smallest_scale(&OffsetArm, &x, &data, &[true; 4]);
+        // Near the threshold, but the readings' own bounds (which hold the truth) at least.
+        let s = (1.02 * fit.scale).max(1.0);
+        let scaled: Vec<[Interval; 4]> = data
+            .iter()
+            .map(|m| m.map(|v| Interval::mid_rad(v.mid(), v.rad() * s)))
+            .collect();
+        let settings = Settings::default().with_hull_budget(60, None);
+        let h = hull(&OffsetArm, &x, &scaled, &settings);
+        assert_ne!(h.status, Status::Empty, "trial {trial}");
+        for j in 0..7 {
+            // s >= 1: the widened readings still hold the truth.
+            assert!(
+                h.outer[j].contains(TRUTH[j]),
+                "trial {trial}: truth out of {j}"
+            );
+            if let Some(inner) = h.inner {
+                assert!(
+                    inner[j].is_subset_of(h.outer[j]),
+                    "trial {trial}: inner {j}"
+                );
+            }
+        }
+        if let Some(w) = h.witness {
+            assert!(is_consistent_point(&OffsetArm, &w, &scaled));
+        }
+    }
 }
