@@ -132,9 +132,10 @@ pub fn certify_with<
         };
         // The prover of the verdict, the contraction, alone: the witness and inner-bound
         // searches `certify_plain` runs on the subsets that are not proved empty (most of the
-        // tests once the set is near minimal) decide nothing here. On the real UR10 (60 configurations, encoders ±0.01°) the gain is within the
-        // machine's variance (137 s, against 137–151 s before; the same set): the time is ~120
-        // contractions of ~59 configurations.
+        // tests once the set is near minimal) decide nothing here. On the real UR10 (60
+        // configurations, encoders ±0.01°) the gain is within the machine's variance (137 s,
+        // against 137–151 s before; the same set): the time is ~120 contractions of ~59
+        // configurations.
         out.conflict = Some(conflict_set(measurements.len(), &used, |kept| {
             let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
             contract(model, x0, &subset, settings, ws).result.is_err()

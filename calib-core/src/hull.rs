@@ -15,11 +15,11 @@
 //! a half the contraction keeps but where no point is certified is tried with the certificate
 //! ([`crate::second_order`]): where the relaxation is too loose near the threshold, the outer half
 //! is often provably empty. Halves proved empty are discarded — every discarded piece carries a
-//! proof; the survivors replace the box. This is a best-first branch and bound on `min x_j` and `max x_j` over the solution set,
-//! shared by the `2n` faces, so that a box proved empty for one face is gone for all. Boxes that
-//! lie within the satisfied zone of every face are retired into one box `D` that stays in the
-//! hull. The same loop handles large prior boxes: while the Newton step does not bite, the face
-//! boxes are simply split until it does.
+//! proof; the survivors replace the box. This is a best-first branch and bound on `min x_j` and
+//! `max x_j` over the solution set, shared by the `2n` faces, so that a box proved empty for one
+//! face is gone for all. Boxes that lie within the satisfied zone of every face are retired into
+//! one box `D` that stays in the hull. The same loop handles large prior boxes: while the Newton
+//! step does not bite, the face boxes are simply split until it does.
 //!
 //! **Inner bound.** Certified consistent points ([`crate::is_consistent_point`]) are pushed towards
 //! each face by successive linear programs: at a point `p`, with `f_k = f(p, mid M_k)`,
