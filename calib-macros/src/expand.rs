@@ -322,7 +322,7 @@ fn curvature_tokens(
                 m: &[f64; #nm],
                 symbols: &[usize],
             ) -> ::core::option::Option<::std::vec::Vec<#iv>> {
-                #so::second_derivatives(Self::__values::<#so::Second>, x, m, symbols)
+                #so::second_derivatives(Self::__values::<#so::Third>, x, m, symbols)
             }
             fn third_derivatives_along(
                 &self,
