@@ -190,7 +190,7 @@ fn third_derivative_enclosures_contain_sampled_directional_derivatives() {
 #[test]
 fn no_weights_prove_a_box_with_the_truth_empty() {
     let mut rng = StdRng::seed_from_u64(13);
-    for trial in 0..30 {
+    for trial in 0..12 {
         let x = prior(&mut rng);
         let data = measurements(&mut rng, &TRUTH, 12, 2e-4, 0.05);
         for _ in 0..5 {
@@ -219,7 +219,7 @@ fn no_weights_prove_a_box_with_the_truth_empty() {
 fn data_just_below_their_smallest_consistent_bound_are_proved_empty() {
     let mut rng = StdRng::seed_from_u64(14);
     let mut second_order_needed = 0;
-    for trial in 0..6 {
+    for trial in 0..4 {
         let x = prior(&mut rng);
         let data = measurements(&mut rng, &TRUTH, 16, 2e-4, 0.3);
         // Bounds scaled to 98% of the first-order smallest consistent factor.
@@ -259,7 +259,7 @@ fn data_just_below_their_smallest_consistent_bound_are_proved_empty() {
 #[test]
 fn hulls_with_certificates_keep_the_truth() {
     let mut rng = StdRng::seed_from_u64(15);
-    for trial in 0..4 {
+    for trial in 0..2 {
         let x = prior(&mut rng);
         let data = measurements(&mut rng, &TRUTH, 16, 2e-4, 0.3);
         let fit = smallest_scale(&OffsetArm, &x, &data, &[true; 4]);
