@@ -27,8 +27,8 @@
 //! the bounds: the weights of the configurations cancel most of their curvature in `H(z0)` (on the
 //! real UR10, 22× less than the sum of the rows' own curvatures), which a per-row relaxation
 //! cannot. The model provides, through [`Curvature`], enclosures of every row's `H` at `z0` and of
-//! `Σ_c T_abc(ξ) δ_c` over the box (forward-mode [`Jet`]s of jets over intervals); this module
-//! bounds, rigorously:
+//! `Σ_c T_abc(ξ) δ_c` over the box (forward-mode second-order [`Jet2`]s of [`Jet`]s over
+//! intervals); this module bounds, rigorously:
 //!
 //! * `φ(z0)` and `∇φ(z0)·δ` by interval arithmetic at the point and over the box;
 //! * `½ δᵀ H(z0) δ` over the parameters by a diagonal-shift (Shor) bound: with `δ = c + R ε`,
@@ -45,19 +45,24 @@
 //! stops at `0.76 s*`.
 
 use crate::chebyshev::chebyshev_weights;
-use crate::{smallest_scale, Interval, Jet, Scalar, VectorModel};
+use crate::{smallest_scale, Interval, Jet, Jet2, VectorModel};
 
 /// The most symbols (parameters and measured quantities of nonzero width, per configuration) the
-/// second-order evaluators take: the width of their [`Jet`]s.
+/// second-order evaluators take: the width of their [`Jet2`]s.
 pub const MAX_SYMBOLS: usize = 40;
 
-/// The scalar of [`second_derivatives`] and [`third_derivatives_along`]: second-order forward
-/// derivatives of a directional derivative over intervals. One type for both, so that a model's
-/// evaluator is compiled once for them (measured: a second type, `Jet<Jet<Interval, 40>, 40>`
-/// for the second derivatives alone, added ~18 s to a fresh `cargo test --workspace`).
-pub type Third = Jet<Jet<Jet<Interval, 1>, MAX_SYMBOLS>, MAX_SYMBOLS>;
+/// The distinct second derivatives of [`MAX_SYMBOLS`] symbols.
+const PAIRS: usize = MAX_SYMBOLS * (MAX_SYMBOLS + 1) / 2;
 
-/// Stack of the threads that evaluate a model over [`Third`] (a value is 54 KB, and a residual's
+/// The scalar of [`second_derivatives`] and [`third_derivatives_along`]: second-order forward
+/// derivatives (symmetric, [`Jet2`]) of a directional derivative over intervals. One type for
+/// both, so that a model's evaluator is compiled once for them (measured: a second type for the
+/// second derivatives alone added ~18 s to a fresh `cargo test --workspace`). A jet of jets
+/// (`Jet<Jet<Jet<Interval, 1>, 40>, 40>`) gave the same enclosures from twice the entries: the
+/// certificate over the real UR10's prior took 1.19 s with it.
+pub type Third = Jet2<Jet<Interval, 1>, MAX_SYMBOLS, PAIRS>;
+
+/// Stack of the threads that evaluate a model over [`Third`] (a value is 27 KB, and a residual's
 /// evaluator keeps hundreds of them alive; only the pages used are committed).
 const STACK_BYTES: usize = 512 << 20;
 
@@ -109,8 +114,8 @@ pub fn second_derivatives<const NX: usize, const NM: usize, const NR: usize>(
     let input = |v: f64, k: usize| -> Third {
         let v = Jet::constant(Interval::point(v));
         match symbols.iter().position(|&s| s == k) {
-            Some(a) => seeded(Jet::variable(v, a), a),
-            None => Jet::constant(Jet::constant(v)),
+            Some(a) => Jet2::variable(v, a),
+            None => Jet2::constant(v),
         }
     };
     on_large_stack(|| {
@@ -121,7 +126,7 @@ pub fn second_derivatives<const NX: usize, const NM: usize, const NR: usize>(
         let mut out = Vec::with_capacity(NR * n * n);
         for row in &f {
             for a in 0..n {
-                out.extend((0..n).map(|b| row.grad[a].grad[b].value));
+                out.extend((0..n).map(|b| row.second(a, b).value));
             }
         }
         out
@@ -150,9 +155,9 @@ pub fn third_derivatives_along<const NX: usize, const NM: usize, const NR: usize
                     value: v,
                     grad: [v - Interval::point(centre)],
                 };
-                seeded(Jet::variable(along, a), a)
+                Jet2::variable(along, a)
             }
-            None => Jet::constant(Jet::constant(Jet::constant(v))),
+            None => Jet2::constant(Jet::constant(v)),
         }
     };
     on_large_stack(|| {
@@ -163,22 +168,11 @@ pub fn third_derivatives_along<const NX: usize, const NM: usize, const NR: usize
         let mut out = Vec::with_capacity(NR * n * n);
         for row in &f {
             for a in 0..n {
-                out.extend((0..n).map(|b| row.grad[a].grad[b].grad[0]));
+                out.extend((0..n).map(|b| row.second(a, b).grad[0]));
             }
         }
         out
     })
-}
-
-/// The symbol `a` of a second-order jet: `inner` (value and first derivatives) with
-/// `∂/∂z_a` of it the constant 1.
-fn seeded<S: Scalar>(
-    inner: Jet<S, MAX_SYMBOLS>,
-    a: usize,
-) -> Jet<Jet<S, MAX_SYMBOLS>, MAX_SYMBOLS> {
-    let mut grad = [Jet::constant(S::cst(0.0)); MAX_SYMBOLS];
-    grad[a] = Jet::constant(S::cst(1.0));
-    Jet { value: inner, grad }
 }
 
 std::thread_local! {
