@@ -4,7 +4,8 @@
 //! issue's priors and error bounds; 50 configurations take ~7 s, see `arm demo` and
 //! `benches/README.md`). And the error-scale search's first step: the Chebyshev fit of the
 //! built-in arm to 50 configurations (`calib_core::smallest_scale`, every bound scaled) and the
-//! certificate of its point (`calib_core::is_consistent_point`) just above the fit's factor.
+//! certificate of its point (`calib_core::is_consistent_point`) just above the fit's factor, and
+//! the second-order emptiness certificate over the prior just below it.
 //! And the kernel's unit of work at real-arm size (issue 36's target: ≤ 30 ms): one Newton/LP
 //! step (`calib_core::contract` with one iteration, cold LP bases) of the built-in arm's prior
 //! against 50 configurations (27 free parameters, 150 residual rows), and the whole contraction
@@ -20,8 +21,10 @@ use calib_arm::error_scale::ScaleBounds;
 use calib_arm::simulate::{measurement_box, simulate, Uncertainty};
 use calib_arm::{builtin_arm, Arm, Arm7Point, Joint};
 use calib_core::bisection::split_widest;
+use calib_core::second_order::second_order_emptiness;
 use calib_core::{
-    contract, contract_from, is_consistent_point, smallest_scale, Interval, Settings, Workspace,
+    contract, contract_from, is_consistent_point, smallest_scale, Interval, Settings, VectorModel,
+    Workspace,
 };
 use calib_pipeline::Depth;
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -99,6 +102,18 @@ fn bench(c: &mut Criterion) {
     let widened = boxes(&ScaleBounds::All.scale(&sim.uncertainty, 1.005 * e.scale));
     g.bench_function("built-in witness check at 1.005 x the fit", |b| {
         b.iter(|| black_box(is_consistent_point(&Arm7Point, &e.point, &widened)))
+    });
+    // The second-order certificate (`calib_core::second_order`) over the prior just below the
+    // fit's factor: the fit, the weights' LP and every configuration's derivatives, run whole
+    // whether the bound comes out positive or not (which is printed once).
+    let below = boxes(&ScaleBounds::All.scale(&sim.uncertainty, 0.98 * e.scale));
+    let curvature = Arm7Point
+        .curvature()
+        .expect("the arm's model has curvature");
+    let proved = second_order_emptiness(&Arm7Point, curvature, &x0, &below).is_some();
+    eprintln!("the certificate over the prior at 0.98 x the fit proves it empty: {proved}");
+    g.bench_function("built-in second-order certificate at 0.98 x the fit", |b| {
+        b.iter(|| black_box(second_order_emptiness(&Arm7Point, curvature, &x0, &below)))
     });
     let one_step = Settings {
         max_iterations: 1,
