@@ -331,7 +331,7 @@ where
         let symbols = symbols_of(m);
         let h = curvature.second_derivatives(&xs, &m0, &symbols)?;
         let t = curvature.third_derivatives_along(x, m, &xs, &m0, &symbols)?;
-        Some((h, t))
+        Some((symbols, h, t))
     })?;
     let nx = curved_x.len();
     let xp: [Interval; NX] = xs.map(Interval::point);
@@ -341,7 +341,7 @@ where
     let mut gx = [Interval::ZERO; NX];
     let mut hxx = vec![Interval::ZERO; nx * nx];
     for (&k, d) in support.iter().zip(derivatives) {
-        let (h, t) = d?;
+        let (symbols, h, t) = d?;
         let (m, c) = (&measurements[k], &weights[k]);
         let m0 = m.map(|v| v.mid());
         let dm: [Interval; NM] = core::array::from_fn(|i| m[i] - Interval::point(m0[i]));
@@ -358,7 +358,6 @@ where
             let g = (0..NR).fold(Interval::ZERO, |acc, r| acc + cw[r] * ev[r].dm[i]);
             bound += Interval::point((g * dm[i]).inf());
         }
-        let symbols = symbols_of(m);
         let n = symbols.len();
         if h.len() != NR * n * n || t.len() != NR * n * n {
             return None;
