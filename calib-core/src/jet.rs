@@ -143,12 +143,12 @@ impl<S: Scalar, const G: usize> Scalar for Jet<S, G> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::{Affine, Dual, Interval};
 
     /// Every operation of the trait, through a rotation chain (the case affine forms are for).
-    fn f<S: Scalar>(x: [S; 3]) -> S {
+    pub(crate) fn f<S: Scalar>(x: [S; 3]) -> S {
         let [a, b, r] = x;
         let (u, v) = (r * a.cos(), r * a.sin());
         let (w, z) = (u * b.cos() - v * b.sin(), u * b.sin() + v * b.cos());
