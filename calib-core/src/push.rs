@@ -105,9 +105,9 @@ where
         active.extend(rows.iter().map(|r| r.active));
         if !solved {
             // A larger margin or more active rows only shrink this LP's feasible set: from the
-            // same point, if this one was infeasible, every later one is too. Measured on the real UR10 at 1.05 `s*`
-            // (`arm certify --hull`): 1,992 of a hull's 2,946 push steps were such LPs, ~10 ms
-            // each.
+            // same point, if this one was infeasible, every later one is too. Measured on the
+            // real UR10 at 1.05 `s*` (`arm certify --hull`): 1,992 of a hull's 2,946 push steps
+            // were such LPs, ~10 ms each.
             break;
         }
         let q: [f64; NX] =

@@ -25,10 +25,11 @@ impl ClarabelLp {
     /// hull's pushes, each certified afterwards): the KKT solves skip iterative refinement, and
     /// the iterations stop at gaps and infeasibilities of 1e-6 instead of 1e-8. Measured on the
     /// built-in arm's hull (`arm demo --hull`): the same boxes and ratios in 22 s instead of 31 s
-    /// without refinement; then 35 boxes in 17.2 s instead of 33 in 18.7–19.3 s with the looser
-    /// tolerances (`perf`: the pushes' interior-point LPs were 66% of a hull on the real UR10).
-    /// Its multipliers still give rigorous bounds through [`super::safe_lower_bound`], only
-    /// possibly weaker ones.
+    /// without refinement. The looser tolerances, measured on the real UR10's hull at 1.05 `s*`
+    /// (60 s, the same build otherwise; the pushes' interior-point LPs are most of it): 75 boxes
+    /// against 65, largest ratio 1.56 against 1.64 (`arm demo --hull`: 35 boxes against 33, the
+    /// same largest ratio; 1e-4 was far worse, 189 boxes in 123 s). Its multipliers still give
+    /// rigorous bounds through [`super::safe_lower_bound`], only possibly weaker ones.
     pub fn for_hints() -> Self {
         ClarabelLp {
             solver: None,
