@@ -342,6 +342,7 @@ impl<const NX: usize, const NM: usize> CertifiedSet<NX, NM> {
             working: vec![None; self.pieces.len()],
             dual: Vec::new(),
             primal: [0.0; NX],
+            own_rows: false,
         }
     }
 
@@ -354,7 +355,21 @@ impl<const NX: usize, const NM: usize> CertifiedSet<NX, NM> {
             working: vec![None; self.pieces.len()],
             dual: Vec::new(),
             primal: [0.0; NX],
+            own_rows: false,
         }
+    }
+
+    /// A query over a relaxation of the set: each piece's polyhedron with only the rows of each
+    /// measurement's own residuals (not the combinations that couple them), solved once per query
+    /// and warm-started from the previous query on the same piece. Fewer rows make a larger
+    /// polyhedron, so every bound stays valid for the set; on the arms measured the first program
+    /// over these rows is within 0.02% of the whole program's bound (see
+    /// [`SetQuery::max_linear`]), at a fraction of its cost — for long runs of related queries
+    /// (the accuracy certificates' branch and bound).
+    pub fn query_own_rows(&self) -> SetQuery<'_, NX, NM> {
+        let mut q = self.query();
+        q.own_rows = true;
+        q
     }
 
     /// A certified point that makes `direction·x` large: the held point with the largest value,
@@ -502,6 +517,8 @@ pub struct SetQuery<'a, const NX: usize, const NM: usize> {
     working: Vec<Option<(Vec<usize>, Polyhedron)>>,
     dual: Vec<f64>,
     primal: [f64; NX],
+    /// Whether only the measurements' own rows are used ([`CertifiedSet::query_own_rows`]).
+    own_rows: bool,
 }
 
 impl<const NX: usize, const NM: usize> SetQuery<'_, NX, NM> {
@@ -573,12 +590,20 @@ impl<const NX: usize, const NM: usize> SetQuery<'_, NX, NM> {
                 fixed += Interval::new(0.0, spread.sup());
             }
         }
-        // A cold start: successive queries point in unrelated (often opposite) directions, and a
-        // walk from the last optimum measured slower than the dual simplex from the box.
-        self.engines[i].forget();
-        let (status, lower) = if p.rows() > ROW_GENERATION_ROWS {
+        let (status, lower) = if self.own_rows {
+            let (_, subset) = self.working[i].get_or_insert_with(|| own_rows_of(p));
+            self.dual.resize(subset.rows(), 0.0);
+            let status =
+                self.engines[i].minimize(subset, &objective, &mut self.dual, &mut self.primal);
+            (status, safe_lower_bound(subset, &objective, &self.dual))
+        } else if p.rows() > ROW_GENERATION_ROWS {
+            // A cold start: successive queries point in unrelated (often opposite) directions,
+            // and a walk from the last optimum measured slower than the dual simplex from the
+            // box.
+            self.engines[i].forget();
             self.solve_by_row_generation(i, &objective)
         } else {
+            self.engines[i].forget();
             self.dual.resize(p.rows(), 0.0);
             let status = self.engines[i].minimize(p, &objective, &mut self.dual, &mut self.primal);
             (status, safe_lower_bound(p, &objective, &self.dual))
@@ -599,16 +624,7 @@ impl<const NX: usize, const NM: usize> SetQuery<'_, NX, NM> {
     /// subset's multipliers, valid whatever the subset (fewer rows, a larger polyhedron).
     fn solve_by_row_generation(&mut self, i: usize, objective: &[f64; NX]) -> (LpStatus, f64) {
         let full = &self.set.pieces[i].poly;
-        let (working, subset) = self.working[i].get_or_insert_with(|| {
-            // The first rows of each group (a configuration's own residuals, before its
-            // coupling combinations).
-            let rows: Vec<usize> = (0..full.rows())
-                .filter(|&r| full.tag(r) & 0xffff_ffff < FIRST_ROWS_PER_GROUP)
-                .collect();
-            let mut subset = Polyhedron::default();
-            build_subset(full, &rows, &mut subset);
-            (rows, subset)
-        });
+        let (working, subset) = self.working[i].get_or_insert_with(|| own_rows_of(full));
         let mut status = LpStatus::Failed;
         let mut lower = f64::NEG_INFINITY;
         for _ in 0..ROW_GENERATION_ROUNDS {
@@ -656,6 +672,17 @@ const ROWS_ADDED: usize = 64;
 /// A row is violated beyond this (relative to its right-hand side; rows are scaled to
 /// coefficients below 1).
 const VIOLATION_TOL: f64 = 1e-10;
+
+/// The first rows of each group of `full` (a configuration's own residuals, before its coupling
+/// combinations), and their polyhedron.
+fn own_rows_of(full: &Polyhedron) -> (Vec<usize>, Polyhedron) {
+    let rows: Vec<usize> = (0..full.rows())
+        .filter(|&r| full.tag(r) & 0xffff_ffff < FIRST_ROWS_PER_GROUP)
+        .collect();
+    let mut subset = Polyhedron::default();
+    build_subset(full, &rows, &mut subset);
+    (rows, subset)
+}
 
 /// The polyhedron of `full`'s rows `rows`, over its box, with its frozen columns.
 fn build_subset(full: &Polyhedron, rows: &[usize], out: &mut Polyhedron) {

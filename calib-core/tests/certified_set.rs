@@ -275,3 +275,50 @@ fn the_chebyshev_scale_is_the_smallest_consistent_one() {
         assert_eq!(c.status, calib_core::Status::Empty, "seed {seed}");
     }
 }
+
+#[test]
+fn the_parallelotope_and_the_own_rows_bound_every_consistent_vector_at_the_sets_scale() {
+    use calib_core::Parallelotope;
+    for seed in 0..3 {
+        let (set, m) = the_set(seed);
+        let about = set.points().first().expect("a certified point").x;
+        let p = Parallelotope::around(&set, &about).expect("a parallelotope");
+        let samples = consistent_samples(&set, &m, 20_000);
+        assert!(samples.len() > 100, "seed {seed}");
+        let mut rng = StdRng::seed_from_u64(seed + 100);
+        let mut own = set.query_own_rows();
+        let mut full = set.query();
+        for _ in 0..64 {
+            // Interval slopes: any value within them.
+            let w: [Interval; 2] = core::array::from_fn(|_| {
+                let c = rng.random_range(-1.0..1.0);
+                Interval::mid_rad(c, rng.random_range(0.0..0.01))
+            });
+            let bound = p.max_linear(&w);
+            let abs = p.max_abs_linear(&w);
+            let relaxed = own.max_linear(&w, &about).upper;
+            // A relaxation is never tighter than the whole program (up to its rounding).
+            let whole = full.max_linear(&w, &about).upper;
+            assert!(relaxed >= whole - 1e-9 * (1.0 + whole.abs()), "seed {seed}");
+            for x in &samples {
+                for t in [0.0, 0.5, 1.0] {
+                    let s = [0, 1].map(|j| w[j].inf() + t * w[j].wid());
+                    let v = s[0] * (x[0] - about[0]) + s[1] * (x[1] - about[1]);
+                    assert!(
+                        v <= bound && v.abs() <= abs && v <= relaxed,
+                        "seed {seed}: {x:?}"
+                    );
+                }
+            }
+        }
+        // Thin where the data fix x0 + x1: far narrower than the box's sum.
+        let outer = set.outer().expect("consistent");
+        let sum = [Interval::point(1.0); 2];
+        let width = p.max_linear(&sum) + p.max_linear(&sum.map(|v| -v));
+        assert!(
+            width < (outer[0] + outer[1]).wid() / 5.0,
+            "seed {seed}: {width} against the box's {:?}",
+            outer[0] + outer[1]
+        );
+    }
+}
