@@ -177,3 +177,100 @@ fn a_joint_space_of_the_wrong_size_is_refused() {
     assert!(e.contains("5 ranges") && e.contains("6 joints"), "{e}");
     assert!(ToolAccuracyProblem::new(&arm, &JointSpace::simulator(6), f64::NAN).is_err());
 }
+
+#[test]
+fn over_the_certified_set_no_consistent_geometry_exceeds_the_bound() {
+    use calib_arm::accuracy::over_set::{certify_set_accuracy, SetToolAccuracy};
+    use calib_arm::calibrated::{calibrated_arm, PointChoice};
+    use calib_arm::certification::{arm_settings, certify_arm, padded_index, RunOptions};
+    use calib_arm::simulate::{simulate, Uncertainty};
+    let arm = builtin_arm();
+    let sim = simulate(&arm, 30, 3, Uncertainty::TRACKER, 1.0, &[]);
+    let run = certify_arm(
+        &arm,
+        &sim.readings,
+        &sim.uncertainty,
+        RunOptions {
+            depth: calib_pipeline::Depth::Fast,
+            lsq: false,
+        },
+        &arm_settings(),
+    )
+    .expect("an arm");
+    let joints: Vec<Vec<f64>> = sim.readings.iter().map(|r| r.joints_deg.clone()).collect();
+    let c = calibrated_arm(&arm, &run, &joints, PointChoice::LeastSquares).expect("consistent");
+    let mut rng = StdRng::seed_from_u64(5);
+    let ranges_deg: Vec<[f64; 2]> = (0..arm.joints.len())
+        .map(|_| {
+            let centre: f64 = rng.random_range(-120.0..120.0);
+            [centre - 4.0, centre + 4.0]
+        })
+        .collect();
+    let space = JointSpace { ranges_deg };
+    let joint_deg = sim.uncertainty.joint_deg;
+    let problem =
+        SetToolAccuracy::new(&c.arm, c.set.clone(), &space, joint_deg).expect("a problem");
+    let b = certify_set_accuracy(
+        &problem,
+        &ToolAccuracySettings {
+            rel_tol: 0.04,
+            max_set_boxes: 40,
+            ..ToolAccuracySettings::default()
+        },
+    );
+    assert!(
+        b.upper.is_finite() && b.upper >= b.lower && b.lower > 0.0,
+        "{b:?}"
+    );
+    // The geometries known to be consistent: the simulated truth and the set's certified points
+    // (model units, unpadded), each with random joint errors; errors by an independent forward
+    // kinematics, at random joints of the box.
+    let controller = to_model(&c.arm, &c.arm.nominal());
+    let index = padded_index(arm.joints.len());
+    let mut geometries = vec![to_model(&arm, &sim.truth)];
+    geometries.extend(
+        c.set
+            .points()
+            .iter()
+            .map(|p| index.iter().map(|&k| p.x[k]).collect::<Vec<f64>>()),
+    );
+    let mut largest: f64 = 0.0;
+    for k in 0..3000 {
+        let q: Vec<f64> = space
+            .ranges_deg
+            .iter()
+            .map(|[lo, hi]| rng.random_range(*lo..=*hi).to_radians())
+            .collect();
+        let mut real = geometries[k % geometries.len()].clone();
+        for (j, v) in real.iter_mut().enumerate() {
+            if is_theta(&arm, j) {
+                *v += rng.random_range(-1.0..=1.0) * joint_deg.to_radians();
+            }
+        }
+        let (p, p0) = (forward(&real, &q), forward(&controller, &q));
+        let e = norm([p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]]);
+        largest = largest.max(e);
+        assert!(
+            e <= b.upper * (1.0 + 1e-9) + 1e-12,
+            "error {e} above the proved {}",
+            b.upper
+        );
+    }
+    // The worst instance, rechecked by matrix products, is attained in the box.
+    let w = b.worst.as_ref().expect("an instance");
+    let theta: Vec<f64> = w.theta.iter().map(|v| v.mid()).collect();
+    let (p, p0) = (
+        forward(&theta, &w.joints_rad),
+        forward(&controller, &w.joints_rad),
+    );
+    let e = norm([p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]]);
+    assert!(e >= w.value * (1.0 - 1e-9), "{e} < {}", w.value);
+    for (q, [lo, hi]) in w.joints_deg.iter().zip(&space.ranges_deg) {
+        assert!(*lo - 1e-9 <= *q && *q <= *hi + 1e-9, "q {q}");
+    }
+    assert!(
+        b.lower >= 0.9 * largest,
+        "lower {} below a sampled {largest}",
+        b.lower
+    );
+}

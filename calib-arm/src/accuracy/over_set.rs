@@ -1,37 +1,48 @@
 //! The tool-point error over the certified set (a calibrated file that carries one).
 //!
 //! The controller computes `p(q; θ̂)`; the real arm has some `θ*` in the certified set `S` and
-//! its joints reach `q + e`, `|e_i| <= joint_deg`. Over a joint box `Q`, by the mean-value
-//! theorem, the error's coordinate `r` is
+//! its joints reach `q + e`, `|e_i| <= joint_deg`. Over a joint box `Q` (widened by the joint
+//! error to `Q'`), with `δ = θ* - θ̂`, the mean-value theorem gives
 //!
-//! `d_r = Σ_j G_rj (θ*_j - θ̂_j) + Σ_i H_ri e_i`
+//! `p(q + e; θ*) - p(q; θ̂) = Σ_j g_j δ_j + Σ_i H_i e_i`
 //!
-//! with `G ⊇ ∂p_r/∂θ` and `H ⊇ ∂p_r/∂q` over `Q` widened by the joint error and the hull of the
-//! set and `θ̂`. Its largest and smallest values over the set are one linear program per piece
-//! each ([`calib_core::SetQuery::max_linear`], safe bounds: the slopes' midpoints in the program,
-//! their radii against the set's box), the joint error's term by its magnitude; so is the error's
-//! component along the direction `u` of the worst instance found.
-//! The error vector then lies in the box of the coordinates' ranges cut by the two planes of
-//! `u·d`; its largest norm there (at a vertex: box corners and the planes' crossings of the
-//! box's edges) bounds the error over `Q` — a branch and bound over the joints
-//! ([`calib_core::maximize`]) makes it proved over the whole joint box. Lower bounds are
-//! attained by certified parameter vectors (a catalogue: the set's points pushed along the
-//! error's gradient at joints spread over the box), with exact joints.
+//! with `g_j ⊇ ∂p/∂θ_j` over `Q' ×` the set's outer box (with `θ̂`) and `H ⊇ ∂p/∂q` there.
+//!
+//! **At the set's scale.** On joint boxes up to [`AFFINE_WIDTH`] wide, each `g_j` is an affine
+//! form in the joints' noise symbols `ε_i` ([`calib_core::Affine`] carried through the model's
+//! derivatives, [`calib_core::Jet`]): `g_j = c_j + Σ_i a_ji ε_i ± e_j`. Along a unit direction
+//! `u`, the error's component is then at most
+//!
+//! `h_S(ū) + Σ_i max_S |(u·a_i)·δ| + Σ_j (|u|·e_j) max|δ_j| + |u|·(encoder term)`,
+//!
+//! `ū_j = u·c_j`: the main term `h_S` — the support function of the set — is one linear program
+//! per piece ([`calib_core::SetQuery::max_linear`], safe bounds), or, where that is enough to
+//! discard the box, the bound of a parallelotope around the set aligned with what the data
+//! determine ([`Parallelotope`]); the joints' terms, first order in the box's width, take the
+//! parallelotope; only the remainders `e_j` (the affine forms' nonlinear remainders and the
+//! curvature in `θ` over the outer box, both of second order) meet the outer box. Wider joint
+//! boxes take the interval slopes `g_j` (midpoints in the program, radii against the box).
+//!
+//! The error vector's components along an orthonormal frame `u_1, u_2, u_3` — `u_1` the
+//! direction of the largest error the catalogue shows at the box's centre — lie in three ranges,
+//! so its norm is at most that of the ranges' farthest corner. A branch and bound over the joints
+//! ([`calib_core::maximize`]) makes the bound proved over the whole joint box.
+//!
+//! Lower bounds are attained by certified parameter vectors (a catalogue: the set's points
+//! pushed along the error's gradient at joints spread over the box, and at every configuration
+//! where the search raises the lower bound), with exact joints.
 
+use super::directions::{JointForm, AFFINE_WIDTH};
 use super::{norm, SearchPoint, ToolBracket, ToolInstance};
 use crate::certification::{padded_index, ArmSet, MAX_JOINTS, NM, NX};
 use crate::joint_space::JointSpace;
+use crate::model::arm7_point;
 use crate::robot::Arm;
 use crate::units::{deg_to_rad, rad_to_deg, to_deg};
 use crate::Arm7Point;
-use calib_core::{maximize, Interval, MaximumSettings, Objective, VectorModel};
-use std::cell::Cell;
+use calib_core::{maximize, Interval, Jet, MaximumSettings, Objective, Parallelotope, VectorModel};
+use std::cell::{Cell, RefCell};
 use std::time::Instant;
-
-/// `a + b` rounded up.
-fn add_up(a: f64, b: f64) -> f64 {
-    (Interval::point(a) + Interval::point(b)).sup()
-}
 
 /// The box of the joints `q` (the tracked point's part exactly 0, so that the residual is the
 /// point itself).
@@ -45,18 +56,25 @@ const CATALOGUE_CONFIGURATIONS: usize = 6;
 /// The tool-point accuracy problem over a certified set.
 pub struct SetToolAccuracy {
     joints: usize,
-    set: ArmSet,
+    set: RefCell<ArmSet>,
     /// `θ̂` (radians, padded).
     nominal: [f64; NX],
     /// The set's outer box, with `θ̂`.
     hull: [Interval; NX],
+    /// `max |θ_j - θ̂_j|` over the set's outer box, rounded up.
+    reach: [f64; NX],
+    /// The parallelotope around the set (`None` if it could not be bounded).
+    parallelotope: Option<Parallelotope<NX>>,
     /// The joint box (radians, padded joints at 0).
     domain: [Interval; MAX_JOINTS],
     /// The joint error half-width in radians, enclosed.
     joint_rad: Interval,
     /// Certified parameter vectors (the instances' geometries).
-    catalogue: Vec<[f64; NX]>,
+    catalogue: RefCell<Vec<[f64; NX]>>,
 }
+
+/// The ranges of the error's components along a frame, over a joint box.
+type FrameRanges = [Interval; 3];
 
 impl SetToolAccuracy {
     /// The problem for the calibrated `arm` (its values: what the controller computes with) over
@@ -83,7 +101,9 @@ impl SetToolAccuracy {
             };
         }
         let outer = set.outer().ok_or("the certified set is empty")?;
-        let hull = core::array::from_fn(|j| outer[j].hull(Interval::point(nominal[j])));
+        let hull: [Interval; NX] =
+            core::array::from_fn(|j| outer[j].hull(Interval::point(nominal[j])));
+        let reach = core::array::from_fn(|j| (hull[j] - Interval::point(nominal[j])).mag());
         let mut domain = [Interval::ZERO; MAX_JOINTS];
         for (i, &[lo, hi]) in space.ranges_deg.iter().enumerate() {
             let (l, h) = (
@@ -92,21 +112,24 @@ impl SetToolAccuracy {
             );
             domain[i] = Interval::new(l.inf(), h.sup());
         }
-        let mut out = SetToolAccuracy {
+        let parallelotope = Parallelotope::around(&set, &nominal);
+        let out = SetToolAccuracy {
             joints,
-            set,
+            set: RefCell::new(set),
             nominal,
             hull,
+            reach,
+            parallelotope,
             domain,
             joint_rad: deg_to_rad(Interval::point(joint_deg)),
-            catalogue: Vec::new(),
+            catalogue: RefCell::new(Vec::new()),
         };
         out.fill_catalogue();
         Ok(out)
     }
 
     /// The catalogue: the set's points, pushed along `±∇_θ p_r` at joints spread over the box.
-    fn fill_catalogue(&mut self) {
+    fn fill_catalogue(&self) {
         for k in 0..CATALOGUE_CONFIGURATIONS {
             let q: [f64; MAX_JOINTS] = core::array::from_fn(|i| {
                 let d = self.domain[i];
@@ -119,11 +142,39 @@ impl SetToolAccuracy {
             m[..MAX_JOINTS].copy_from_slice(&q);
             for e in Arm7Point.evaluate_rows(&self.nominal, &m) {
                 for sign in [1.0, -1.0] {
-                    self.set.extreme_point(&Arm7Point, &e.dx.map(|v| sign * v));
+                    self.set
+                        .borrow_mut()
+                        .extreme_point(&Arm7Point, &e.dx.map(|v| sign * v));
                 }
             }
         }
-        self.catalogue = self.set.points().iter().map(|p| p.x).collect();
+        self.refresh_catalogue();
+    }
+
+    /// The catalogue: every certified point the set holds.
+    fn refresh_catalogue(&self) {
+        *self.catalogue.borrow_mut() = self.set.borrow().points().iter().map(|p| p.x).collect();
+    }
+
+    /// Pushes the set along the error's gradient at `q` (the direction of the catalogue's largest
+    /// error there), adding the certified point it reaches to the catalogue.
+    fn push_at(&self, q: &[f64; MAX_JOINTS]) {
+        let Some(u) = self.direction_at(q) else {
+            return;
+        };
+        let mut m = [0.0; NM];
+        m[..MAX_JOINTS].copy_from_slice(q);
+        let rows = Arm7Point.evaluate_rows(&self.nominal, &m);
+        let gradient: [f64; NX] =
+            core::array::from_fn(|j| (0..3).map(|r| u[r] * rows[r].dx[j]).sum());
+        if self
+            .set
+            .borrow_mut()
+            .extreme_point(&Arm7Point, &gradient)
+            .is_some()
+        {
+            self.refresh_catalogue();
+        }
     }
 
     /// The joint box searched (radians, padded).
@@ -131,45 +182,140 @@ impl SetToolAccuracy {
         self.domain
     }
 
-    /// An upper bound of the error over the joint box `q` (module documentation), with the cut
-    /// along `u` when given. `+∞` when an enclosure failed.
-    fn upper(&self, q: &[Interval; MAX_JOINTS], u: Option<[f64; 3]>) -> f64 {
+    /// The unit direction of the catalogue's largest error at `q`.
+    fn direction_at(&self, q: &[f64; MAX_JOINTS]) -> Option<[f64; 3]> {
+        let (theta, _) = self.best(q);
+        let mut m = [0.0; NM];
+        m[..MAX_JOINTS].copy_from_slice(q);
+        let p = Arm7Point.residuals(&theta, &m);
+        let p0 = Arm7Point.residuals(&self.nominal, &m);
+        let d: [f64; 3] = core::array::from_fn(|r| p[r] - p0[r]);
+        let n = norm(d);
+        (n > 0.0 && n.is_finite()).then(|| d.map(|v| v / n))
+    }
+
+    /// An upper bound of the error over the joint box `q` (module documentation): the
+    /// parallelotope's bound, and where that exceeds `enough`, the linear programs' (the smaller
+    /// of the two). `+∞` when an enclosure failed.
+    fn upper(&self, q: &[Interval; MAX_JOINTS], enough: f64) -> f64 {
         // The real arm's joints lie within the joint error of the box.
         let widened: [Interval; MAX_JOINTS] = core::array::from_fn(|i| {
             q[i] + Interval::new(-self.joint_rad.sup(), self.joint_rad.sup())
         });
         let rows = Arm7Point.evaluate_rows_interval(&self.hull, &joints_box(&widened));
-        // p(q + e; θ) - p(q; θ̂) = ∇_θ p (θ - θ̂) + ∇_q p e, each gradient over the boxes.
         let encoder: [f64; 3] = core::array::from_fn(|r| {
             (0..self.joints)
                 .fold(Interval::ZERO, |s, i| s + rows[r].dm[i] * self.joint_rad)
                 .mag()
         });
-        let mut query = self.set.query();
-        let mut range = |slopes: &[Interval; NX], extra: f64| -> Interval {
-            let up = query.max_linear(slopes, &self.nominal).upper;
-            let down = query.max_linear(&slopes.map(|s| -s), &self.nominal).upper;
-            let hi = add_up(up, extra);
-            let lo = -add_up(down, extra);
-            if lo.is_finite() && hi.is_finite() && lo <= hi {
-                Interval::new(lo, hi)
-            } else {
-                Interval::ENTIRE
+        let centre = q.map(|v| v.mid());
+        let frame = frame(self.direction_at(&centre).unwrap_or([1.0, 0.0, 0.0]));
+        let widest = widened.iter().map(|v| v.wid()).fold(0.0, f64::max);
+        let affine = (widest <= AFFINE_WIDTH).then(|| self.affine_columns(&widened));
+        let slopes = |axis: &[f64; 3]| -> Slopes {
+            match &affine {
+                Some(columns) => Slopes::affine(axis, columns, &rows, &self.reach),
+                None => Slopes::interval(axis, &rows),
             }
         };
-        let boxes: [Interval; 3] = core::array::from_fn(|r| range(&rows[r].dx, encoder[r]));
-        let cut = u.map(|u| {
-            let slopes = core::array::from_fn(|j| {
-                (0..3).fold(Interval::ZERO, |s, r| {
-                    s + Interval::point(u[r]) * rows[r].dx[j]
-                })
+        let per_axis: Vec<(Slopes, f64)> = frame
+            .iter()
+            .map(|u| {
+                let extra = (0..3).fold(Interval::ZERO, |s, r| {
+                    s + Interval::point(u[r].abs()) * Interval::point(encoder[r])
+                });
+                (slopes(u), extra.sup())
+            })
+            .collect();
+        // The bound with the main terms' support from `main` and the joints' from `joint`.
+        type Support<'a> = &'a mut dyn FnMut(&[Interval; NX]) -> f64;
+        let bound = |main: Support, joint: Support| -> f64 {
+            let ranges: FrameRanges = core::array::from_fn(|k| {
+                let (s, extra) = &per_axis[k];
+                let mut fixed = add_up(s.rest, *extra);
+                for a in &s.joint {
+                    fixed = add_up(fixed, joint(a).max(joint(&a.map(|v| -v))));
+                }
+                let hi = add_up(main(&s.main), fixed);
+                let lo = -add_up(main(&s.main.map(|v| -v)), fixed);
+                if lo.is_finite() && hi.is_finite() && lo <= hi {
+                    Interval::new(lo, hi)
+                } else {
+                    Interval::ENTIRE
+                }
             });
-            let extra = (0..3).fold(Interval::ZERO, |s, r| {
-                s + Interval::point(u[r].abs()) * Interval::point(encoder[r])
+            farthest_corner(&ranges)
+        };
+        // Stages, each only where the previous ones cannot discard the box: everything over the
+        // parallelotope; the main terms by linear programs; then the norm by the directions of
+        // the sphere's cover instead of the frame's corner.
+        let parallelotope = |w: &[Interval; NX]| match &self.parallelotope {
+            Some(p) => p.max_linear(w),
+            None => f64::INFINITY,
+        };
+        let mut best = f64::INFINITY;
+        if self.parallelotope.is_some() {
+            best = bound(&mut |w| parallelotope(w), &mut |w| parallelotope(w));
+            if best <= enough {
+                return best;
+            }
+        }
+        let set = self.set.borrow();
+        let query = RefCell::new(set.query_own_rows());
+        let lp = |w: &[Interval; NX]| query.borrow_mut().max_linear(w, &self.nominal).upper;
+        let joint_support: &dyn Fn(&[Interval; NX]) -> f64 = if self.parallelotope.is_some() {
+            &parallelotope
+        } else {
+            &lp
+        };
+        best = best.min(bound(&mut |w| lp(w), &mut |w| joint_support(w)));
+        if best <= enough {
+            return best;
+        }
+        // ‖d‖ <= max_k u_k·d / cos α over directions u_k covering the sphere within α.
+        let cover = SphereCover::get();
+        let mut largest = 0.0f64;
+        for u in &cover.directions {
+            let s = slopes(u);
+            let extra = (0..3).fold(Interval::ZERO, |acc, r| {
+                acc + Interval::point(u[r].abs()) * Interval::point(encoder[r])
             });
-            (u, range(&slopes, extra.sup()))
+            let mut v = add_up(lp(&s.main), add_up(s.rest, extra.sup()));
+            for a in &s.joint {
+                v = add_up(v, joint_support(a).max(joint_support(&a.map(|x| -x))));
+            }
+            if v.is_nan() {
+                return best;
+            }
+            largest = largest.max(v);
+            if largest / cover.cos_radius > best {
+                // This cover cannot beat the bound already proved.
+                return best;
+            }
+        }
+        best.min((Interval::point(largest) / Interval::point(cover.cos_radius)).sup())
+    }
+
+    /// The columns `∂p/∂θ_j` over the set's outer box and the joint box `q`, as affine forms in
+    /// the joints (one noise symbol per joint).
+    fn affine_columns(&self, q: &[Interval; MAX_JOINTS]) -> [[JointForm; 3]; NX] {
+        let x: [Jet<JointForm, NX>; NX] = core::array::from_fn(|j| {
+            let v = JointForm::from_interval(self.hull[j]);
+            if self.reach[j] > 0.0 {
+                Jet::variable(v, j)
+            } else {
+                Jet::constant(v)
+            }
         });
-        largest_norm(&boxes, cut)
+        let m: [Jet<JointForm, NX>; NM] = core::array::from_fn(|k| {
+            Jet::constant(if k < MAX_JOINTS {
+                JointForm::input(q[k], k)
+            } else {
+                JointForm::from_interval(Interval::ZERO)
+            })
+        });
+        let p = arm7_point(&x, &m);
+        core::array::from_fn(|j| [p[0].grad[j], p[1].grad[j], p[2].grad[j]])
     }
 
     /// The error `p(q; θ) - p(q; θ̂)` at exact joints `q`, enclosed.
@@ -186,6 +332,7 @@ impl SetToolAccuracy {
         m[..MAX_JOINTS].copy_from_slice(q);
         let nominal = Arm7Point.residuals(&self.nominal, &m);
         self.catalogue
+            .borrow()
             .iter()
             .map(|t| {
                 let p = Arm7Point.residuals(t, &m);
@@ -239,93 +386,259 @@ impl SetToolAccuracy {
     }
 }
 
-/// The largest norm of a vector in the box `b` whose component along the unit `u` lies in
-/// `cut`: at a vertex of that polytope — a corner of the box, or a crossing of a box edge with
-/// a cut plane. Rounded up (sums of squares in interval arithmetic); `+∞` for an unbounded box.
-fn largest_norm(b: &[Interval; 3], cut: Option<([f64; 3], Interval)>) -> f64 {
-    if b.iter().any(|v| !v.is_bounded() || v.is_empty()) {
+/// `a + b` rounded up.
+fn add_up(a: f64, b: f64) -> f64 {
+    (Interval::point(a) + Interval::point(b)).sup()
+}
+
+/// An orthonormal frame whose first axis is the unit `u`.
+fn frame(u: [f64; 3]) -> [[f64; 3]; 3] {
+    // The coordinate axis least aligned with u, made orthogonal to it.
+    let k = (0..3)
+        .min_by(|&a, &b| u[a].abs().total_cmp(&u[b].abs()))
+        .unwrap_or(0);
+    let mut e = [0.0; 3];
+    e[k] = 1.0;
+    let d = u[k];
+    let v = [e[0] - d * u[0], e[1] - d * u[1], e[2] - d * u[2]];
+    let n = norm(v);
+    let v = v.map(|c| c / n);
+    let w = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    [u, v, w]
+}
+
+/// The largest norm of a vector whose components along an orthonormal frame lie in `ranges`:
+/// the farthest corner, rounded up (the frame's rounding is covered by the relative slack
+/// [`FRAME_SLACK`]); `+∞` for an unbounded range.
+fn farthest_corner(ranges: &FrameRanges) -> f64 {
+    if ranges.iter().any(|v| !v.is_bounded() || v.is_empty()) {
         return f64::INFINITY;
     }
-    let norm_up = |p: [Interval; 3]| (p[0].sqr() + p[1].sqr() + p[2].sqr()).sqrt().sup();
-    let corners = (0..8).map(|c| {
-        core::array::from_fn(|r| {
-            if c >> r & 1 == 1 {
-                b[r].sup()
-            } else {
-                b[r].inf()
-            }
-        })
-    });
-    let Some((u, h)) = cut.filter(|(_, h)| h.is_bounded()) else {
-        return corners
-            .map(|p: [f64; 3]| norm_up(p.map(Interval::point)))
-            .fold(0.0, f64::max);
-    };
-    // The cut in floating point decides which vertices to take; each is then enclosed with the
-    // rounding of its construction, and any box corner outside the cut by rounding is kept, so
-    // the maximum over the candidates is at least the polytope's.
-    let dot = |p: &[f64; 3]| u[0] * p[0] + u[1] * p[1] + u[2] * p[2];
-    let slack = 1e-12 * (b.iter().map(|v| v.mag()).sum::<f64>() + 1.0);
-    let mut best = 0.0f64;
-    for p in corners {
-        let d = dot(&p);
-        if d <= h.sup() + slack && d >= h.inf() - slack {
-            best = best.max(norm_up(p.map(Interval::point)));
+    let sq = ranges
+        .iter()
+        .fold(Interval::ZERO, |s, v| s + Interval::point(v.mag()).sqr());
+    let n = sq.sqrt().sup();
+    (Interval::point(n) * Interval::point(1.0 + FRAME_SLACK)).sup()
+}
+
+/// Unit directions covering the sphere: every unit vector is within the angle `α` of one of them,
+/// `cos α >= cos_radius` — the vertices of the icosahedron subdivided once (42), whose covering
+/// radius is the largest angle from a face's circumcentre to its vertices.
+struct SphereCover {
+    directions: Vec<[f64; 3]>,
+    /// A lower bound of `cos α`.
+    cos_radius: f64,
+}
+
+impl SphereCover {
+    /// The cover (computed once).
+    fn get() -> &'static SphereCover {
+        static COVER: std::sync::OnceLock<SphereCover> = std::sync::OnceLock::new();
+        COVER.get_or_init(SphereCover::icosphere)
+    }
+
+    fn icosphere() -> SphereCover {
+        let t = (1.0 + 5f64.sqrt()) / 2.0;
+        let mut v: Vec<[f64; 3]> = [
+            [-1.0, t, 0.0],
+            [1.0, t, 0.0],
+            [-1.0, -t, 0.0],
+            [1.0, -t, 0.0],
+            [0.0, -1.0, t],
+            [0.0, 1.0, t],
+            [0.0, -1.0, -t],
+            [0.0, 1.0, -t],
+            [t, 0.0, -1.0],
+            [t, 0.0, 1.0],
+            [-t, 0.0, -1.0],
+            [-t, 0.0, 1.0],
+        ]
+        .iter()
+        .map(|p| unit(*p))
+        .collect();
+        let faces: [[usize; 3]; 20] = [
+            [0, 11, 5],
+            [0, 5, 1],
+            [0, 1, 7],
+            [0, 7, 10],
+            [0, 10, 11],
+            [1, 5, 9],
+            [5, 11, 4],
+            [11, 10, 2],
+            [10, 7, 6],
+            [7, 1, 8],
+            [3, 9, 4],
+            [3, 4, 2],
+            [3, 2, 6],
+            [3, 6, 8],
+            [3, 8, 9],
+            [4, 9, 5],
+            [2, 4, 11],
+            [6, 2, 10],
+            [8, 6, 7],
+            [9, 8, 1],
+        ];
+        let mut midpoint = std::collections::HashMap::new();
+        let mut split = |a: usize, b: usize, v: &mut Vec<[f64; 3]>| -> usize {
+            *midpoint.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                let (p, q) = (v[a], v[b]);
+                v.push(unit([p[0] + q[0], p[1] + q[1], p[2] + q[2]]));
+                v.len() - 1
+            })
+        };
+        let mut fine = Vec::with_capacity(80);
+        for [a, b, c] in faces {
+            let (ab, bc, ca) = (
+                split(a, b, &mut v),
+                split(b, c, &mut v),
+                split(c, a, &mut v),
+            );
+            fine.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        // Every unit vector lies in the cone of some face; within it, it is no farther from the
+        // nearest vertex than the face's circumcentre is from its vertices (the faces are
+        // acute). A margin covers the rounding of these floating-point computations.
+        let cos_radius = fine
+            .iter()
+            .map(|&[a, b, c]| {
+                let (p, q, r) = (v[a], v[b], v[c]);
+                let n = unit(cross(sub(q, p), sub(r, p)));
+                dot(n, p).abs().min(dot(n, q).abs()).min(dot(n, r).abs())
+            })
+            .fold(1.0, f64::min)
+            - 1e-9;
+        SphereCover {
+            directions: v,
+            cos_radius,
         }
     }
-    for axis in 0..3 {
-        if u[axis] == 0.0 {
-            continue;
+}
+
+fn unit(p: [f64; 3]) -> [f64; 3] {
+    let n = norm(p);
+    p.map(|c| c / n)
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// A frame computed in floating point is orthonormal only to rounding: for unit `u_k` with
+/// `|u_k·u_l - δ_kl| <= η`, `|v|² <= (1 + 2η) Σ_k (u_k·v)²` (Gershgorin on the Gram matrix), so
+/// a relative slack of `η` (~`1e-15`) covers it; `1e-12` is generous.
+const FRAME_SLACK: f64 = 1e-12;
+
+/// The slopes of one component `u·(p(q + e; θ) - p(q; θ̂))` over a joint box: `main·δ`, plus
+/// `Σ_i |joint_i·δ|`, plus at most `rest` (module documentation).
+struct Slopes {
+    /// The main term's slopes (a linear program's, or the parallelotope's, objective).
+    main: [Interval; NX],
+    /// The joints' first-order terms' slopes (one per joint with a spread).
+    joint: Vec<[Interval; NX]>,
+    /// The remainders, rounded up.
+    rest: f64,
+}
+
+impl Slopes {
+    /// From the interval slopes `rows[r].dx` over the whole box (wide joint boxes).
+    fn interval(u: &[f64; 3], rows: &[calib_core::Evaluation<Interval, NX, NM>; 3]) -> Self {
+        Slopes {
+            main: core::array::from_fn(|j| {
+                (0..3).fold(Interval::ZERO, |s, r| {
+                    s + Interval::point(u[r]) * rows[r].dx[j]
+                })
+            }),
+            joint: Vec::new(),
+            rest: 0.0,
         }
-        for c in 0..4 {
-            let others: Vec<usize> = (0..3).filter(|&r| r != axis).collect();
-            let mut p = [Interval::ZERO; 3];
-            for (bit, &r) in others.iter().enumerate() {
-                p[r] = Interval::point(if c >> bit & 1 == 1 {
-                    b[r].sup()
-                } else {
-                    b[r].inf()
+    }
+
+    /// From the affine columns: the centres in the main term, each joint's coefficients bounded
+    /// over the parallelotope (or the outer box without one), the remainders against the reach.
+    fn affine(
+        u: &[f64; 3],
+        columns: &[[JointForm; 3]; NX],
+        rows: &[calib_core::Evaluation<Interval, NX, NM>; 3],
+        reach: &[f64; NX],
+    ) -> Self {
+        let ui = u.map(Interval::point);
+        let mut main = [Interval::ZERO; NX];
+        let mut remainder = Interval::ZERO;
+        let mut joint = [[Interval::ZERO; NX]; MAX_JOINTS];
+        for j in 0..NX {
+            if reach[j] == 0.0 {
+                continue;
+            }
+            let c = &columns[j];
+            if (0..3).any(|r| !c[r].radius().is_finite()) {
+                // A failed form: the interval slope, all in the main term.
+                main[j] = (0..3).fold(Interval::ZERO, |s, r| s + ui[r] * rows[r].dx[j]);
+                continue;
+            }
+            main[j] = (0..3).fold(Interval::ZERO, |s, r| {
+                s + ui[r] * Interval::point(c[r].centre())
+            });
+            let e = (0..3).fold(Interval::ZERO, |s, r| {
+                s + Interval::point(u[r].abs()) * Interval::point(c[r].error())
+            });
+            remainder += e * Interval::point(reach[j]);
+            for (i, slot) in joint.iter_mut().enumerate() {
+                slot[j] = (0..3).fold(Interval::ZERO, |s, r| {
+                    s + ui[r] * Interval::point(c[r].coefficients()[i])
                 });
             }
-            for level in [h.inf(), h.sup()] {
-                // u·p = level along the edge: p_axis = (level - Σ u_r p_r) / u_axis.
-                let rest = others.iter().fold(Interval::point(level), |s, &r| {
-                    s - Interval::point(u[r]) * p[r]
-                });
-                let along = rest / Interval::point(u[axis]);
-                let on_edge = along.intersection(b[axis]);
-                if on_edge.is_empty() {
-                    continue;
-                }
-                p[axis] = on_edge;
-                best = best.max(norm_up(p));
-            }
+        }
+        let joint = joint
+            .into_iter()
+            .filter(|a| a.iter().any(|v| v.mag() > 0.0))
+            .collect();
+        Slopes {
+            main,
+            joint,
+            rest: remainder.sup(),
         }
     }
-    if best == 0.0 {
-        // Rounding left no candidate: the box's corners bound it.
-        return largest_norm(b, None);
-    }
-    best
 }
 
 /// The error as a function of the joints, for [`maximize`].
 struct SetToolError<'a> {
     problem: &'a SetToolAccuracy,
-    /// The direction of the worst error found so far (the cut of the bound).
-    direction: Cell<Option<[f64; 3]>>,
+    /// The largest error attained so far (a box bounded below it needs no linear program).
+    lower: Cell<f64>,
 }
 
 impl Objective<MAX_JOINTS> for SetToolError<'_> {
     fn enclose(&self, q: &[Interval; MAX_JOINTS]) -> Interval {
-        Interval::new(0.0, self.problem.upper(q, self.direction.get()))
+        self.enclose_up_to(q, self.lower.get())
+    }
+
+    fn enclose_up_to(&self, q: &[Interval; MAX_JOINTS], enough: f64) -> Interval {
+        Interval::new(0.0, self.problem.upper(q, enough.max(self.lower.get())))
     }
 
     fn at(&self, x: &SearchPoint) -> Interval {
-        let upper = self
-            .problem
-            .upper(&x.map(Interval::point), self.direction.get());
+        // The instance's value, and the cheap bound at the point (a lower bound is what counts).
         let i = self.problem.instance(x);
+        let upper = self.problem.upper(&x.map(Interval::point), f64::INFINITY);
+        if i.value > self.lower.get() {
+            self.lower.set(i.value);
+        }
         if i.value > 0.0 && i.value <= upper {
             Interval::new(i.value, upper)
         } else {
@@ -343,12 +656,16 @@ impl Objective<MAX_JOINTS> for SetToolError<'_> {
 
     fn improve(&self, x: &SearchPoint) -> Option<(SearchPoint, f64)> {
         let q = self.problem.search(x);
-        let i = self.problem.instance(&q);
-        let n = norm(i.error);
-        if n > 0.0 {
-            self.direction.set(Some(i.error.map(|v| v / n)));
+        let before = self.problem.instance(&q).value;
+        if before > self.lower.get() {
+            // A new largest error: push the set along its gradient there, and search again.
+            self.problem.push_at(&q);
+            let q = self.problem.search(&q);
+            let i = self.problem.instance(&q);
+            self.lower.set(self.lower.get().max(i.value));
+            return Some((q, i.value));
         }
-        Some((q, i.value))
+        Some((q, before))
     }
 }
 
@@ -360,7 +677,7 @@ pub fn certify_set_accuracy(
     let start = Instant::now();
     let objective = SetToolError {
         problem,
-        direction: Cell::new(None),
+        lower: Cell::new(0.0),
     };
     let m = maximize(
         &objective,
