@@ -10,7 +10,7 @@ pub use crate::tracker_file::{parse_tracker_measurements, MeasurementColumns, Sl
 use crate::Arm7Point;
 use calib_core::Interval;
 use calib_pipeline::stored_set::StoredSet;
-use calib_pipeline::{line_at, read_text, toml_error, DataError, MAX_MAGNITUDE};
+use calib_pipeline::{finite_number, line_at, read_text, toml_error, DataError};
 use serde::Deserialize;
 use std::path::Path;
 use toml::Spanned;
@@ -207,47 +207,34 @@ fn parse_robot_file(file: &Path, text: &str) -> Result<(Arm, RobotFile), DataErr
         DataError::new(file, line(span), Some(field), what)
     };
     let value = |v: &Spanned<f64>, field: String| -> Result<f64, DataError> {
-        let x = *v.get_ref();
-        if x.is_finite() && x.abs() <= MAX_MAGNITUDE {
-            Ok(x)
-        } else {
-            Err(err(
-                v.span(),
-                &field,
-                format!("expected a finite number of magnitude below {MAX_MAGNITUDE:e}"),
-            ))
-        }
+        finite_number(file, line(v.span()), &field, *v.get_ref())
     };
     let values = |v: &Spanned<[f64; 3]>, field: &str| -> Result<[f64; 3], DataError> {
         let x = *v.get_ref();
-        if x.iter().all(|c| c.is_finite() && c.abs() <= MAX_MAGNITUDE) {
-            Ok(x)
-        } else {
-            Err(err(
-                v.span(),
-                field,
-                format!("expected finite numbers of magnitude below {MAX_MAGNITUDE:e}"),
-            ))
+        for c in x {
+            finite_number(file, line(v.span()), field, c)?;
         }
+        Ok(x)
     };
     fn radii<const N: usize>(
+        file: &Path,
+        text: &str,
         r: &Spanned<Radius<N>>,
         field: &str,
-        err: &dyn Fn(std::ops::Range<usize>, &str, String) -> DataError,
     ) -> Result<[f64; N], DataError> {
+        let line = Some(line_at(text, r.span().start));
         let each = r.get_ref().each();
-        if each
-            .iter()
-            .all(|v| v.is_finite() && (0.0..=MAX_MAGNITUDE).contains(v))
-        {
-            Ok(each)
-        } else {
-            Err(err(
-                r.span(),
-                field,
-                "expected half-widths >= 0 (0 fixes a parameter), finite and below 1e100".into(),
-            ))
+        for v in each {
+            if finite_number(file, line, field, v)? < 0.0 {
+                return Err(DataError::new(
+                    file,
+                    line,
+                    Some(field),
+                    format!("{v}: expected half-widths >= 0 (0 fixes a parameter)"),
+                ));
+            }
         }
+        Ok(each)
     }
     let n = parsed.joint.len();
     if !JOINTS.contains(&n) {
@@ -277,7 +264,7 @@ fn parse_robot_file(file: &Path, text: &str) -> Result<(Arm, RobotFile), DataErr
                 value(&j.alpha_deg, f("alpha_deg"))?,
                 beta,
             ],
-            radius: radii(&j.radius, &f("radius"), &err)?,
+            radius: radii(file, text, &j.radius, &f("radius"))?,
         });
     }
     let xyz = values(&parsed.base.xyz, "base.xyz")?;
@@ -287,7 +274,7 @@ fn parse_robot_file(file: &Path, text: &str) -> Result<(Arm, RobotFile), DataErr
             (None, None) => None,
             (Some(rpy), Some(radius)) => Some(ToolRotation {
                 rpy_deg: values(rpy, "tool.rpy_deg")?,
-                radius: radii(radius, "tool.rotation_radius", &err)?,
+                radius: radii(file, text, radius, "tool.rotation_radius")?,
             }),
             (Some(rpy), None) => return Err(err(
                 rpy.span(),
@@ -307,9 +294,9 @@ fn parse_robot_file(file: &Path, text: &str) -> Result<(Arm, RobotFile), DataErr
     let arm = Arm {
         joints,
         base: [xyz[0], xyz[1], xyz[2], rpy[0], rpy[1], rpy[2]],
-        base_radius: radii(&parsed.base.radius, "base.radius", &err)?,
+        base_radius: radii(file, text, &parsed.base.radius, "base.radius")?,
         tool: values(&parsed.tool.xyz, "tool.xyz")?,
-        tool_radius: radii(&parsed.tool.radius, "tool.radius", &err)?,
+        tool_radius: radii(file, text, &parsed.tool.radius, "tool.radius")?,
         tool_rotation,
     };
     Ok((arm, parsed))
@@ -349,11 +336,11 @@ pub fn parse_pose_uncertainty(file: &Path, text: &str) -> Result<PoseUncertainty
         )
     })?;
     let check = |v: &Spanned<f64>, field: &str| {
-        let x = *v.get_ref();
-        if x.is_finite() && (0.0..=MAX_MAGNITUDE).contains(&x) {
+        let line = Some(line_at(text, v.span().start));
+        let x = finite_number(file, line, field, *v.get_ref())?;
+        if x >= 0.0 {
             Ok(x)
         } else {
-            let line = Some(line_at(text, v.span().start));
             Err(DataError::new(
                 file,
                 line,

@@ -13,7 +13,7 @@
 //! Keys `q1..qN` are the measurement file's column names; every joint of the arm needs one.
 
 use crate::simulate::JOINT_LIMIT_DEG;
-use calib_pipeline::{line_at, read_text, toml_error, DataError, MAX_MAGNITUDE};
+use calib_pipeline::{finite_number, line_at, read_text, toml_error, DataError};
 use std::collections::BTreeMap;
 use std::path::Path;
 use toml::Spanned;
@@ -75,13 +75,9 @@ pub fn parse_joint_space(file: &Path, text: &str, joints: usize) -> Result<Joint
                 format!("found {}: {FORMAT}", value.get_ref()),
             ));
         };
-        let finite = |t: f64| t.is_finite() && t.abs() <= MAX_MAGNITUDE;
-        if !(finite(lo) && finite(hi)) {
-            return Err(err(
-                value.span().start,
-                name,
-                format!("expected finite numbers of magnitude below {MAX_MAGNITUDE:e}"),
-            ));
+        let line = Some(line_at(text, value.span().start));
+        for t in [lo, hi] {
+            finite_number(file, line, name, t)?;
         }
         if lo > hi {
             return Err(err(

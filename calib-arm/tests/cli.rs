@@ -678,3 +678,82 @@ fn arm_model_parameters(arm: &calib_arm::Arm) -> Vec<f64> {
         })
         .collect()
 }
+
+#[test]
+fn a_vendor_file_with_a_non_finite_number_is_refused_and_nothing_is_written() {
+    let dir = tempdir("non-finite");
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let urdf = r#"<robot name="r">
+  <link name="base"/><link name="l1"/><link name="l2"/><link name="l3"/>
+  <joint name="shoulder_pan_joint" type="revolute"><parent link="base"/><child link="l1"/>
+<origin xyz="0 0 0.2" rpy="0 0 0"/><axis xyz="0 0 1"/>
+<limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="shoulder_lift_joint" type="continuous"><parent link="l1"/><child link="l2"/>
+<origin xyz="0.3 0 0" rpy="0 0 0"/><axis xyz="0 1 0"/></joint>
+  <joint name="elbow_joint" type="continuous"><parent link="l2"/><child link="l3"/>
+<origin xyz="0.25 0.02 0" rpy="0 0 0"/><axis xyz="0 0 1"/></joint>
+</robot>"#;
+    // The good file imports (so that what follows tests the number, not the file).
+    std::fs::write(p("good.urdf"), urdf).expect("write");
+    let o = arm(&[
+        "import",
+        "--urdf",
+        &p("good.urdf"),
+        "--out",
+        &p("good.toml"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    std::fs::write(
+        p("nan.urdf"),
+        urdf.replacen(r#"xyz="0.3 0 0""#, r#"xyz="0.3 nan 0""#, 1),
+    )
+    .expect("write");
+    let o = arm(&[
+        "import",
+        "--urdf",
+        &p("nan.urdf"),
+        "--out",
+        &p("never.toml"),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        err.contains("nan.urdf")
+            && err.contains("joint 'shoulder_lift_joint' origin xyz")
+            && err.contains("NaN"),
+        "{err}"
+    );
+    assert!(!String::from_utf8_lossy(&o.stdout).contains("imported"));
+    // UR's YAML spells an infinity `.inf`.
+    let yaml = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ur10_default_kinematics.yaml"),
+    )
+    .expect("yaml")
+    .replacen("z: 0.1273", "z: .inf", 1);
+    std::fs::write(p("inf.yaml"), yaml).expect("write");
+    let o = arm(&[
+        "import",
+        "--ur-yaml",
+        &p("inf.yaml"),
+        "--out",
+        &p("never.toml"),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        err.contains("inf.yaml") && err.contains("line 5") && err.contains("shoulder.z"),
+        "{err}"
+    );
+    // Nothing written, not even a temporary file.
+    let mut files: Vec<String> = std::fs::read_dir(&*dir)
+        .expect("the directory")
+        .map(|e| {
+            e.expect("an entry")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    files.sort();
+    assert_eq!(files, ["good.toml", "good.urdf", "inf.yaml", "nan.urdf"]);
+}

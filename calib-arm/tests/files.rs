@@ -144,3 +144,77 @@ fn measurements_and_uncertainty_are_checked() {
     let e = parse_uncertainty(u, "joint_deg = 0.001\n").unwrap_err();
     assert!(e.message.contains("pos"), "{e}");
 }
+
+/// TOML's spellings of NaN and the infinities, and a decimal that overflows to one (the TOML
+/// reader refuses `1e999` itself, but reads `-1e999` as minus infinity).
+const NON_FINITE_TOML: [&str; 6] = ["nan", "-nan", "inf", "+inf", "-inf", "-1e999"];
+
+/// `text` with its first line starting with `start` replaced by `line`, and that line's number.
+fn with_line(text: &str, start: &str, line: &str) -> (String, usize) {
+    let at = text
+        .lines()
+        .position(|l| l.starts_with(start))
+        .expect("the line");
+    let lines: Vec<&str> = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| if i == at { line } else { l })
+        .collect();
+    (lines.join("\n") + "\n", at + 1)
+}
+
+#[test]
+fn non_finite_numbers_are_refused_with_line_and_field() {
+    let good = robot_toml(&builtin_arm());
+    for bad in NON_FINITE_TOML {
+        for (start, line, field) in [
+            ("d = ", format!("d = {bad}"), "joint[1].d"),
+            (
+                "theta_deg = ",
+                format!("theta_deg = {bad}"),
+                "joint[1].theta_deg",
+            ),
+            ("xyz = ", format!("xyz = [0.0, {bad}, 0.0]"), "base.xyz"),
+            (
+                "radius = ",
+                format!("radius = [0.0, 0.0, {bad}, 0.05, 0.0]"),
+                "joint[1].radius",
+            ),
+        ] {
+            let (text, at) = with_line(&good, start, &line);
+            let e = parse_robot(Path::new("robot.toml"), &text).unwrap_err();
+            assert_eq!(
+                (e.line, e.field.as_deref()),
+                (Some(at), Some(field)),
+                "{bad}: {e}"
+            );
+            assert!(e.message.contains("expected a finite number"), "{bad}: {e}");
+        }
+        let u = Path::new("uncertainty.toml");
+        let e = parse_uncertainty(u, &format!("joint_deg = 0.001\npos = {bad}\n")).unwrap_err();
+        assert_eq!(
+            (e.line, e.field.as_deref()),
+            (Some(2), Some("pos")),
+            "{bad}: {e}"
+        );
+    }
+    // `1e999` is not a TOML number: refused by the reader at its line.
+    let (text, at) = with_line(&good, "d = ", "d = 1e999");
+    let e = parse_robot(Path::new("robot.toml"), &text).unwrap_err();
+    assert_eq!(e.line, Some(at), "{e}");
+}
+
+#[test]
+fn non_finite_measurements_are_refused_with_line_and_column() {
+    let f = Path::new("measurements.csv");
+    for bad in ["nan", "NaN", "inf", "-inf", "infinity", "1e999", "-1e999"] {
+        let text = format!("q1,q2,q3,px,py,pz\n1,2,3,4,5,6\n1,2,3,4,{bad},6\n");
+        let e = parse_measurements(f, &text, 3).unwrap_err();
+        assert_eq!(
+            (e.line, e.field.as_deref()),
+            (Some(3), Some("py")),
+            "{bad}: {e}"
+        );
+        assert!(e.to_string().starts_with("measurements.csv, line 3"), "{e}");
+    }
+}

@@ -5,9 +5,11 @@ use crate::geometry::{Leg, Pose};
 use crate::measurement::{Configuration, Orientation, Uncertainty};
 use crate::GoughLeg;
 use calib_core::{CertifiedSet, Interval};
+use calib_pipeline::finite_number;
 use calib_pipeline::stored_set::StoredSet;
 use serde::Deserialize;
 use std::path::Path;
+use toml::Spanned;
 
 pub use calib_pipeline::{line_at, read_text, DataError, MAX_MAGNITUDE};
 
@@ -38,10 +40,10 @@ struct RobotEntries {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LegEntry {
-    a: [f64; 3],
-    b: [f64; 3],
-    l: f64,
-    radius: Radius,
+    a: Spanned<[f64; 3]>,
+    b: Spanned<[f64; 3]>,
+    l: Spanned<f64>,
+    radius: Spanned<Radius>,
     certified_set: Option<StoredSet>,
 }
 
@@ -139,24 +141,28 @@ pub fn parse_robot_file(file: &Path, text: &str) -> Result<RobotFile, DataError>
         .enumerate()
         .map(|(i, e)| {
             let field = |name: &str| format!("leg[{}].{name}", i + 1);
-            let nominal = Leg { a: e.a, b: e.b, l: e.l };
-            let in_range = |v: &f64| v.is_finite() && v.abs() <= MAX_MAGNITUDE;
-            if let Some(bad) = nominal.params().iter().position(|v| !in_range(v)) {
-                let name = crate::PARAMETER_NAMES[bad];
-                let message = format!("expected a finite number of magnitude below {MAX_MAGNITUDE:e}");
-                return Err(error(file, None, Some(&field(name)), message));
+            let line = |span: std::ops::Range<usize>| Some(line_at(text, span.start));
+            // Each parameter, named as `PARAMETER_NAMES` does, at the line of its value.
+            let params = (e.a.get_ref().iter().map(|&v| (v, e.a.span())))
+                .chain(e.b.get_ref().iter().map(|&v| (v, e.b.span())))
+                .chain([(*e.l.get_ref(), e.l.span())]);
+            for ((v, span), name) in params.zip(crate::PARAMETER_NAMES) {
+                finite_number(file, line(span), &field(name), v)?;
             }
-            let radius = match e.radius {
-                Radius::One(r) => [r; 7],
-                Radius::Each(r) => r,
+            let nominal = Leg { a: *e.a.get_ref(), b: *e.b.get_ref(), l: *e.l.get_ref() };
+            let radius = match e.radius.get_ref() {
+                Radius::One(r) => [*r; 7],
+                Radius::Each(r) => *r,
             };
-            if radius.iter().any(|r| !in_range(r) || *r < 0.0) {
-                return Err(error(
-                    file,
-                    None,
-                    Some(&field("radius")),
-                    "the initial box nominal ± radius must contain the nominal value: expected finite radii >= 0",
-                ));
+            for r in radius {
+                if finite_number(file, line(e.radius.span()), &field("radius"), r)? < 0.0 {
+                    return Err(error(
+                        file,
+                        line(e.radius.span()),
+                        Some(&field("radius")),
+                        "the initial box nominal ± radius must contain the nominal value: expected finite radii >= 0",
+                    ));
+                }
             }
             Ok(LegSpec { nominal, radius })
         })
@@ -170,11 +176,11 @@ pub fn parse_robot_file(file: &Path, text: &str) -> Result<RobotFile, DataError>
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct UncertaintyFile {
-    pos: f64,
-    len: f64,
-    axis: Option<f64>,
-    angle_deg: Option<f64>,
-    q: Option<f64>,
+    pos: Spanned<f64>,
+    len: Spanned<f64>,
+    axis: Option<Spanned<f64>>,
+    angle_deg: Option<Spanned<f64>>,
+    q: Option<Spanned<f64>>,
 }
 
 /// Reads `uncertainty.toml`: half-widths `pos`, `len`, and `axis` + `angle_deg` (axis-angle data) or
@@ -197,28 +203,29 @@ pub fn parse_uncertainty(file: &Path, text: &str) -> Result<Uncertainty, DataErr
             ),
         )
     })?;
-    let out = Uncertainty {
-        pos: u.pos,
-        len: u.len,
-        axis: u.axis.unwrap_or(f64::NAN),
-        angle_deg: u.angle_deg.unwrap_or(f64::NAN),
-        q: u.q.unwrap_or(f64::NAN),
-    };
-    for (name, v) in [("pos", u.pos), ("len", u.len)].into_iter().chain(
-        [("axis", u.axis), ("angle_deg", u.angle_deg), ("q", u.q)]
-            .into_iter()
-            .filter_map(|(n, v)| v.map(|v| (n, v))),
-    ) {
-        if !v.is_finite() || !(0.0..=MAX_MAGNITUDE).contains(&v) {
+    let half_width = |v: &Spanned<f64>, name: &str| -> Result<f64, DataError> {
+        let line = Some(line_at(text, v.span().start));
+        let x = finite_number(file, line, name, *v.get_ref())?;
+        if x < 0.0 {
             return Err(error(
                 file,
-                None,
+                line,
                 Some(name),
-                format!("expected a finite half-width >= 0 and below {MAX_MAGNITUDE:e}, found {v}"),
+                format!("expected a finite half-width >= 0, found {x}"),
             ));
         }
-    }
-    Ok(out)
+        Ok(x)
+    };
+    let optional = |v: &Option<Spanned<f64>>, name: &str| -> Result<f64, DataError> {
+        v.as_ref().map_or(Ok(f64::NAN), |v| half_width(v, name))
+    };
+    Ok(Uncertainty {
+        pos: half_width(&u.pos, "pos")?,
+        len: half_width(&u.len, "len")?,
+        axis: optional(&u.axis, "axis")?,
+        angle_deg: optional(&u.angle_deg, "angle_deg")?,
+        q: optional(&u.q, "q")?,
+    })
 }
 
 /// Checks that the half-widths needed by the orientation format of the measurements are present.
@@ -347,25 +354,7 @@ pub fn parse_measurements_at_least(
                     format!("expected a number, found `{raw}`"),
                 )
             })?;
-            if !v.is_finite() {
-                return Err(error(
-                    file,
-                    line,
-                    Some(field),
-                    format!("expected a finite number, found `{raw}`"),
-                ));
-            }
-            if v.abs() > MAX_MAGNITUDE {
-                return Err(error(
-                    file,
-                    line,
-                    Some(field),
-                    format!(
-                        "`{raw}` is out of range; expected a magnitude below {MAX_MAGNITUDE:e}"
-                    ),
-                ));
-            }
-            values.push(v);
+            values.push(finite_number(file, line, field, v)?);
         }
         let p = [values[0], values[1], values[2]];
         let (orientation, rest) = if rodrigues {

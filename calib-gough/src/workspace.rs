@@ -12,9 +12,9 @@
 //! The workspace is every pose meeting all of these; the stroke is checked with the leg readings
 //! of a given geometry (the nominal one when planning).
 
-use crate::files::{read_text, DataError, MAX_MAGNITUDE};
+use crate::files::{read_text, DataError};
 use crate::geometry::{leg_reading, Leg, Pose};
-use calib_pipeline::{line_at, toml_error};
+use calib_pipeline::{finite_number, line_at, toml_error};
 use rand::rngs::StdRng;
 use rand::Rng;
 use serde::Deserialize;
@@ -70,13 +70,8 @@ pub fn parse_workspace(file: &Path, text: &str) -> Result<Workspace, DataError> 
     };
     let range = |v: &Spanned<[f64; 2]>, field: &str| -> Result<[f64; 2], DataError> {
         let [lo, hi] = *v.get_ref();
-        let finite = |t: f64| t.is_finite() && t.abs() <= MAX_MAGNITUDE;
-        if !(finite(lo) && finite(hi)) {
-            return Err(err(
-                v.span(),
-                field,
-                format!("expected finite numbers of magnitude below {MAX_MAGNITUDE:e}"),
-            ));
+        for t in [lo, hi] {
+            finite_number(file, Some(line_at(text, v.span().start)), field, t)?;
         }
         if lo > hi {
             return Err(err(
@@ -87,8 +82,13 @@ pub fn parse_workspace(file: &Path, text: &str) -> Result<Workspace, DataError> 
         }
         Ok([lo, hi])
     };
-    let tilt = *w.tilt_deg.get_ref();
-    if !(tilt.is_finite() && (0.0..180.0).contains(&tilt)) {
+    let tilt = finite_number(
+        file,
+        Some(line_at(text, w.tilt_deg.span().start)),
+        "tilt_deg",
+        *w.tilt_deg.get_ref(),
+    )?;
+    if !(0.0..180.0).contains(&tilt) {
         return Err(err(
             w.tilt_deg.span(),
             "tilt_deg",

@@ -322,6 +322,27 @@ fn malformed_inputs_are_clear_errors() {
         |d| edit_line(d, 2, |l| format!("inf{}", &l[l.find(',').unwrap()..])),
         &["line 2", "px", "finite"],
     );
+    // TOML's spellings of NaN and infinity in the robot and uncertainty files: line and field.
+    rejects(
+        "nan-robot",
+        |d| {
+            rewrite(&d.join("robot.toml"), |t| {
+                let at = t.find("l = ").unwrap();
+                let end = at + t[at..].find('\n').unwrap();
+                format!("{}l = nan{}", &t[..at], &t[end..])
+            })
+        },
+        &["robot.toml", "line 5", "leg[1].l", "finite", "NaN"],
+    );
+    rejects(
+        "inf-uncertainty",
+        |d| {
+            rewrite(&d.join("uncertainty.toml"), |t| {
+                t.replace("pos = 0.0005", "pos = inf")
+            })
+        },
+        &["uncertainty.toml", "line", "pos", "finite"],
+    );
     rejects(
         "axis",
         |d| {

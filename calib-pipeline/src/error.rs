@@ -52,6 +52,34 @@ impl fmt::Display for DataError {
 
 impl std::error::Error for DataError {}
 
+/// `value` when it is a number the data files accept — finite (not NaN, not an infinity, not a
+/// decimal beyond the range of doubles, which reads as one) and of magnitude at most
+/// [`MAX_MAGNITUDE`] — else a [`DataError`] in `file` at `line` and `field` that shows what was
+/// found. The robots' readers pass the numbers of their data and vendor files through here (the
+/// CSV readers of this crate do too), so that no NaN or infinity reaches a computation or an
+/// output file.
+pub fn finite_number(
+    file: &Path,
+    line: Option<usize>,
+    field: &str,
+    value: f64,
+) -> Result<f64, DataError> {
+    if value.is_finite() && value.abs() <= MAX_MAGNITUDE {
+        return Ok(value);
+    }
+    let found = if value.is_infinite() {
+        format!("{value} (an infinity, or a decimal beyond the range of doubles)")
+    } else {
+        format!("{value:e}")
+    };
+    Err(DataError::new(
+        file,
+        line,
+        Some(field),
+        format!("expected a finite number of magnitude at most {MAX_MAGNITUDE:e}, found {found}"),
+    ))
+}
+
 /// The text of `file`, or an error naming it.
 pub fn read_text(file: &Path) -> Result<String, DataError> {
     std::fs::read_to_string(file)

@@ -3,7 +3,7 @@
 //! decimal commas detected); every value finite and of sane magnitude, every problem named by
 //! file, line and column.
 
-use crate::{DataError, MAX_MAGNITUDE};
+use crate::{finite_number, DataError};
 use std::path::Path;
 
 /// The data rows of a number table, with the 1-based file line of each.
@@ -17,7 +17,7 @@ pub struct NumberTable {
 
 /// Parses `text` (the contents of `file`) as a CSV table whose header must be exactly
 /// `expected` (fields trimmed), and whose every cell is a finite number of magnitude at most
-/// [`MAX_MAGNITUDE`].
+/// [`MAX_MAGNITUDE`](crate::MAX_MAGNITUDE).
 pub fn parse_number_table(
     file: &Path,
     text: &str,
@@ -112,7 +112,7 @@ impl Dialect {
 /// Parses `text` (the contents of `file`) as a table in its own [`Dialect`] and returns the
 /// columns named `columns` (header fields trimmed, matched exactly), in that order; other columns
 /// are ignored. Every selected cell must be a finite number of magnitude at most
-/// [`MAX_MAGNITUDE`]; a missing column is named with the header's columns.
+/// [`MAX_MAGNITUDE`](crate::MAX_MAGNITUDE); a missing column is named with the header's columns.
 ///
 /// ```
 /// use calib_pipeline::parse_named_columns;
@@ -204,16 +204,15 @@ fn record_error(file: &Path, e: csv::Error) -> DataError {
     DataError::new(file, line, None, message)
 }
 
-/// `text` (the cell `raw` as written) as a finite number of sane magnitude.
+/// `text` (the cell `raw` as written) as a finite number of sane magnitude ([`finite_number`]).
 fn number(file: &Path, line: usize, field: &str, raw: &str, text: &str) -> Result<f64, DataError> {
-    let bad = |what: String| DataError::new(file, Some(line), Some(field), what);
-    let v: f64 = text
-        .parse()
-        .map_err(|_| bad(format!("expected a number, found `{raw}`")))?;
-    if !v.is_finite() || v.abs() > MAX_MAGNITUDE {
-        return Err(bad(format!(
-            "expected a finite number of magnitude below {MAX_MAGNITUDE:e}, found `{raw}`"
-        )));
-    }
-    Ok(v)
+    let v: f64 = text.parse().map_err(|_| {
+        DataError::new(
+            file,
+            Some(line),
+            Some(field),
+            format!("expected a number, found `{raw}`"),
+        )
+    })?;
+    finite_number(file, Some(line), field, v)
 }

@@ -268,9 +268,20 @@ pub fn chain_to_arm(origins: &[Frame], radii: ImportRadii) -> Result<Arm, String
         });
         carry = rest;
     }
+    let base = base_parameters(&base);
+    // The readers refuse non-finite numbers; this keeps a NaN or an infinity from ever being
+    // written as an "exact" import, whatever the chain's origin.
+    if joints
+        .iter()
+        .flat_map(|j| j.nominal)
+        .chain(base)
+        .any(|v| !v.is_finite())
+    {
+        return Err("the chain holds a non-finite number (NaN or infinity)".to_string());
+    }
     Ok(Arm {
         joints,
-        base: base_parameters(&base),
+        base,
         base_radius: [0.0; 6],
         tool: [0.0; 3],
         tool_radius: [0.0; 3],

@@ -9,7 +9,7 @@
 //! own (`certicalib_…`) unless one is given (e.g. the imported one, to silence the check knowingly).
 
 use super::{from_xyz_rpy, to_xyz_rpy, Frame};
-use calib_pipeline::DataError;
+use calib_pipeline::{finite_number, DataError};
 use serde::Deserialize;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -90,13 +90,19 @@ pub fn parse(file: &Path, text: &str) -> Result<UrKinematics, DataError> {
     let mut origins = Vec::with_capacity(6);
     for (o, name) in entries.iter().zip(JOINT_NAMES) {
         let values = [o.x, o.y, o.z, o.roll, o.pitch, o.yaw];
-        if let Some(v) = values.iter().find(|v| !v.is_finite() || v.abs() > 100.0) {
-            return Err(DataError::new(
-                file,
-                line_of(text, name),
-                Some(name),
-                format!("{v}: expected metres and radians of magnitude below 100"),
-            ));
+        for (&v, key) in values.iter().zip(ORIGIN_KEYS) {
+            let field = format!("{name}.{key}");
+            let line = line_of(text, name, key);
+            // `.nan`, `.inf` and `-.inf` are YAML's spellings of non-finite numbers.
+            finite_number(file, line, &field, v)?;
+            if v.abs() > 100.0 {
+                return Err(DataError::new(
+                    file,
+                    line,
+                    Some(&field),
+                    format!("{v}: expected metres and radians of magnitude below 100"),
+                ));
+            }
         }
         origins.push(from_xyz_rpy(
             [1000.0 * o.x, 1000.0 * o.y, 1000.0 * o.z],
@@ -109,11 +115,35 @@ pub fn parse(file: &Path, text: &str) -> Result<UrKinematics, DataError> {
     })
 }
 
-/// The line of `key:` in `text` (1-based).
-fn line_of(text: &str, key: &str) -> Option<usize> {
-    text.lines()
-        .position(|l| l.trim_start().starts_with(&format!("{key}:")))
-        .map(|i| i + 1)
+/// The keys of a joint origin, in the order of [`Origin`]'s fields.
+const ORIGIN_KEYS: [&str; 6] = ["x", "y", "z", "roll", "pitch", "yaw"];
+
+/// The line (1-based) of `key:` in the entry `joint:` of `text`: a line starting with `key:`
+/// among those indented below the line starting with `joint:`, or that line itself (a key not on
+/// a line of its own, as in `shoulder: {x: 0, …}`).
+fn line_of(text: &str, joint: &str, key: &str) -> Option<usize> {
+    let starts = |l: &str, k: &str| {
+        l.trim_start()
+            .strip_prefix(k)
+            .is_some_and(|r| r.starts_with(':'))
+    };
+    let indent = |l: &str| l.len() - l.trim_start().len();
+    let lines: Vec<&str> = text.lines().collect();
+    let at = lines.iter().position(|l| starts(l, joint))?;
+    let mut line = at;
+    for (i, l) in lines.iter().enumerate().skip(at + 1) {
+        if l.trim().is_empty() || l.trim_start().starts_with('#') {
+            continue;
+        }
+        if indent(l) <= indent(lines[at]) {
+            break;
+        }
+        if starts(l, key) {
+            line = i;
+            break;
+        }
+    }
+    Some(line + 1)
 }
 
 /// The YAML of six joint origins (mm) in UR's layout, with `hash` (or this file's own checksum

@@ -4,12 +4,14 @@
 //! fixed joints between them are folded into the next joint's origin, a joint axis other than
 //! `z` is turned onto `z` (the turn carried into the next origin), so that
 //! `T(q) = F_1 Rz(q_1) ⋯ F_N Rz(q_N)` is the tip link's frame. The tip must be the last moving
-//! joint's child link or fixed to it without offset (the tool point is expressed in it).
+//! joint's child link or fixed to it without offset (the tool point is expressed in it). Every
+//! number read (the chain's joint origins and axes) must be finite: errors name the joint and
+//! the attribute.
 //! Writing ([`write()`]): `base_link`, one continuous joint per arm joint (`joint1…`, axis `z`,
 //! origins in metres and radians), and a fixed `tool_joint` to a `tool` link at the tool point.
 
 use super::{from_xyz_rpy, to_xyz_rpy, Frame};
-use calib_pipeline::DataError;
+use calib_pipeline::{finite_number, DataError};
 use nalgebra::{UnitQuaternion, Vector3};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -87,18 +89,23 @@ pub fn parse(
     let mut origins = Vec::new();
     let mut pending = Frame::identity();
     for j in joints {
-        let o = from_xyz_rpy(
-            [
-                1000.0 * j.origin.xyz[0],
-                1000.0 * j.origin.xyz[1],
-                1000.0 * j.origin.xyz[2],
-            ],
-            *j.origin.rpy,
-        );
+        // urdf-rs reads `nan`, `inf` and `1e999` as numbers: refuse them before they reach a
+        // frame (a NaN frame passes every tolerance check below and would be written out).
+        let finite = |attribute: &str, v: &[f64; 3]| -> Result<[f64; 3], DataError> {
+            let field = format!("joint '{}' {attribute}", j.name);
+            let mut out = [0.0; 3];
+            for (o, &x) in out.iter_mut().zip(v) {
+                *o = finite_number(file, None, &field, x)?;
+            }
+            Ok(out)
+        };
+        let xyz = finite("origin xyz", &j.origin.xyz)?;
+        let rpy = finite("origin rpy", &j.origin.rpy)?;
+        let o = from_xyz_rpy(xyz.map(|m| 1000.0 * m), rpy);
         match &j.joint_type {
             urdf_rs::JointType::Fixed => pending *= o,
             urdf_rs::JointType::Revolute | urdf_rs::JointType::Continuous => {
-                let a = Vector3::from(*j.axis.xyz);
+                let a = Vector3::from(finite("axis xyz", &j.axis.xyz)?);
                 let norm = a.norm();
                 if !(norm > 0.0 && norm.is_finite()) {
                     return Err(err(Some(&j.name), "a joint axis of zero length".into()));

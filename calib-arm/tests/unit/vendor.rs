@@ -60,6 +60,29 @@ mod tests {
             }
         }
     }
+
+    #[test]
+    fn a_chain_with_a_non_finite_number_is_no_arm() {
+        let radii = ImportRadii {
+            angle_deg: 0.1,
+            length_mm: 1.0,
+        };
+        let good = [trans(0.0, 0.0, 120.0), trans(300.0, 0.0, 0.0), rx(0.5)];
+        assert!(chain_to_arm(&good, radii).is_ok());
+        // Wherever the NaN or the infinity sits (the first origin goes to the base, the others
+        // into the links), it is an error, never an arm to write.
+        for k in 0..3 {
+            for bad in [f64::NAN, f64::INFINITY] {
+                let mut origins = good;
+                origins[k] *= trans(bad, 0.0, 0.0);
+                let e = chain_to_arm(&origins, radii).unwrap_err();
+                assert!(
+                    e.contains("non-finite") || e.contains("split"),
+                    "{k} {bad}: {e}"
+                );
+            }
+        }
+    }
 }
 
 mod ur10 {

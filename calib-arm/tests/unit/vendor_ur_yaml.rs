@@ -29,7 +29,32 @@ fn bad_files_are_named_with_line_and_field() {
     let e = parse(f, &UR10.replace("forearm", "fore_arm")).unwrap_err();
     assert!(e.line.is_some() && e.message.contains("fore_arm"), "{e}");
     let e = parse(f, &UR10.replace("x: -0.612", "x: -612e9")).unwrap_err();
-    assert_eq!((e.line, e.field.as_deref()), (Some(16), Some("forearm")));
+    assert_eq!((e.line, e.field.as_deref()), (Some(17), Some("forearm.x")));
     let e = parse(f, "kinematics: [1, 2]").unwrap_err();
     assert_eq!(e.line, Some(1));
+}
+
+#[test]
+fn non_finite_numbers_are_refused_naming_the_line_and_the_field() {
+    let f = Path::new("bad.yaml");
+    // YAML's own spellings of NaN and the infinities.
+    for bad in [".nan", ".NaN", ".inf", "-.inf", "+.INF"] {
+        let e = parse(
+            f,
+            &UR10.replace("roll: 1.570796327", &format!("roll: {bad}")),
+        )
+        .unwrap_err();
+        assert_eq!(
+            (e.line, e.field.as_deref()),
+            (Some(13), Some("upper_arm.roll")),
+            "{e}"
+        );
+        assert!(e.message.contains("expected a finite number"), "{bad}: {e}");
+        assert_eq!(e.file, f);
+    }
+    // Rust's spellings and an overflowing decimal are not YAML numbers: a type error at the line.
+    for bad in ["nan", "inf", "1e999"] {
+        let e = parse(f, &UR10.replace("x: -0.612", &format!("x: {bad}"))).unwrap_err();
+        assert_eq!(e.line, Some(17), "{bad}: {e}");
+    }
 }

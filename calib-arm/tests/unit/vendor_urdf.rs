@@ -69,3 +69,63 @@ fn axes_other_than_z_and_fixed_links_fold_into_the_chain() {
         "{e}"
     );
 }
+
+/// A three-joint URDF whose second joint's origin is `xyz`, `rpy` and axis `axis`.
+fn three_joints(xyz: &str, rpy: &str, axis: &str) -> String {
+    format!(
+        r#"<robot name="r">
+  <link name="base"/><link name="l1"/><link name="l2"/><link name="l3"/>
+  <joint name="shoulder_pan_joint" type="revolute"><parent link="base"/><child link="l1"/>
+<origin xyz="0 0 0.2" rpy="0 0 0"/><axis xyz="0 0 1"/>
+<limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="shoulder_lift_joint" type="continuous"><parent link="l1"/><child link="l2"/>
+<origin xyz="{xyz}" rpy="{rpy}"/><axis xyz="{axis}"/></joint>
+  <joint name="elbow_joint" type="continuous"><parent link="l2"/><child link="l3"/>
+<origin xyz="0.25 0.02 0" rpy="0 0 0"/><axis xyz="0 0 1"/></joint>
+</robot>"#
+    )
+}
+
+#[test]
+fn non_finite_numbers_are_refused_naming_the_joint_and_the_attribute() {
+    let f = Path::new("arm.urdf");
+    let good = ("0.3 0 0", "0 0 0", "0 1 0");
+    assert_eq!(
+        parse(f, &three_joints(good.0, good.1, good.2), None, None)
+            .expect("a chain")
+            .len(),
+        3
+    );
+    // Rust's float parser (which urdf-rs uses) reads all of these as NaN or an infinity.
+    for bad in ["nan", "NaN", "inf", "-inf", "infinity", "1e999"] {
+        for (text, attribute) in [
+            (
+                three_joints(&format!("0.3 {bad} 0"), good.1, good.2),
+                "origin xyz",
+            ),
+            (
+                three_joints(good.0, &format!("0 0 {bad}"), good.2),
+                "origin rpy",
+            ),
+            (
+                three_joints(good.0, good.1, &format!("0 {bad} 0")),
+                "axis xyz",
+            ),
+        ] {
+            let e = parse(f, &text, None, None).unwrap_err();
+            let field = format!("joint 'shoulder_lift_joint' {attribute}");
+            assert_eq!(e.field.as_deref(), Some(field.as_str()), "{bad}: {e}");
+            assert_eq!(e.file, f);
+            assert!(e.message.contains("expected a finite number"), "{bad}: {e}");
+        }
+    }
+    // A fixed joint folded into the chain is read too.
+    let fixed = three_joints(good.0, good.1, good.2).replace(
+        r#"<joint name="shoulder_pan_joint" type="revolute"><parent link="base"/>"#,
+        r#"<link name="m"/><joint name="mount" type="fixed"><parent link="base"/>
+<child link="m"/><origin xyz="0 0 inf"/></joint>
+<joint name="shoulder_pan_joint" type="revolute"><parent link="m"/>"#,
+    );
+    let e = parse(f, &fixed, None, None).unwrap_err();
+    assert_eq!(e.field.as_deref(), Some("joint 'mount' origin xyz"), "{e}");
+}

@@ -88,3 +88,72 @@ fn uncertainty_requires_what_the_measurements_need() {
         Some("len")
     );
 }
+
+#[test]
+fn non_finite_numbers_are_refused_with_line_and_field() {
+    let robot = Path::new("robot.toml");
+    let good = "[[leg]]\na = [1, 2, 3]\nb = [4, 5, 6]\nl = 7.5\nradius = 0.1\n";
+    // TOML's spellings of NaN and the infinities; `-1e999` reads as minus infinity.
+    for bad in ["nan", "-nan", "inf", "+inf", "-inf", "-1e999"] {
+        for (from, to, line, field) in [
+            (
+                "a = [1, 2, 3]",
+                format!("a = [1, {bad}, 3]"),
+                2,
+                "leg[1].ay",
+            ),
+            (
+                "b = [4, 5, 6]",
+                format!("b = [4, 5, {bad}]"),
+                3,
+                "leg[1].bz",
+            ),
+            ("l = 7.5", format!("l = {bad}"), 4, "leg[1].l"),
+            (
+                "radius = 0.1",
+                format!("radius = {bad}"),
+                5,
+                "leg[1].radius",
+            ),
+        ] {
+            let e = parse_robot(robot, &good.replace(from, &to)).unwrap_err();
+            assert_eq!(
+                (e.line, e.field.as_deref()),
+                (Some(line), Some(field)),
+                "{bad}: {e}"
+            );
+            assert!(e.message.contains("expected a finite number"), "{bad}: {e}");
+        }
+        let u = Path::new("uncertainty.toml");
+        let e = parse_uncertainty(u, &format!("pos = 0.1\nlen = 0.1\nq = {bad}\n")).unwrap_err();
+        assert_eq!(
+            (e.line, e.field.as_deref()),
+            (Some(3), Some("q")),
+            "{bad}: {e}"
+        );
+    }
+    let f = Path::new("measurements.csv");
+    let row = "0,0,60,0.01,0,0.02,10\n";
+    for bad in ["nan", "NaN", "inf", "-inf", "infinity", "1e999", "-1e999"] {
+        let text = format!(
+            "px,py,pz,q1,q2,q3,L1\n{}0,0,60,0.01,{bad},0.02,10\n",
+            row.repeat(7)
+        );
+        let e = parse_measurements(f, &text, 1).unwrap_err();
+        assert_eq!(
+            (e.line, e.field.as_deref()),
+            (Some(9), Some("q2")),
+            "{bad}: {e}"
+        );
+        let e = parse_poses(
+            Path::new("poses.csv"),
+            &format!("px,py,pz,ax,ay,az,angle_deg\n0,0,{bad},0,0,1,5\n"),
+        )
+        .unwrap_err();
+        assert_eq!(
+            (e.line, e.field.as_deref()),
+            (Some(2), Some("pz")),
+            "{bad}: {e}"
+        );
+    }
+}

@@ -39,6 +39,16 @@ fn bad_fields_are_named_with_their_line() {
             Some("z"),
         ),
         (
+            "x = [-5, 5]\ny = [-inf, 5]\nz = [55, 65]\ntilt_deg = 15\n",
+            2,
+            Some("y"),
+        ),
+        (
+            "x = [-5, 5]\ny = [-5, 5]\nz = [55, 65]\ntilt_deg = nan\n",
+            4,
+            Some("tilt_deg"),
+        ),
+        (
             "x = [-5, 5]\ny = [-5]\nz = [55, 65]\ntilt_deg = 15\n",
             2,
             None,

@@ -28,3 +28,29 @@ fn toml_errors_point_at_the_line() {
     assert!(e.line.is_some_and(|l| l >= 2), "{e}");
     assert!(e.message.ends_with("expected numbers"));
 }
+
+#[test]
+fn non_finite_numbers_are_named_with_file_line_and_field() {
+    let f = Path::new("data.toml");
+    assert_eq!(finite_number(f, Some(3), "x", -2.5), Ok(-2.5));
+    assert_eq!(
+        finite_number(f, None, "x", MAX_MAGNITUDE),
+        Ok(MAX_MAGNITUDE)
+    );
+    let overflow: f64 = "1e999".parse().unwrap();
+    for (v, found) in [
+        (f64::NAN, "NaN"),
+        (f64::INFINITY, "inf"),
+        (f64::NEG_INFINITY, "-inf"),
+        (overflow, "inf"),
+        (-1e101, "-1e101"),
+    ] {
+        let e = finite_number(f, Some(3), "joint[2].d", v).unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.starts_with("data.toml, line 3, field `joint[2].d`: expected a finite number"),
+            "{text}"
+        );
+        assert!(text.contains(&format!("found {found}")), "{text}");
+    }
+}

@@ -23,6 +23,14 @@ fn reads_numbers_and_names_every_problem() {
     assert_eq!((e.line, e.field.as_deref()), (Some(3), Some("px")));
     let e = parse_number_table(f, "q1,px\n1e300,2\n", &h).unwrap_err();
     assert_eq!((e.line, e.field.as_deref()), (Some(2), Some("q1")));
+    // Every spelling of a non-finite number Rust's parser accepts, and a decimal that overflows.
+    for bad in ["nan", "inf", "-inf", "infinity", "1e999", "-1e999"] {
+        let e = parse_number_table(f, &format!("q1,px\n1,2\n{bad},2\n"), &h).unwrap_err();
+        assert_eq!((e.line, e.field.as_deref()), (Some(3), Some("q1")), "{bad}");
+        assert!(e.message.contains("expected a finite number"), "{bad}: {e}");
+        let e = parse_named_columns(f, &format!("px;q1\n2;{bad}\n"), &h).unwrap_err();
+        assert_eq!((e.line, e.field.as_deref()), (Some(2), Some("q1")), "{bad}");
+    }
     let e = parse_number_table(f, "q1,px\n1,2,3\n", &h).unwrap_err();
     assert_eq!(e.line, Some(2));
     assert!(e.message.contains("columns"), "{e}");
