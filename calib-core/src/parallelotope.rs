@@ -47,6 +47,18 @@ impl<const NX: usize> Parallelotope<NX> {
     /// The parallelotope of `set` about `about` (module documentation): `2n` linear programs for
     /// `n` free coordinates. `None` for an empty set or when a range could not be bounded.
     pub fn around<const NM: usize>(set: &CertifiedSet<NX, NM>, about: &[f64; NX]) -> Option<Self> {
+        Self::around_along(set, about, &[])
+    }
+
+    /// [`Parallelotope::around`] with a basis that follows the linear functions `hints` (the
+    /// eigenvectors of `Σ h hᵀ` over the hints, each scaled to unit length in the scaled
+    /// coordinates, plus a small share of the data's normal matrix to settle the directions no
+    /// hint reaches): the parallelotope is then tight along what will be asked of it.
+    pub fn around_along<const NM: usize>(
+        set: &CertifiedSet<NX, NM>,
+        about: &[f64; NX],
+        hints: &[[f64; NX]],
+    ) -> Option<Self> {
         let outer = set.outer()?;
         let delta: [Interval; NX] = core::array::from_fn(|j| outer[j] - Interval::point(about[j]));
         let first = set.pieces().first()?.polyhedron();
@@ -65,6 +77,23 @@ impl<const NX: usize> Parallelotope<NX> {
                 for a in 0..n {
                     for b in 0..n {
                         normal[(a, b)] += g[a] * g[b];
+                    }
+                }
+            }
+        }
+        if !hints.is_empty() {
+            let trace: f64 = (0..n).map(|a| normal[(a, a)]).sum();
+            let share = if trace > 0.0 { 1e-6 / trace } else { 0.0 };
+            normal *= share;
+            for h in hints {
+                let g: Vec<f64> = mixed.iter().zip(&scale).map(|(&j, s)| h[j] * s).collect();
+                let len2: f64 = g.iter().map(|v| v * v).sum();
+                if !(len2 > 0.0 && len2.is_finite()) {
+                    continue;
+                }
+                for a in 0..n {
+                    for b in 0..n {
+                        normal[(a, b)] += g[a] * g[b] / len2;
                     }
                 }
             }

@@ -8,20 +8,23 @@
 //!
 //! with `g_j ⊇ ∂p/∂θ_j` over `Q' ×` the set's outer box (with `θ̂`) and `H ⊇ ∂p/∂q` there.
 //!
-//! **At the set's scale.** On joint boxes up to [`AFFINE_WIDTH`] wide, each `g_j` is an affine
-//! form in the joints' noise symbols `ε_i` ([`calib_core::Affine`] carried through the model's
-//! derivatives, [`calib_core::Jet`]): `g_j = c_j + Σ_i a_ji ε_i ± e_j`. Along a unit direction
-//! `u`, the error's component is then at most
+//! **At the set's scale.** On joint boxes up to [`QUADRATIC_WIDTH`] wide, each `g_j` is a
+//! second-order model in the joints' noise symbols `ε_i` ([`Quadratic`] carried through the
+//! model's derivatives, [`calib_core::Jet`]): `g_j = c_j + Σ_i a_ji ε_i + Σ_{i<=k} b_jik ε_i
+//! ε_k ± e_j`, `e_j` of third order. Along a unit direction `u`, the error's component is then
+//! at most
 //!
-//! `h_S(ū) + Σ_i max_S |(u·a_i)·δ| + Σ_j (|u|·e_j) max|δ_j| + |u|·(encoder term)`,
+//! `h_S(ū) + Σ_i max_S |(u·a_i)·δ| + Σ_{i<=k} max_S |(u·b_ik)·δ| + Σ_j (|u|·e_j) max|δ_j|
+//! + |u|·(encoder term)`,
 //!
 //! `ū_j = u·c_j`: the main term `h_S` — the support function of the set — is one linear program
 //! per piece ([`calib_core::SetQuery::max_linear`], safe bounds), or, where that is enough to
 //! discard the box, the bound of a parallelotope around the set aligned with what the data
-//! determine ([`Parallelotope`]); the joints' terms, first order in the box's width, take the
-//! parallelotope; only the remainders `e_j` (the affine forms' nonlinear remainders and the
-//! curvature in `θ` over the outer box, both of second order) meet the outer box. Wider joint
-//! boxes take the interval slopes `g_j` (midpoints in the program, radii against the box).
+//! determine ([`Parallelotope`]); the joints' terms, of first and second order in the box's
+//! width, take the parallelotope; only the remainders `e_j` (the models' third-order remainders
+//! and the curvature in `θ` over the outer box, of second order in the set's reach) meet the
+//! outer box. Wider joint boxes take the interval slopes `g_j` (midpoints in the program, radii
+//! against the box).
 //!
 //! The error vector's components along an orthonormal frame `u_1, u_2, u_3` — `u_1` the
 //! direction of the largest error the catalogue shows at the box's centre — lie in three ranges,
@@ -32,7 +35,6 @@
 //! pushed along the error's gradient at joints spread over the box, and at every configuration
 //! where the search raises the lower bound), with exact joints.
 
-use super::directions::{JointForm, AFFINE_WIDTH};
 use super::{norm, SearchPoint, ToolBracket, ToolInstance};
 use crate::certification::{padded_index, ArmSet, MAX_JOINTS, NM, NX};
 use crate::joint_space::JointSpace;
@@ -40,7 +42,9 @@ use crate::model::arm7_point;
 use crate::robot::Arm;
 use crate::units::{deg_to_rad, rad_to_deg, to_deg};
 use crate::Arm7Point;
-use calib_core::{maximize, Interval, Jet, MaximumSettings, Objective, Parallelotope, VectorModel};
+use calib_core::{
+    maximize, Interval, Jet, MaximumSettings, Objective, Parallelotope, Quadratic, VectorModel,
+};
 use std::cell::{Cell, RefCell};
 use std::time::Instant;
 
@@ -56,7 +60,10 @@ const CATALOGUE_CONFIGURATIONS: usize = 6;
 /// The tool-point accuracy problem over a certified set.
 pub struct SetToolAccuracy {
     joints: usize,
-    set: RefCell<ArmSet>,
+    /// The set the bounds are proved over.
+    set: ArmSet,
+    /// A copy of it that collects the certified points of the lower bounds (pushes add points).
+    pushes: RefCell<ArmSet>,
     /// `θ̂` (radians, padded).
     nominal: [f64; NX],
     /// The set's outer box, with `θ̂`.
@@ -112,10 +119,11 @@ impl SetToolAccuracy {
             );
             domain[i] = Interval::new(l.inf(), h.sup());
         }
-        let parallelotope = Parallelotope::around(&set, &nominal);
+        let parallelotope = Parallelotope::around_along(&set, &nominal, &hints(&domain, &nominal));
         let out = SetToolAccuracy {
             joints,
-            set: RefCell::new(set),
+            pushes: RefCell::new(set.clone()),
+            set,
             nominal,
             hull,
             reach,
@@ -142,7 +150,7 @@ impl SetToolAccuracy {
             m[..MAX_JOINTS].copy_from_slice(&q);
             for e in Arm7Point.evaluate_rows(&self.nominal, &m) {
                 for sign in [1.0, -1.0] {
-                    self.set
+                    self.pushes
                         .borrow_mut()
                         .extreme_point(&Arm7Point, &e.dx.map(|v| sign * v));
                 }
@@ -153,7 +161,7 @@ impl SetToolAccuracy {
 
     /// The catalogue: every certified point the set holds.
     fn refresh_catalogue(&self) {
-        *self.catalogue.borrow_mut() = self.set.borrow().points().iter().map(|p| p.x).collect();
+        *self.catalogue.borrow_mut() = self.pushes.borrow().points().iter().map(|p| p.x).collect();
     }
 
     /// Pushes the set along the error's gradient at `q` (the direction of the catalogue's largest
@@ -168,7 +176,7 @@ impl SetToolAccuracy {
         let gradient: [f64; NX] =
             core::array::from_fn(|j| (0..3).map(|r| u[r] * rows[r].dx[j]).sum());
         if self
-            .set
+            .pushes
             .borrow_mut()
             .extreme_point(&Arm7Point, &gradient)
             .is_some()
@@ -197,7 +205,7 @@ impl SetToolAccuracy {
     /// An upper bound of the error over the joint box `q` (module documentation): the
     /// parallelotope's bound, and where that exceeds `enough`, the linear programs' (the smaller
     /// of the two). `+∞` when an enclosure failed.
-    fn upper(&self, q: &[Interval; MAX_JOINTS], enough: f64) -> f64 {
+    fn upper(&self, q: &[Interval; MAX_JOINTS], enough: f64, lps: &mut LinearPrograms) -> f64 {
         // The real arm's joints lie within the joint error of the box.
         let widened: [Interval; MAX_JOINTS] = core::array::from_fn(|i| {
             q[i] + Interval::new(-self.joint_rad.sup(), self.joint_rad.sup())
@@ -211,10 +219,14 @@ impl SetToolAccuracy {
         let centre = q.map(|v| v.mid());
         let frame = frame(self.direction_at(&centre).unwrap_or([1.0, 0.0, 0.0]));
         let widest = widened.iter().map(|v| v.wid()).fold(0.0, f64::max);
-        let affine = (widest <= AFFINE_WIDTH).then(|| self.affine_columns(&widened));
+        let models = if widest <= QUADRATIC_WIDTH {
+            self.quadratic_columns(&widened)
+        } else {
+            None
+        };
         let slopes = |axis: &[f64; 3]| -> Slopes {
-            match &affine {
-                Some(columns) => Slopes::affine(axis, columns, &rows, &self.reach),
+            match &models {
+                Some(columns) => Slopes::quadratic(axis, columns, &rows, &self.reach),
                 None => Slopes::interval(axis, &rows),
             }
         };
@@ -227,17 +239,32 @@ impl SetToolAccuracy {
                 (slopes(u), extra.sup())
             })
             .collect();
-        // The bound with the main terms' support from `main` and the joints' from `joint`.
-        type Support<'a> = &'a mut dyn FnMut(&[Interval; NX]) -> f64;
-        let bound = |main: Support, joint: Support| -> f64 {
+        // Σ max_S |a·δ| over the joints' terms: over the parallelotope, or the outer box.
+        let terms = |joint: &[[Interval; NX]]| -> f64 {
+            joint.iter().fold(0.0, |acc, a| {
+                let t = match &self.parallelotope {
+                    Some(p) => p.max_abs_linear(a),
+                    None => (0..NX)
+                        .fold(Interval::ZERO, |s, j| {
+                            s + Interval::point(a[j].mag()) * Interval::point(self.reach[j])
+                        })
+                        .sup(),
+                };
+                add_up(acc, t)
+            })
+        };
+        let fixed: Vec<f64> = per_axis
+            .iter()
+            .map(|(s, extra)| add_up(add_up(s.rest, *extra), terms(&s.joint)))
+            .collect();
+        // The norm's bound from the frame's ranges, the main terms' support from `main` (told
+        // the slot of its linear function: programs warm-start per slot).
+        let bound = |main: &mut dyn FnMut(usize, &[Interval; NX]) -> f64| -> f64 {
             let ranges: FrameRanges = core::array::from_fn(|k| {
-                let (s, extra) = &per_axis[k];
-                let mut fixed = add_up(s.rest, *extra);
-                for a in &s.joint {
-                    fixed = add_up(fixed, joint(a).max(joint(&a.map(|v| -v))));
-                }
-                let hi = add_up(main(&s.main), fixed);
-                let lo = -add_up(main(&s.main.map(|v| -v)), fixed);
+                let slot = Slot::Axis(k);
+                let s = &per_axis[k].0;
+                let hi = add_up(main(slot.up(), &s.main), fixed[k]);
+                let lo = -add_up(main(slot.down(), &s.main.map(|v| -v)), fixed[k]);
                 if lo.is_finite() && hi.is_finite() && lo <= hi {
                     Interval::new(lo, hi)
                 } else {
@@ -246,44 +273,31 @@ impl SetToolAccuracy {
             });
             farthest_corner(&ranges)
         };
-        // Stages, each only where the previous ones cannot discard the box: everything over the
-        // parallelotope; the main terms by linear programs; then the norm by the directions of
-        // the sphere's cover instead of the frame's corner.
-        let parallelotope = |w: &[Interval; NX]| match &self.parallelotope {
-            Some(p) => p.max_linear(w),
-            None => f64::INFINITY,
-        };
+        // Stages, each only where the previous ones cannot discard the box: the main terms over
+        // the parallelotope; by linear programs; then the norm by the directions of the sphere's
+        // cover instead of the frame's corner.
         let mut best = f64::INFINITY;
-        if self.parallelotope.is_some() {
-            best = bound(&mut |w| parallelotope(w), &mut |w| parallelotope(w));
+        if let Some(p) = &self.parallelotope {
+            best = bound(&mut |_, w| p.max_linear(w));
             if best <= enough {
                 return best;
             }
         }
-        let set = self.set.borrow();
-        let query = RefCell::new(set.query_own_rows());
-        let lp = |w: &[Interval; NX]| query.borrow_mut().max_linear(w, &self.nominal).upper;
-        let joint_support: &dyn Fn(&[Interval; NX]) -> f64 = if self.parallelotope.is_some() {
-            &parallelotope
-        } else {
-            &lp
-        };
-        best = best.min(bound(&mut |w| lp(w), &mut |w| joint_support(w)));
+        let mut lp = |slot: usize, w: &[Interval; NX]| lps.max_linear(slot, w, &self.nominal);
+        best = best.min(bound(&mut lp));
         if best <= enough {
             return best;
         }
         // ‖d‖ <= max_k u_k·d / cos α over directions u_k covering the sphere within α.
         let cover = SphereCover::get();
         let mut largest = 0.0f64;
-        for u in &cover.directions {
+        for (d, u) in cover.directions.iter().enumerate() {
             let s = slopes(u);
             let extra = (0..3).fold(Interval::ZERO, |acc, r| {
                 acc + Interval::point(u[r].abs()) * Interval::point(encoder[r])
             });
-            let mut v = add_up(lp(&s.main), add_up(s.rest, extra.sup()));
-            for a in &s.joint {
-                v = add_up(v, joint_support(a).max(joint_support(&a.map(|x| -x))));
-            }
+            let rest = add_up(add_up(s.rest, extra.sup()), terms(&s.joint));
+            let v = add_up(lp(Slot::Cover(d).up(), &s.main), rest);
             if v.is_nan() {
                 return best;
             }
@@ -296,26 +310,41 @@ impl SetToolAccuracy {
         best.min((Interval::point(largest) / Interval::point(cover.cos_radius)).sup())
     }
 
-    /// The columns `∂p/∂θ_j` over the set's outer box and the joint box `q`, as affine forms in
-    /// the joints (one noise symbol per joint).
-    fn affine_columns(&self, q: &[Interval; MAX_JOINTS]) -> [[JointForm; 3]; NX] {
-        let x: [Jet<JointForm, NX>; NX] = core::array::from_fn(|j| {
-            let v = JointForm::from_interval(self.hull[j]);
-            if self.reach[j] > 0.0 {
-                Jet::variable(v, j)
-            } else {
-                Jet::constant(v)
-            }
-        });
-        let m: [Jet<JointForm, NX>; NM] = core::array::from_fn(|k| {
-            Jet::constant(if k < MAX_JOINTS {
-                JointForm::input(q[k], k)
-            } else {
-                JointForm::from_interval(Interval::ZERO)
-            })
-        });
-        let p = arm7_point(&x, &m);
-        core::array::from_fn(|j| [p[0].grad[j], p[1].grad[j], p[2].grad[j]])
+    /// The columns `∂p/∂θ_j` over the set's outer box and the joint box `q`, as second-order
+    /// models in the joints (one noise symbol per joint), computed on a thread with a stack large
+    /// enough for the derivatives' models. `None` if that thread could not run.
+    fn quadratic_columns(&self, q: &[Interval; MAX_JOINTS]) -> Option<Box<Columns>> {
+        let q = *q;
+        let (hull, reach) = (self.hull, self.reach);
+        let evaluate = move || -> Box<Columns> {
+            let x: [Jet<JointModel, NX>; NX] = core::array::from_fn(|j| {
+                let v = JointModel::from_interval(hull[j]);
+                if reach[j] > 0.0 {
+                    Jet::variable(v, j)
+                } else {
+                    Jet::constant(v)
+                }
+            });
+            let m: [Jet<JointModel, NX>; NM] = core::array::from_fn(|k| {
+                Jet::constant(if k < MAX_JOINTS {
+                    JointModel::input(q[k], k)
+                } else {
+                    JointModel::from_interval(Interval::ZERO)
+                })
+            });
+            let p = arm7_point(&x, &m);
+            Box::new(core::array::from_fn(|j| {
+                [p[0].grad[j], p[1].grad[j], p[2].grad[j]]
+            }))
+        };
+        std::thread::scope(|s| {
+            std::thread::Builder::new()
+                .stack_size(MODEL_STACK_BYTES)
+                .spawn_scoped(s, evaluate)
+                .ok()?
+                .join()
+                .ok()
+        })
     }
 
     /// The error `p(q; θ) - p(q; θ̂)` at exact joints `q`, enclosed.
@@ -385,6 +414,41 @@ impl SetToolAccuracy {
         best.0
     }
 }
+
+/// The linear functions the bounds ask of the parallelotope: the tool point's gradients in the
+/// parameters, per coordinate, at joints spread over the box, and their derivatives in each
+/// joint (finite differences).
+fn hints(domain: &[Interval; MAX_JOINTS], nominal: &[f64; NX]) -> Vec<[f64; NX]> {
+    let mut out = Vec::new();
+    let gradients = |q: &[f64; MAX_JOINTS]| {
+        let mut m = [0.0; NM];
+        m[..MAX_JOINTS].copy_from_slice(q);
+        Arm7Point.evaluate_rows(nominal, &m).map(|e| e.dx)
+    };
+    for k in 0..HINT_CONFIGURATIONS {
+        let q: [f64; MAX_JOINTS] = core::array::from_fn(|i| {
+            let t = ((k as f64 + 0.5) * (i as f64 + 1.0) * 0.618_033_988_7).fract();
+            domain[i].inf() + t * domain[i].wid()
+        });
+        let g = gradients(&q);
+        out.extend(g);
+        for i in 0..MAX_JOINTS {
+            if domain[i].wid() == 0.0 {
+                continue;
+            }
+            let mut moved = q;
+            moved[i] += 1e-4;
+            let h = gradients(&moved);
+            for r in 0..3 {
+                out.push(core::array::from_fn(|j| (h[r][j] - g[r][j]) / 1e-4));
+            }
+        }
+    }
+    out
+}
+
+/// Joint configurations whose gradients shape the parallelotope.
+const HINT_CONFIGURATIONS: usize = 24;
 
 /// `a + b` rounded up.
 fn add_up(a: f64, b: f64) -> f64 {
@@ -511,6 +575,7 @@ impl SphereCover {
             })
             .fold(1.0, f64::min)
             - 1e-9;
+        debug_assert_eq!(v.len(), COVER_DIRECTIONS);
         SphereCover {
             directions: v,
             cos_radius,
@@ -569,42 +634,48 @@ impl Slopes {
         }
     }
 
-    /// From the affine columns: the centres in the main term, each joint's coefficients bounded
-    /// over the parallelotope (or the outer box without one), the remainders against the reach.
-    fn affine(
+    /// From the second-order columns: the centres in the main term; each joint's linear
+    /// coefficients and each pair's quadratic ones as terms bounded apart (their noise symbols'
+    /// products lie in `[-1, 1]`); the error radii against the reach.
+    fn quadratic(
         u: &[f64; 3],
-        columns: &[[JointForm; 3]; NX],
+        columns: &Columns,
         rows: &[calib_core::Evaluation<Interval, NX, NM>; 3],
         reach: &[f64; NX],
     ) -> Self {
         let ui = u.map(Interval::point);
         let mut main = [Interval::ZERO; NX];
         let mut remainder = Interval::ZERO;
-        let mut joint = [[Interval::ZERO; NX]; MAX_JOINTS];
+        let mut terms = vec![[Interval::ZERO; NX]; TERMS];
         for j in 0..NX {
             if reach[j] == 0.0 {
                 continue;
             }
             let c = &columns[j];
-            if (0..3).any(|r| !c[r].radius().is_finite()) {
-                // A failed form: the interval slope, all in the main term.
+            if (0..3).any(|r| !(c[r].error().is_finite() && c[r].centre().is_finite())) {
+                // A failed model: the interval slope, all in the main term.
                 main[j] = (0..3).fold(Interval::ZERO, |s, r| s + ui[r] * rows[r].dx[j]);
                 continue;
             }
-            main[j] = (0..3).fold(Interval::ZERO, |s, r| {
-                s + ui[r] * Interval::point(c[r].centre())
-            });
+            let along = |f: &dyn Fn(&JointModel) -> f64| {
+                (0..3).fold(Interval::ZERO, |s, r| s + ui[r] * Interval::point(f(&c[r])))
+            };
+            main[j] = along(&|m| m.centre());
             let e = (0..3).fold(Interval::ZERO, |s, r| {
                 s + Interval::point(u[r].abs()) * Interval::point(c[r].error())
             });
             remainder += e * Interval::point(reach[j]);
-            for (i, slot) in joint.iter_mut().enumerate() {
-                slot[j] = (0..3).fold(Interval::ZERO, |s, r| {
-                    s + ui[r] * Interval::point(c[r].coefficients()[i])
-                });
+            let mut t = 0;
+            for i in 0..MAX_JOINTS {
+                terms[t][j] = along(&|m| m.linear()[i]);
+                t += 1;
+                for k in i..MAX_JOINTS {
+                    terms[t][j] = along(&|m| m.quadratic(i, k));
+                    t += 1;
+                }
             }
         }
-        let joint = joint
+        let joint = terms
             .into_iter()
             .filter(|a| a.iter().any(|v| v.mag() > 0.0))
             .collect();
@@ -616,11 +687,85 @@ impl Slopes {
     }
 }
 
+/// Second-order models in the joints' noise symbols.
+type JointModel = Quadratic<MAX_JOINTS>;
+
+/// The columns `∂p/∂θ_j` as second-order models, per parameter and coordinate.
+type Columns = [[JointModel; 3]; NX];
+
+/// How many terms a column's joints make: one linear per joint, one quadratic per pair.
+const TERMS: usize = MAX_JOINTS + MAX_JOINTS * (MAX_JOINTS + 1) / 2;
+
+/// Joint boxes at most this wide (radians, every joint) get the second-order columns (sines and
+/// cosines of a joint deviating by at most 1 from its centre, [`Quadratic`]'s reach).
+const QUADRATIC_WIDTH: f64 = 1.0;
+
+/// The stack of the thread that evaluates the second-order columns (each derivative's model is
+/// ~21 KB; the arm's evaluator holds a few hundred).
+const MODEL_STACK_BYTES: usize = 256 << 20;
+
+/// Which linear function a program bounds: programs of the same slot warm-start from each
+/// other (their objectives move little from one joint box to the next).
+#[derive(Clone, Copy)]
+enum Slot {
+    /// The main term along frame axis `k`.
+    Axis(usize),
+
+    /// The main term along the cover's direction `d`.
+    Cover(usize),
+}
+
+impl Slot {
+    /// The slot's index for the largest value (`down`: for the smallest).
+    fn up(self) -> usize {
+        2 * match self {
+            Slot::Axis(k) => k,
+            Slot::Cover(d) => 3 + d,
+        }
+    }
+
+    fn down(self) -> usize {
+        self.up() + 1
+    }
+}
+
+/// How many directions the sphere's cover has (the icosahedron subdivided once).
+const COVER_DIRECTIONS: usize = 42;
+
+/// How many slots there are.
+const SLOTS: usize = 2 * (3 + COVER_DIRECTIONS);
+
+/// One query of the set per slot, made when first needed.
+struct LinearPrograms<'a> {
+    set: &'a ArmSet,
+    queries: Vec<Option<calib_core::SetQuery<'a, NX, NM>>>,
+}
+
+impl<'a> LinearPrograms<'a> {
+    fn new(set: &'a ArmSet) -> Self {
+        LinearPrograms {
+            set,
+            queries: (0..SLOTS).map(|_| None).collect(),
+        }
+    }
+
+    /// An upper bound of `Σ_j w_j (θ_j - about_j)` over the set (the slot's program).
+    fn max_linear(&mut self, slot: usize, w: &[Interval; NX], about: &[f64; NX]) -> f64 {
+        let set = self.set;
+        self.queries[slot]
+            .get_or_insert_with(|| set.query_own_rows())
+            .max_linear(w, about)
+            .upper
+    }
+}
+
 /// The error as a function of the joints, for [`maximize`].
 struct SetToolError<'a> {
     problem: &'a SetToolAccuracy,
     /// The largest error attained so far (a box bounded below it needs no linear program).
     lower: Cell<f64>,
+    /// The programs, per slot.
+    lps: RefCell<LinearPrograms<'a>>,
 }
 
 impl Objective<MAX_JOINTS> for SetToolError<'_> {
@@ -629,13 +774,21 @@ impl Objective<MAX_JOINTS> for SetToolError<'_> {
     }
 
     fn enclose_up_to(&self, q: &[Interval; MAX_JOINTS], enough: f64) -> Interval {
-        Interval::new(0.0, self.problem.upper(q, enough.max(self.lower.get())))
+        let enough = enough.max(self.lower.get());
+        Interval::new(
+            0.0,
+            self.problem.upper(q, enough, &mut self.lps.borrow_mut()),
+        )
     }
 
     fn at(&self, x: &SearchPoint) -> Interval {
         // The instance's value, and the cheap bound at the point (a lower bound is what counts).
         let i = self.problem.instance(x);
-        let upper = self.problem.upper(&x.map(Interval::point), f64::INFINITY);
+        let upper = self.problem.upper(
+            &x.map(Interval::point),
+            f64::INFINITY,
+            &mut self.lps.borrow_mut(),
+        );
         if i.value > self.lower.get() {
             self.lower.set(i.value);
         }
@@ -678,6 +831,7 @@ pub fn certify_set_accuracy(
     let objective = SetToolError {
         problem,
         lower: Cell::new(0.0),
+        lps: RefCell::new(LinearPrograms::new(&problem.set)),
     };
     let m = maximize(
         &objective,
