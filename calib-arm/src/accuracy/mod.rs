@@ -118,8 +118,9 @@ pub struct ToolAccuracySettings {
     /// Examine at most this many joint boxes (default 20 000: at most about a minute on a
     /// 6-axis arm; a ±10° cell of every joint converges in about 8 000).
     pub max_boxes: usize,
-    /// Examine at most this many joint boxes over a certified set (default 300: each solves
-    /// eight linear programs of the arm's size, tens of milliseconds).
+    /// Examine at most this many joint boxes over a certified set (default 300: each takes the
+    /// arm's derivatives as second-order models and up to ninety warm-started linear programs,
+    /// tens of milliseconds).
     pub max_set_boxes: usize,
 }
 

@@ -41,7 +41,8 @@ pub struct Args {
     #[arg(long, value_name = "N", default_value_t = 20_000)]
     max_boxes: usize,
     /// Examine at most this many joint boxes over a certified set (each costs tens of
-    /// milliseconds on a 6-axis arm: eight linear programs of its size).
+    /// milliseconds on a 6-axis arm: its derivatives as second-order models in the joints, and
+    /// up to ninety linear programs over the set, warm-started).
     #[arg(long, value_name = "N", default_value_t = ToolAccuracySettings::default().max_set_boxes)]
     max_set_boxes: usize,
     /// Write the JSON report to this file.
