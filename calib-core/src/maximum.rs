@@ -73,6 +73,15 @@ pub trait Objective<const N: usize> {
     fn split_reference(&self, domain: &[Interval; N]) -> [Interval; N] {
         *domain
     }
+
+    /// Per coordinate, how much `f` changes per unit of that coordinate over the box `x` (an
+    /// estimate: its slope, plus its curvature times the half-width), when the objective has one:
+    /// the box is then split where `f` changes most, `width × weight` (the *smear* of interval
+    /// global optimisation), rather than at its widest side. Only the choice of split depends on
+    /// it, never a bound. By default none.
+    fn split_weights(&self, _x: &[Interval; N]) -> Option<[f64; N]> {
+        None
+    }
 }
 
 /// When to stop [`maximize`].
@@ -258,7 +267,7 @@ pub fn maximize<O: Objective<N>, const N: usize>(
             // Only settled boxes are left and the gap is still open: nothing more to do.
             return out;
         };
-        let Some((l, r)) = split_widest(&b, &reference) else {
+        let Some((l, r)) = split_by_weights(f, &b).or_else(|| split_widest(&b, &reference)) else {
             if settled.as_ref().is_none_or(|s| sup > s.key) {
                 settled = Some(Ranked { key: sup, item: b });
             }
@@ -281,6 +290,29 @@ pub fn maximize<O: Objective<N>, const N: usize>(
             });
         }
     }
+}
+
+/// `b` split at the coordinate of the largest `width × weight` ([`Objective::split_weights`]);
+/// `None` without weights or when that coordinate cannot be split.
+fn split_by_weights<O: Objective<N>, const N: usize>(
+    f: &O,
+    b: &[Interval; N],
+) -> Option<([Interval; N], [Interval; N])> {
+    let w = f.split_weights(b)?;
+    let largest = w
+        .iter()
+        .copied()
+        .filter(|v| v.is_finite())
+        .fold(0.0, f64::max);
+    if largest <= 0.0 {
+        return None;
+    }
+    // Every coordinate keeps a little weight: an estimate of 0 must not freeze a side for good.
+    let reference: [Interval; N] = core::array::from_fn(|j| {
+        let weight = if w[j].is_finite() { w[j] } else { largest };
+        Interval::new(0.0, 1.0 / weight.max(1e-3 * largest))
+    });
+    split_widest(b, &reference)
 }
 
 /// `f` over `b`: [`Objective::enclose_up_to`] with `enough`, intersected with the mean-value form

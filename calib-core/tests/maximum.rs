@@ -13,6 +13,8 @@ use rand::{Rng, SeedableRng};
 struct Wavy<const N: usize> {
     /// Whether [`Objective::gradient`] is offered (the mean-value form and monotonicity).
     gradient: bool,
+    /// Whether [`Objective::split_weights`] is offered (each coordinate's largest slope).
+    weights: bool,
     a: [f64; N],
     b: [f64; N],
     c: [f64; N],
@@ -23,6 +25,7 @@ impl<const N: usize> Wavy<N> {
     fn random(rng: &mut StdRng) -> Self {
         Wavy {
             gradient: false,
+            weights: false,
             a: core::array::from_fn(|_| rng.random_range(-2.0..2.0)),
             b: core::array::from_fn(|_| rng.random_range(-4.0..4.0)),
             c: core::array::from_fn(|_| rng.random_range(-3.0..3.0)),
@@ -47,6 +50,20 @@ impl<const N: usize> Objective<N> for Wavy<N> {
         self.eval(x)
     }
 
+    /// `|a_i b_i| + Σ_{j≠i} |d_ij| mag(x_j)`: a bound of `|∂f/∂x_i|` over the box.
+    fn split_weights(&self, x: &[Interval; N]) -> Option<[f64; N]> {
+        self.weights.then(|| {
+            core::array::from_fn(|i| {
+                let mut w = (self.a[i] * self.b[i]).abs();
+                for (j, xj) in x.iter().enumerate().filter(|(j, _)| *j != i) {
+                    let d = if i < j { self.d[i][j] } else { self.d[j][i] };
+                    w += d.abs() * xj.mag();
+                }
+                w
+            })
+        })
+    }
+
     /// `∂f/∂x_i = a_i b_i cos(b_i x_i + c_i) + Σ_{j≠i} d_ij x_j` (with `d_ij` for `i < j`).
     fn gradient(&self, x: &[Interval; N]) -> Option<[Interval; N]> {
         let c = Interval::point;
@@ -65,10 +82,21 @@ impl<const N: usize> Objective<N> for Wavy<N> {
 
 /// Maximises random [`Wavy`] functions over random boxes to `rel_tol` and checks the bracket.
 fn check_random<const N: usize>(seeds: std::ops::Range<u64>, gradient: bool, rel_tol: f64) {
+    check_random_split::<N>(seeds, gradient, false, rel_tol);
+}
+
+/// [`check_random`], with or without the split weights.
+fn check_random_split<const N: usize>(
+    seeds: std::ops::Range<u64>,
+    gradient: bool,
+    weights: bool,
+    rel_tol: f64,
+) {
     for seed in seeds {
         let mut rng = StdRng::seed_from_u64(seed);
         let f = Wavy::<N> {
             gradient,
+            weights,
             ..Wavy::random(&mut rng)
         };
         let domain: [Interval; N] = core::array::from_fn(|_| {
@@ -133,6 +161,38 @@ fn random_functions_are_bracketed_soundly() {
     // The natural enclosure alone converges only linearly: looser brackets, same soundness.
     check_random::<2>(300..320, false, 1e-3);
     check_random::<3>(400..410, false, 1e-2);
+}
+
+/// Split weights change where boxes are split, never the bracket's soundness; where one
+/// coordinate barely matters they save boxes.
+#[test]
+fn split_weights_keep_brackets_sound_and_spare_flat_coordinates() {
+    check_random_split::<2>(500..520, true, true, 1e-5);
+    check_random_split::<3>(600..610, false, true, 1e-2);
+    let f = |weights| Wavy::<3> {
+        gradient: false,
+        weights,
+        a: [2.0, 1e-9, 1e-9],
+        b: [4.0, 4.0, 4.0],
+        c: [0.3, 0.1, 0.2],
+        d: [[0.0; 3]; 3],
+    };
+    let domain = [Interval::new(-1.0, 1.0); 3];
+    let settings = MaximumSettings {
+        rel_tol: 1e-6,
+        ..Default::default()
+    };
+    let (plain, weighted) = (
+        maximize(&f(false), &domain, &settings),
+        maximize(&f(true), &domain, &settings),
+    );
+    assert!(plain.converged && weighted.converged);
+    assert!(
+        weighted.boxes * 2 < plain.boxes,
+        "{} boxes with weights, {} without",
+        weighted.boxes,
+        plain.boxes
+    );
 }
 
 /// `x0 + x1 - x2²` with its gradient: increasing in x0 and x1 everywhere.

@@ -185,6 +185,39 @@ impl SetToolAccuracy {
         }
     }
 
+    /// Per joint, how fast the catalogue's largest error at the box's centre changes with that
+    /// joint (its slope plus its curvature times the box's half-width, by central differences):
+    /// where to split the box.
+    fn error_variation(&self, q: &[Interval; MAX_JOINTS]) -> [f64; MAX_JOINTS] {
+        let centre = q.map(|v| v.mid());
+        let (theta, _) = self.best(&centre);
+        let error = |q: &[f64; MAX_JOINTS]| -> [f64; 3] {
+            let mut m = [0.0; NM];
+            m[..MAX_JOINTS].copy_from_slice(q);
+            let (p, p0) = (
+                Arm7Point.residuals(&theta, &m),
+                Arm7Point.residuals(&self.nominal, &m),
+            );
+            core::array::from_fn(|r| p[r] - p0[r])
+        };
+        let d0 = error(&centre);
+        let h = 1e-4;
+        core::array::from_fn(|i| {
+            if i >= self.joints || q[i].wid() == 0.0 {
+                return 0.0;
+            }
+            let (mut up, mut down) = (centre, centre);
+            up[i] += h;
+            down[i] -= h;
+            let (du, dd) = (error(&up), error(&down));
+            let slope = norm(core::array::from_fn(|r| (du[r] - dd[r]) / (2.0 * h)));
+            let curvature = norm(core::array::from_fn(|r| {
+                (du[r] - 2.0 * d0[r] + dd[r]) / (h * h)
+            }));
+            slope + 0.5 * curvature * q[i].rad()
+        })
+    }
+
     /// The joint box searched (radians, padded).
     pub fn domain(&self) -> [Interval; MAX_JOINTS] {
         self.domain
@@ -805,6 +838,10 @@ impl Objective<MAX_JOINTS> for SetToolError<'_> {
             .map(|v| v.wid())
             .fold(f64::MIN_POSITIVE, f64::max);
         [Interval::new(0.0, widest); MAX_JOINTS]
+    }
+
+    fn split_weights(&self, q: &[Interval; MAX_JOINTS]) -> Option<[f64; MAX_JOINTS]> {
+        Some(self.problem.error_variation(q))
     }
 
     fn improve(&self, x: &SearchPoint) -> Option<(SearchPoint, f64)> {
