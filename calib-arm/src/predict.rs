@@ -52,14 +52,45 @@ fn readings_box(joints_deg: &[f64], joint_deg: f64) -> [Interval; NM] {
     })
 }
 
+/// The linear programs of one worker: per coordinate and sign (and for the readings exact or
+/// within their errors), one query of the set over the measurements' own rows
+/// ([`calib_core::CertifiedSet::query_own_rows`]), which warm-starts from the same slot's
+/// previous configuration (neighbouring rows ask nearly the same question).
+struct Programs<'a> {
+    set: &'a ArmSet,
+    slots: Vec<Option<calib_core::SetQuery<'a, NX, NM>>>,
+}
+
+impl<'a> Programs<'a> {
+    fn new(set: &'a ArmSet) -> Self {
+        Programs {
+            set,
+            slots: (0..12).map(|_| None).collect(),
+        }
+    }
+
+    /// An upper bound of `Σ_j w_j (x_j - about_j)` over the set, by slot `slot`'s program.
+    fn max_linear(&mut self, slot: usize, w: &[Interval; NX], about: &[f64; NX]) -> f64 {
+        let set = self.set;
+        self.slots[slot]
+            .get_or_insert_with(|| set.query_own_rows())
+            .max_linear(w, about)
+            .upper
+    }
+}
+
 /// The range of each coordinate of the tracked point over the set (or the box `x` without one)
-/// at the readings `m`.
-fn point_range(set: Option<&ArmSet>, x: &[Interval; NX], m: &[Interval; NM]) -> [Interval; 3] {
+/// at the readings `m`; `first_slot` picks the programs' slots (`first_slot..first_slot + 6`).
+fn point_range(
+    programs: Option<&mut Programs>,
+    x: &[Interval; NX],
+    m: &[Interval; NM],
+    first_slot: usize,
+) -> [Interval; 3] {
     let boxed = Arm7Point.residuals_interval(x, m);
-    let (Some(set), Some(forms)) = (set, Arm7Point.linear_enclosures(x, m)) else {
+    let (Some(q), Some(forms)) = (programs, Arm7Point.linear_enclosures(x, m)) else {
         return boxed;
     };
-    let mut q = set.query();
     let mid = x.map(|v| v.mid());
     core::array::from_fn(|r| {
         let f: &LinearEnclosure<NX, NM> = &forms[r];
@@ -76,8 +107,8 @@ fn point_range(set: Option<&ArmSet>, x: &[Interval; NX], m: &[Interval; NM]) -> 
             f.gm.iter()
                 .fold(Interval::point(f.e), |s, g| s + Interval::point(g.abs()))
                 .sup();
-        let up = q.max_linear(&slopes, &mid).upper;
-        let down = q.max_linear(&slopes.map(|s| -s), &mid).upper;
+        let up = q.max_linear(first_slot + 2 * r, &slopes, &mid);
+        let down = q.max_linear(first_slot + 2 * r + 1, &slopes.map(|s| -s), &mid);
         let hi = (Interval::point(f.c) + Interval::point(up) + Interval::point(rest)).sup();
         let lo = (Interval::point(f.c) - Interval::point(down) - Interval::point(rest)).inf();
         let both = if lo.is_finite() && hi.is_finite() && lo <= hi {
@@ -120,22 +151,27 @@ pub fn predict(
     joints_deg
         .par_iter()
         .enumerate()
-        .map(|(k, q)| {
-            let range = point_range(set, &x, &readings_box(q, 0.0));
-            let with_errors = point_range(set, &x, &readings_box(q, u.joint_deg)).map(|v| v + pos);
-            let point = measured.and_then(|m| m.get(k)).copied();
-            let radians: Vec<f64> = q.iter().map(|d| crate::units::to_rad(*d)).collect();
-            let calibrated =
-                crate::model::tracked_point(&values, &radians).unwrap_or([f64::NAN; 3]);
-            PointPrediction {
-                joints_deg: q.clone(),
-                range,
-                with_errors,
-                calibrated,
-                measured: point,
-                inside: point.map(|p| (0..3).all(|c| with_errors[c].contains(p[c]))),
-            }
-        })
+        .map_init(
+            || set.map(Programs::new),
+            |programs, (k, q)| {
+                let range = point_range(programs.as_mut(), &x, &readings_box(q, 0.0), 0);
+                let with_errors =
+                    point_range(programs.as_mut(), &x, &readings_box(q, u.joint_deg), 6)
+                        .map(|v| v + pos);
+                let point = measured.and_then(|m| m.get(k)).copied();
+                let radians: Vec<f64> = q.iter().map(|d| crate::units::to_rad(*d)).collect();
+                let calibrated =
+                    crate::model::tracked_point(&values, &radians).unwrap_or([f64::NAN; 3]);
+                PointPrediction {
+                    joints_deg: q.clone(),
+                    range,
+                    with_errors,
+                    calibrated,
+                    measured: point,
+                    inside: point.map(|p| (0..3).all(|c| with_errors[c].contains(p[c]))),
+                }
+            },
+        )
         .collect()
 }
 
