@@ -19,7 +19,7 @@ use crate::robot::Arm;
 use crate::simulate::Uncertainty;
 use crate::units::deg_to_rad;
 use crate::Arm7Point;
-use calib_core::{Interval, LinearEnclosure, VectorModel};
+use calib_core::{Interval, LinearEnclosure, SlotQueries, VectorModel};
 use rayon::prelude::*;
 
 /// The prediction at one configuration.
@@ -53,31 +53,12 @@ fn readings_box(joints_deg: &[f64], joint_deg: f64) -> [Interval; NM] {
 }
 
 /// The linear programs of one worker: per coordinate and sign (and for the readings exact or
-/// within their errors), one query of the set over the measurements' own rows
-/// ([`calib_core::CertifiedSet::query_own_rows`]), which warm-starts from the same slot's
-/// previous configuration (neighbouring rows ask nearly the same question).
-struct Programs<'a> {
-    set: &'a ArmSet,
-    slots: Vec<Option<calib_core::SetQuery<'a, NX, NM>>>,
-}
+/// within their errors), one slot, warm-started from the same slot's previous configuration
+/// (neighbouring rows ask nearly the same question).
+type Programs<'a> = SlotQueries<'a, NX, NM>;
 
-impl<'a> Programs<'a> {
-    fn new(set: &'a ArmSet) -> Self {
-        Programs {
-            set,
-            slots: (0..12).map(|_| None).collect(),
-        }
-    }
-
-    /// An upper bound of `Σ_j w_j (x_j - about_j)` over the set, by slot `slot`'s program.
-    fn max_linear(&mut self, slot: usize, w: &[Interval; NX], about: &[f64; NX]) -> f64 {
-        let set = self.set;
-        self.slots[slot]
-            .get_or_insert_with(|| set.query_own_rows())
-            .max_linear(w, about)
-            .upper
-    }
-}
+/// How many slots [`point_range`]'s two calls use.
+const SLOTS: usize = 12;
 
 /// The range of each coordinate of the tracked point over the set (or the box `x` without one)
 /// at the readings `m`; `first_slot` picks the programs' slots (`first_slot..first_slot + 6`).
@@ -152,7 +133,7 @@ pub fn predict(
         .par_iter()
         .enumerate()
         .map_init(
-            || set.map(Programs::new),
+            || set.map(|s| Programs::new(s, SLOTS)),
             |programs, (k, q)| {
                 let range = point_range(programs.as_mut(), &x, &readings_box(q, 0.0), 0);
                 let with_errors =

@@ -2,7 +2,9 @@
 //! arms, joint boxes and joint errors, no sampled error exceeds the proved upper bound, the worst
 //! instance is rechecked and lies in the boxes, and a single configuration is bracketed tightly.
 
-use calib_arm::accuracy::{certify_tool_accuracy, ToolAccuracyProblem, ToolAccuracySettings};
+use calib_arm::accuracy::{
+    certify_tool_accuracy, ToolAccuracyProblem, ToolAccuracySettings, ToolBracket,
+};
 use calib_arm::joint_space::JointSpace;
 use calib_arm::params::{self, Unit};
 use calib_arm::{builtin_arm, Arm};
@@ -31,6 +33,27 @@ fn is_theta(arm: &Arm, j: usize) -> bool {
 
 fn norm(e: [f64; 3]) -> f64 {
     (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt()
+}
+
+/// The bracket's worst instance, its error recomputed by matrix products (at least its value)
+/// at joints inside the joint space; its geometry in model units.
+fn rechecked_worst<'a>(
+    b: &'a ToolBracket,
+    controller: &[f64],
+    space: &JointSpace,
+) -> (&'a calib_arm::accuracy::ToolInstance, Vec<f64>) {
+    let w = b.worst.as_ref().expect("an instance");
+    let theta: Vec<f64> = w.theta.iter().map(|v| v.mid()).collect();
+    let (p, p0) = (
+        forward(&theta, &w.joints_rad),
+        forward(controller, &w.joints_rad),
+    );
+    let e = norm([p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]]);
+    assert!(e >= w.value * (1.0 - 1e-9), "{e} < {}", w.value);
+    for (q, [lo, hi]) in w.joints_deg.iter().zip(&space.ranges_deg) {
+        assert!(*lo - 1e-9 <= *q && *q <= *hi + 1e-9, "q {q}");
+    }
+    (w, theta)
 }
 
 #[test]
@@ -97,22 +120,8 @@ fn the_upper_bound_holds_and_the_worst_instance_is_rechecked() {
             );
         }
         // The instance, rechecked by matrix products, inside the joint and geometry boxes.
-        let w = b.worst.as_ref().expect("an instance");
-        let theta: Vec<f64> = w.theta.iter().map(|v| v.mid()).collect();
-        let (p, p0) = (
-            forward(&theta, &w.joints_rad),
-            forward(&controller, &w.joints_rad),
-        );
-        let e = norm([p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]]);
-        assert!(
-            e >= w.value * (1.0 - 1e-9),
-            "case {case}: {e} < {}",
-            w.value
-        );
-        assert_eq!(w.value, b.lower);
-        for (q, [lo, hi]) in w.joints_deg.iter().zip(&space.ranges_deg) {
-            assert!(*lo - 1e-9 <= *q && *q <= *hi + 1e-9, "case {case}: q {q}");
-        }
+        let (w, theta) = rechecked_worst(&b, &controller, &space);
+        assert_eq!(w.value, b.lower, "case {case}");
         for (j, (t, u)) in theta
             .iter()
             .zip(params::names(arm.joints.len()))
@@ -257,17 +266,7 @@ fn over_the_certified_set_no_consistent_geometry_exceeds_the_bound() {
         );
     }
     // The worst instance, rechecked by matrix products, is attained in the box.
-    let w = b.worst.as_ref().expect("an instance");
-    let theta: Vec<f64> = w.theta.iter().map(|v| v.mid()).collect();
-    let (p, p0) = (
-        forward(&theta, &w.joints_rad),
-        forward(&controller, &w.joints_rad),
-    );
-    let e = norm([p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]]);
-    assert!(e >= w.value * (1.0 - 1e-9), "{e} < {}", w.value);
-    for (q, [lo, hi]) in w.joints_deg.iter().zip(&space.ranges_deg) {
-        assert!(*lo - 1e-9 <= *q && *q <= *hi + 1e-9, "q {q}");
-    }
+    rechecked_worst(&b, &controller, &space);
     assert!(
         b.lower >= 0.9 * largest,
         "lower {} below a sampled {largest}",

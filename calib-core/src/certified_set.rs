@@ -496,6 +496,40 @@ fn coalesce<const NX: usize>(boxes: Vec<[Interval; NX]>, k: usize) -> Vec<[Inter
     out
 }
 
+/// Queries of a [`CertifiedSet`] over its own rows ([`CertifiedSet::query_own_rows`]), one per
+/// *slot*: a caller that asks the same kind of question again and again (the same coordinate
+/// and sign of a prediction at the next configuration, the same axis of an error at the next
+/// box) gives it the same slot, and each program warm-starts from its slot's previous one. A
+/// slot's query is made when first asked.
+pub struct SlotQueries<'a, const NX: usize, const NM: usize> {
+    set: &'a CertifiedSet<NX, NM>,
+    slots: Vec<Option<SetQuery<'a, NX, NM>>>,
+}
+
+impl<'a, const NX: usize, const NM: usize> SlotQueries<'a, NX, NM> {
+    /// `slots` slots over `set`.
+    pub fn new(set: &'a CertifiedSet<NX, NM>, slots: usize) -> Self {
+        SlotQueries {
+            set,
+            slots: (0..slots).map(|_| None).collect(),
+        }
+    }
+
+    /// An upper bound of `Σ_j s_j (x_j - about_j)` over the set ([`SetQuery::max_linear`]), by
+    /// slot `slot`'s program.
+    ///
+    /// # Panics
+    ///
+    /// If `slot` is not below the number of slots.
+    pub fn max_linear(&mut self, slot: usize, slopes: &[Interval; NX], about: &[f64; NX]) -> f64 {
+        let set = self.set;
+        self.slots[slot]
+            .get_or_insert_with(|| set.query_own_rows())
+            .max_linear(slopes, about)
+            .upper
+    }
+}
+
 /// An upper bound of a linear function over the set, and where the linear program found it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LinearMax<const NX: usize> {

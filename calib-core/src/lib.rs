@@ -77,7 +77,7 @@ pub use calibrated_point::{calibrated_point, CalibratedPoint, PointRule};
 pub use certificate::{is_certified_consistent, is_consistent_by_corners, is_consistent_point};
 pub use certified_set::{
     maximize_over_set, CertifiedPoint, CertifiedSet, Cover, LinearFunction, LinearMax, SetMaximum,
-    SetMaximumSettings, SetObjective, SetPiece, SetQuery,
+    SetMaximumSettings, SetObjective, SetPiece, SetQuery, SlotQueries,
 };
 pub use certify::{certify, certify_with, Certification, Status};
 pub use chebyshev::{smallest_scale, ScaleEstimate};

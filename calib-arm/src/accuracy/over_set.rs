@@ -43,7 +43,8 @@ use crate::robot::Arm;
 use crate::units::{deg_to_rad, rad_to_deg, to_deg};
 use crate::Arm7Point;
 use calib_core::{
-    maximize, Interval, Jet, MaximumSettings, Objective, Parallelotope, Quadratic, VectorModel,
+    maximize, Interval, Jet, MaximumSettings, Objective, Parallelotope, Quadratic, SlotQueries,
+    VectorModel,
 };
 use std::cell::{Cell, RefCell};
 use std::time::Instant;
@@ -768,29 +769,8 @@ const COVER_DIRECTIONS: usize = 42;
 /// How many slots there are.
 const SLOTS: usize = 2 * (3 + COVER_DIRECTIONS);
 
-/// One query of the set per slot, made when first needed.
-struct LinearPrograms<'a> {
-    set: &'a ArmSet,
-    queries: Vec<Option<calib_core::SetQuery<'a, NX, NM>>>,
-}
-
-impl<'a> LinearPrograms<'a> {
-    fn new(set: &'a ArmSet) -> Self {
-        LinearPrograms {
-            set,
-            queries: (0..SLOTS).map(|_| None).collect(),
-        }
-    }
-
-    /// An upper bound of `Σ_j w_j (θ_j - about_j)` over the set (the slot's program).
-    fn max_linear(&mut self, slot: usize, w: &[Interval; NX], about: &[f64; NX]) -> f64 {
-        let set = self.set;
-        self.queries[slot]
-            .get_or_insert_with(|| set.query_own_rows())
-            .max_linear(w, about)
-            .upper
-    }
-}
+/// The programs of the bounds, one slot per linear function ([`Slot`]).
+type LinearPrograms<'a> = SlotQueries<'a, NX, NM>;
 
 /// The error as a function of the joints, for [`maximize`].
 struct SetToolError<'a> {
@@ -868,7 +848,7 @@ pub fn certify_set_accuracy(
     let objective = SetToolError {
         problem,
         lower: Cell::new(0.0),
-        lps: RefCell::new(LinearPrograms::new(&problem.set)),
+        lps: RefCell::new(LinearPrograms::new(&problem.set, SLOTS)),
     };
     let m = maximize(
         &objective,
