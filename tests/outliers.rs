@@ -52,6 +52,12 @@ fn a_gross_outlier_is_named_and_tolerated() {
     let conflict = strict.conflict.expect("an empty verdict names a conflict");
     assert!(conflict.contains(&7), "{conflict:?}");
     assert_minimal(&x0, &boxes, &conflict);
+    // The Farkas ray weighs the bad reading and few others: not a spread misfit.
+    let support = strict
+        .support
+        .as_ref()
+        .expect("the Farkas ray's configurations");
+    assert!(support.contains(&7) && !strict.spread, "{support:?}");
     // Without the conflict search: the same verdict and proof, no conflict.
     let quiet = Settings::default().with_conflict_sets(false);
     let verdict_only = certify(&GoughLeg, &x0, &boxes, &quiet);
@@ -117,6 +123,28 @@ fn two_outliers_in_one_leg_and_a_subtle_one_in_another() {
     let h = hull(&GoughLeg, &x0, &boxes, &q(1));
     assert!(contains(&h.outer, &sim.truth[4].params()));
     assert_eq!(h.outliers, vec![9]);
+}
+
+/// Every reading off by up to three times its error bound: no few measurements are to blame. Each
+/// leg's certificate of emptiness weighs most of the configurations it can (7 free parameters: at
+/// most 8), so the verdict comes at once, without a conflict search, from `certify` and `hull`.
+#[test]
+fn a_misfit_spread_over_the_data_is_named_without_a_conflict_search() {
+    let sim = simulate(&builtin_hexapod(), 21, 5, Uncertainty::PAPER, 3.0, 0.1);
+    for leg in 0..6 {
+        let (x0, boxes) = leg_problem(&sim, leg);
+        let c = certify(&GoughLeg, &x0, &boxes, &Settings::default());
+        assert_eq!(c.status, Status::Empty, "leg {leg}");
+        let support = c.support.clone().expect("the Farkas ray's configurations");
+        assert!(support.len() > 4, "leg {leg}: {support:?}");
+        assert!(c.spread && c.conflict.is_none(), "leg {leg}");
+        let h = hull(&GoughLeg, &x0, &boxes, &Settings::default());
+        assert_eq!(
+            (h.status, h.support, h.spread, h.conflict),
+            (Status::Empty, Some(support), true, None),
+            "leg {leg}"
+        );
+    }
 }
 
 /// With one outlier tolerated the solution set grows (every vector fitting 20 of 21 measurements),

@@ -529,6 +529,8 @@ fn uncertified(names: Vec<String>, x0: &[Interval]) -> Outcome {
         inner: None,
         witness: None,
         conflict: None,
+        support: None,
+        spread: false,
         outliers: Vec::new(),
         iterations: 0,
         converged: None,

@@ -185,13 +185,22 @@ fn the_certificate_is_one_page_stating_the_certified_boxes_and_the_inputs() {
 fn a_shifted_configuration_is_proved_and_named_then_tolerated() {
     let dir = tempdir("outlier");
     simulated(&dir, 12, &["--outlier", "4:0.5"]);
-    let o = certify(&dir, &[]);
+    let strict_json = dir.join("strict.json");
+    let o = certify(&dir, &["--json", strict_json.to_str().expect("utf-8")]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     let out = text(&o);
     assert!(
         out.contains("configuration 4 (measurements.csv line 5)"),
         "{out}"
     );
+    // A few bad readings: the certificate weighs the bad one; the conflict set is searched.
+    let strict: Value =
+        serde_json::from_str(&std::fs::read_to_string(&strict_json).expect("report"))
+            .expect("json");
+    assert_eq!(strict["spread"], false);
+    assert!(strict["conflict"]
+        .as_array()
+        .is_some_and(|c| c.contains(&4.into())));
     let json = dir.join("tolerated.json");
     let o = certify(
         &dir,
@@ -228,6 +237,45 @@ fn a_shifted_configuration_is_proved_and_named_then_tolerated() {
         serde_json::from_str(&std::fs::read_to_string(&auto_json).expect("report")).expect("json");
     assert_eq!(auto["outliers"], report["outliers"]);
     assert_eq!(auto["parameters"], report["parameters"]);
+}
+
+/// Every configuration off by about three times the position bounds (the simulated noise is 0.01
+/// mm, the bounds 0.003 mm): no few readings are to blame. The verdict says so at once, with the
+/// configurations the proof weighs and `--error-scale auto`, and no conflict set; the JSON keeps
+/// its keys (`conflict: null`) and adds `support` and `spread`.
+#[test]
+fn a_misfit_spread_over_the_data_is_said_at_once_without_a_conflict_set() {
+    let dir = tempdir("spread");
+    simulated(&dir, 12, &[]);
+    std::fs::write(
+        dir.join("uncertainty.toml"),
+        "joint_deg = 0.001\npos = 0.003\n",
+    )
+    .expect("write");
+    let json = dir.join("report.json");
+    let o = certify(&dir, &["--json", json.to_str().expect("utf-8")]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    let out = text(&o);
+    assert!(
+        out.contains("spread: the proof of emptiness weighs"),
+        "{out}"
+    );
+    assert!(out.contains("of the 12 configurations"), "{out}");
+    assert!(
+        out.contains("--error-scale auto") && !out.contains("conflict:"),
+        "{out}"
+    );
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("report")).expect("json");
+    assert_eq!(report["status"], "empty");
+    assert!(report["conflict"].is_null(), "{report}");
+    assert_eq!(report["spread"], true);
+    let support = report["support"].as_array().expect("the support");
+    assert!(support.len() > 6 && support.len() <= 12, "{support:?}");
+    let verdict = report["verdict"].as_array().expect("sentences");
+    assert!(verdict
+        .iter()
+        .any(|s| s.as_str().is_some_and(|s| s.starts_with("spread:"))));
 }
 
 #[test]

@@ -2,9 +2,11 @@
 
 use crate::certificate::{find_witness, inner_points, point_hull};
 use crate::certified_set::Cover;
-use crate::contract::{contract, EmptinessProof, Workspace};
+use crate::contract::{contract, is_fixed, EmptinessProof, Workspace};
 use crate::first_order::wider_inner_points;
-use crate::outliers::{certified_outliers, conflict_set, conflict_subset, drop_sets, keep_all_but};
+use crate::outliers::{
+    certified_outliers, conflict_set, conflict_subset, drop_sets, is_spread, keep_all_but,
+};
 use crate::second_order::second_order_emptiness;
 use crate::{Interval, Settings, VectorModel};
 
@@ -44,8 +46,22 @@ pub struct Certification<const NX: usize> {
     pub lp_failures: usize,
     /// For `Empty` (with no outliers tolerated): a minimal set of measurements (0-based, sorted)
     /// that no parameter vector of `x0` fits together — removing any one of them, the rest is not
-    /// proved empty (see [`crate::outliers`]).
+    /// proved empty (see [`crate::outliers`]). Not searched when the misfit is
+    /// [`spread`](Certification::spread).
     pub conflict: Option<Vec<usize>>,
+    /// For `Empty` (with no outliers tolerated): the measurements (0-based, sorted) the final
+    /// certificate of emptiness weighs, when it names them — the configurations of the rows of a
+    /// Farkas ray ([`EmptinessProof::LpInfeasible`]), of the second-order certificate's
+    /// combination ([`EmptinessProof::SecondOrder`]), or the one measurement of a
+    /// [`EmptinessProof::CheapRejection`]. The certificate applies to the box the contraction
+    /// reached with every measurement, so the support alone need not be inconsistent; how many
+    /// measurements it weighs tells a misfit spread over the data from a few bad measurements.
+    pub support: Option<Vec<usize>>,
+    /// For `Empty`: the [`support`](Certification::support) weighs more than half of the
+    /// measurements a certificate can weigh ([`crate::outliers::is_spread`]) — a misfit spread
+    /// over the data (the error bounds too tight for the model) rather than a few bad
+    /// measurements; the conflict set is then not searched.
+    pub spread: bool,
     /// With [`Settings::max_outliers`] `= q > 0`: the measurements (0-based, sorted) that every
     /// parameter vector fitting at least `p - q` of them misfits — certified outliers under the
     /// assumption that at most `q` are bad. Empty otherwise.
@@ -75,7 +91,9 @@ impl<const NX: usize> Certification<NX> {
 /// `x ∈ x0` with `f(x, M_k) = 0` for some `M_k ∈ measurements[k]`, for all `k` — or, with
 /// [`Settings::max_outliers`] `= q`, for all but at most `q` of the `k` (the union over every choice
 /// of `q` dropped measurements; see the `outliers` section of the crate documentation). An `Empty`
-/// verdict comes with a minimal conflict set ([`Certification::conflict`]).
+/// verdict comes with the measurements its certificate weighs ([`Certification::support`]) and,
+/// unless they show a misfit spread over the data ([`Certification::spread`]), a minimal conflict
+/// set ([`Certification::conflict`]).
 pub fn certify<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x0: &[Interval; NX],
@@ -102,45 +120,57 @@ pub fn certify_with<
     if settings.max_outliers > 0 {
         return certify_relaxed(model, x0, measurements, settings, ws);
     }
-    let (mut out, support) = certify_plain(model, x0, measurements, settings, ws);
-    if out.status == Status::Empty && settings.conflict_sets {
-        if let Some(support) = support {
-            // The second-order proof's subsets are tested by the contraction and, where it
-            // leaves a box, by the second-order proof on it; from the configurations the proof
-            // weighed when they alone are proved inconsistent.
-            let mut proves_empty = |kept: &[usize]| {
-                let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
-                match contract(model, x0, &subset, settings, ws).result {
-                    Err(_) => true,
-                    Ok(b) => model
-                        .curvature()
-                        .and_then(|c| second_order_emptiness(model, c, &b, &subset))
-                        .is_some(),
-                }
-            };
-            let start = if proves_empty(&support) {
-                support
-            } else {
-                (0..measurements.len()).collect()
-            };
-            out.conflict = Some(conflict_subset(start, &[], proves_empty));
-            return out;
-        }
-        let used = match out.emptiness {
-            Some(EmptinessProof::CheapRejection { measurement }) => vec![measurement],
-            _ => Vec::new(),
-        };
-        // The prover of the verdict, the contraction, alone: the witness and inner-bound
-        // searches `certify_plain` runs on the subsets that are not proved empty (most of the
-        // tests once the set is near minimal) decide nothing here. On the real UR10 (60
-        // configurations, encoders ±0.01°) the gain is within the machine's variance (137 s,
-        // against 137–151 s before; the same set): the time is ~120 contractions of ~59
-        // configurations.
-        out.conflict = Some(conflict_set(measurements.len(), &used, |kept| {
-            let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
-            contract(model, x0, &subset, settings, ws).result.is_err()
-        }));
+    let mut out = certify_plain(model, x0, measurements, settings, ws);
+    if out.status != Status::Empty {
+        return out;
     }
+    let free = x0.iter().filter(|v| !is_fixed(**v)).count();
+    out.spread = out
+        .support
+        .as_ref()
+        .is_some_and(|s| is_spread(s.len(), measurements.len(), free));
+    if out.spread || !settings.conflict_sets {
+        // Spread: a minimal conflict set would name many measurements (22 of 60 on the real UR10
+        // at 0.98 s*, in 60 times the verdict's time) where the support already tells.
+        return out;
+    }
+    if out.emptiness == Some(EmptinessProof::SecondOrder) {
+        // The second-order proof's subsets are tested by the contraction and, where it leaves a
+        // box, by the second-order proof on it; from the configurations the proof weighed when
+        // they alone are proved inconsistent.
+        let mut proves_empty = |kept: &[usize]| {
+            let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
+            match contract(model, x0, &subset, settings, ws).result {
+                Err(_) => true,
+                Ok(b) => model
+                    .curvature()
+                    .and_then(|c| second_order_emptiness(model, c, &b, &subset))
+                    .is_some(),
+            }
+        };
+        let support = out.support.clone().unwrap_or_default();
+        let start = if !support.is_empty() && proves_empty(&support) {
+            support
+        } else {
+            (0..measurements.len()).collect()
+        };
+        out.conflict = Some(conflict_subset(start, &[], proves_empty));
+        return out;
+    }
+    let used = match out.emptiness {
+        Some(EmptinessProof::CheapRejection { measurement }) => vec![measurement],
+        _ => Vec::new(),
+    };
+    // The prover of the verdict, the contraction, alone: the witness and inner-bound
+    // searches `certify_plain` runs on the subsets that are not proved empty (most of the
+    // tests once the set is near minimal) decide nothing here. On the real UR10 (60
+    // configurations, encoders ±0.01°) the gain is within the machine's variance (137 s,
+    // against 137–151 s before; the same set): the time is ~120 contractions of ~59
+    // configurations.
+    out.conflict = Some(conflict_set(measurements.len(), &used, |kept| {
+        let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
+        contract(model, x0, &subset, settings, ws).result.is_err()
+    }));
     out
 }
 
@@ -173,6 +203,8 @@ fn certify_relaxed<
         lp_solves: 0,
         lp_failures: 0,
         conflict: None,
+        support: None,
+        spread: false,
         outliers: Vec::new(),
         cover: Cover::single(*x0),
     };
@@ -189,7 +221,7 @@ fn certify_relaxed<
     let mut alive = Vec::with_capacity(drops.len());
     for d in &drops {
         let subset = keep_all_but(measurements, d);
-        let (c, _) = certify_plain(model, x0, &subset, settings, ws);
+        let c = certify_plain(model, x0, &subset, settings, ws);
         out.iterations += c.iterations;
         out.lp_solves += c.lp_solves;
         out.lp_failures += c.lp_failures;
@@ -239,16 +271,14 @@ pub(crate) fn hull_box<const NX: usize>(
     }
 }
 
-/// [`certify_with`] without outliers and without the conflict search; for a second-order proof
-/// of emptiness, also the measurements it weighed.
+/// [`certify_with`] without outliers and without the conflict search (with the proof's support).
 fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x0: &[Interval; NX],
     measurements: &[[Interval; NM]],
     settings: &Settings,
     ws: &mut Workspace<NX>,
-) -> (Certification<NX>, Option<Vec<usize>>) {
-    let mut support = None;
+) -> Certification<NX> {
     let (solves, failures) = (ws.lp_solves, ws.lp_failures);
     let c = contract(model, x0, measurements, settings, ws);
     let mut out = Certification {
@@ -261,6 +291,8 @@ fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, c
         lp_solves: 0,
         lp_failures: 0,
         conflict: None,
+        support: None,
+        spread: false,
         outliers: Vec::new(),
         cover: Cover::empty(),
     };
@@ -268,6 +300,11 @@ fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, c
         Err(proof) => {
             out.status = Status::Empty;
             out.emptiness = Some(proof);
+            out.support = match proof {
+                EmptinessProof::CheapRejection { measurement } => Some(vec![measurement]),
+                EmptinessProof::LpInfeasible => Some(ws.farkas_support()),
+                _ => None,
+            };
         }
         Ok(outer) => {
             out.outer = outer;
@@ -307,11 +344,11 @@ fn certify_plain<M: VectorModel<NX, NM, NR>, const NX: usize, const NM: usize, c
                 out.emptiness = Some(EmptinessProof::SecondOrder);
                 out.outer = [Interval::EMPTY; NX];
                 out.cover = Cover::empty();
-                support = Some(proof.support);
+                out.support = Some(proof.support);
             }
         }
     }
     out.lp_solves = ws.lp_solves - solves;
     out.lp_failures = ws.lp_failures - failures;
-    (out, support)
+    out
 }

@@ -110,6 +110,21 @@ impl<const NX: usize> Workspace<NX> {
         }
     }
 
+    /// Right after a contraction proved its box empty by [`EmptinessProof::LpInfeasible`]: the
+    /// measurements (0-based, sorted) whose rows the checked Farkas ray weighs (the positive
+    /// multipliers, the only rows the certificate uses; over the box the earlier steps contracted
+    /// with every measurement). The ray and the rows are still the workspace's then; computed
+    /// here, not in the contraction, which allocates nothing once warmed up.
+    pub(crate) fn farkas_support(&self) -> Vec<usize> {
+        let mut support: Vec<usize> = (0..self.poly.rows().min(self.dual.len()))
+            .filter(|&i| self.dual[i] > 0.0 && self.dual[i].is_finite())
+            // Rows are tagged by configuration, in increasing order (`build_relaxation`).
+            .map(|i| (self.poly.tag(i) >> 32) as usize)
+            .collect();
+        support.dedup();
+        support
+    }
+
     /// The LP bases the last contraction ended with, to start another box's contraction from
     /// ([`contract_from`]).
     pub fn lp_memory(&self) -> LpMemory {
@@ -580,6 +595,7 @@ fn bound_by_linear_programs<const NX: usize>(
                 .minimize(&ws.poly, &ws.objective, &mut ws.dual, &mut ws.primal);
             if status == LpStatus::Infeasible {
                 if proves_infeasible(&ws.poly, &ws.dual, &ws.zeros) {
+                    // (`Workspace::farkas_support` reads the ray left in `dual`.)
                     return Err(EmptinessProof::LpInfeasible);
                 }
                 ws.lp_failures += 1;

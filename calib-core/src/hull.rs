@@ -92,8 +92,16 @@ pub struct Hull<const NX: usize> {
     /// Wall-clock seconds.
     pub seconds: f64,
     /// For `Empty` (with no outliers tolerated): a minimal set of measurements (0-based, sorted)
-    /// that no parameter vector of `x0` fits together (see [`crate::outliers`]).
+    /// that no parameter vector of `x0` fits together (see [`crate::outliers`]); not searched
+    /// when the misfit is [`spread`](Hull::spread).
     pub conflict: Option<Vec<usize>>,
+    /// For `Empty` (with no outliers tolerated, and the conflict search on), when
+    /// [`crate::certify`] proves it too: the measurements its certificate weighs
+    /// ([`crate::Certification::support`]).
+    pub support: Option<Vec<usize>>,
+    /// For `Empty`: the support shows a misfit spread over the data
+    /// ([`crate::Certification::spread`]); the conflict set is then not searched.
+    pub spread: bool,
     /// With [`Settings::max_outliers`] `= q > 0`: the measurements that every parameter vector
     /// fitting at least `p - q` of them misfits (certified outliers; see [`crate::outliers`]).
     pub outliers: Vec<usize>,
@@ -210,12 +218,24 @@ where
     let mut out = hull_core(model, x0, measurements, settings, engine);
     if out.status == Status::Empty && settings.max_outliers == 0 && settings.conflict_sets {
         // The conflict set, with the prover that gave the verdict: the contraction alone when it
-        // proved x0 empty at once, else the hull (with a bounded budget per subset).
-        let plain = settings.clone();
-        out.conflict = if out.x1.is_none() {
-            certify(model, x0, measurements, &plain).conflict
+        // proved x0 empty at once, else the hull (with a bounded budget per subset). `certify`
+        // first, for the support of its certificate: when it shows a misfit spread over the data
+        // there is no search (on the real UR10 at 0.98 s* it proves x0 empty in about a second).
+        let x1_empty = out.x1.is_none();
+        let plain = settings.clone().with_conflict_sets(x1_empty);
+        let first = certify(model, x0, measurements, &plain);
+        if first.status == Status::Empty {
+            out.support = first.support;
+            out.spread = first.spread;
+        }
+        out.conflict = if out.spread {
+            None
+        } else if x1_empty {
+            first.conflict
         } else {
-            let mut quick = plain.with_hull_budget(settings.hull_max_boxes.min(2000), None);
+            let mut quick = settings
+                .clone()
+                .with_hull_budget(settings.hull_max_boxes.min(2000), None);
             quick.inner_bounds = false;
             Some(conflict_set(measurements.len(), &[], |kept| {
                 let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
@@ -253,6 +273,8 @@ where
         rounds: 0,
         seconds: 0.0,
         conflict: None,
+        support: None,
+        spread: false,
         outliers: Vec::new(),
         cover: Cover::single(*x0),
     };

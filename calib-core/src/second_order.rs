@@ -274,11 +274,48 @@ where
     if phi0 < 0.0 {
         weights.iter_mut().flatten().for_each(|c| *c = -*c);
     }
-    let margin = combination_lower_bound(model, curvature, x, measurements, &xs, &weights)?;
+    let bound =
+        |w: &[[f64; NR]]| combination_lower_bound(model, curvature, x, measurements, &xs, w);
+    // First without the configurations whose weight is at the LP solver's noise (see
+    // [`NEGLIGIBLE_WEIGHT`]): the certificate then weighs only the configurations the fit rests
+    // on, and their derivatives alone are computed. Any weights give a valid bound; if these fail,
+    // the full ones are tried.
+    let trimmed = trim_negligible(&weights);
+    let (weights, margin) = match (trimmed != weights).then(|| bound(&trimmed)).flatten() {
+        Some(m) if m > 0.0 => (trimmed, m),
+        _ => {
+            let m = bound(&weights)?;
+            (weights, m)
+        }
+    };
     let support: Vec<usize> = (0..measurements.len())
         .filter(|&k| weights[k].iter().any(|&v| v != 0.0))
         .collect();
     (margin > 0.0).then_some(SecondOrderCertificate { support, margin })
+}
+
+/// A configuration whose weights add up to at most this fraction of all the weights is left out
+/// of the first try of a second-order certificate. The weights are an interior-point LP's
+/// multipliers, which leave every configuration some weight: on the real UR10 at 0.98 `s*`, 17 of
+/// 60 configurations carry the combination (the least 3.6e-5 of it) and the other 43 at most
+/// 2.3e-8 each (5e-7 on subsets), the solver's tolerance. Counting those would make every
+/// certificate weigh every configuration.
+pub const NEGLIGIBLE_WEIGHT: f64 = 1e-6;
+
+/// `weights` with the configurations of negligible weight ([`NEGLIGIBLE_WEIGHT`]) set to zero.
+fn trim_negligible<const NR: usize>(weights: &[[f64; NR]]) -> Vec<[f64; NR]> {
+    let size = |w: &[f64; NR]| w.iter().map(|c| c.abs()).sum::<f64>();
+    let total: f64 = weights.iter().map(size).sum();
+    weights
+        .iter()
+        .map(|w| {
+            if size(w) <= NEGLIGIBLE_WEIGHT * total {
+                [0.0; NR]
+            } else {
+                *w
+            }
+        })
+        .collect()
 }
 
 /// A rigorous lower bound of `φ(x, M) = Σ_k Σ_r weights[k][r] f_r(x, M_k)` over the box `x` and

@@ -105,8 +105,15 @@ pub struct LegResult {
     pub inner: Option<[Interval; 7]>,
     /// A certified consistent parameter vector.
     pub witness: Option<[f64; 7]>,
-    /// For an empty leg: a minimal set of configurations (0-based) that cannot be fitted together.
+    /// For an empty leg: a minimal set of configurations (0-based) that cannot be fitted together
+    /// (not searched when the misfit is [`spread`](LegResult::spread)).
     pub conflict: Option<Vec<usize>>,
+    /// For an empty leg: the configurations (0-based) the certificate of emptiness weighs, when it
+    /// names them ([`calib_core::Certification::support`]).
+    pub support: Option<Vec<usize>>,
+    /// For an empty leg: the support shows a misfit spread over the data — the error bounds too
+    /// tight for the leg's model rather than a few bad readings; no conflict set was searched.
+    pub spread: bool,
     /// With outliers tolerated: the configurations (0-based) proved to be outliers.
     pub outliers: Vec<usize>,
     /// How many outliers this result tolerates (the kernel's [`Settings::max_outliers`]).
@@ -143,6 +150,8 @@ impl LegResult {
             inner: h.inner,
             witness: h.witness,
             conflict: h.conflict,
+            support: h.support,
+            spread: h.spread,
             outliers: h.outliers,
             tolerated: 0,
             iterations: h.iterations,
@@ -170,6 +179,8 @@ impl LegResult {
             inner: self.inner.map(vec),
             witness: self.witness.map(|w| w.to_vec()),
             conflict: self.conflict.clone(),
+            support: self.support.clone(),
+            spread: self.spread,
             outliers: self.outliers.clone(),
             iterations: self.iterations,
             converged: self.converged,
@@ -192,6 +203,8 @@ impl LegResult {
             inner: self.inner.map(|b| bounds(&b)),
             converged: self.converged,
             conflict: self.conflict.as_deref().map(one_based),
+            support: self.support.as_deref().map(one_based),
+            spread: self.spread,
             outliers: one_based(&self.outliers),
             outliers_tolerated: self.tolerated,
             witness: self.witness.map(|w| w.to_vec()),
@@ -260,6 +273,8 @@ pub fn certify_leg(
             inner: c.inner,
             witness: c.witness,
             conflict: c.conflict,
+            support: c.support,
+            spread: c.spread,
             outliers: c.outliers,
             tolerated: 0,
             iterations: c.iterations,

@@ -7,7 +7,9 @@
 //!               "x0": [[lo, hi], ...], "x1": [[lo, hi], ...], "x2": [[lo, hi], ...] or null,
 //!               "outer": [[lo, hi], ...] or null, "inner": [[lo, hi], ...] or null,
 //!               "converged": true | false | null, "witness": [..7] or null,
-//!               "conflict": [configuration, ...] or null, "outliers": [configuration, ...],
+//!               "conflict": [configuration, ...] or null,
+//!               "support": [configuration, ...] or null, "spread": true | false,
+//!               "outliers": [configuration, ...],
 //!               "iterations": n, "boxes": n, "seconds": s } ],
 //!   "seconds": total }
 //! ```
@@ -15,8 +17,11 @@
 //! certified consistent parameter vectors: the true range of each parameter lies between them.
 //! `conflict` (empty legs) and `outliers` (with `--max-outliers`) are 1-based configuration
 //! numbers: the k-th data row of the CSV is configuration k. `converged` says whether the hull refinement met its tolerance (`null` with `--fast`); `x1` is
-//! the paper's fixed point. `outer`, `converged`, `conflict` and `outliers` were added to version 1 without breaking it:
-//! reports written before read back with `null` there.
+//! the paper's fixed point. `support` (empty legs) lists the configurations the certificate of
+//! emptiness weighs; `spread` says it weighs most of what a certificate can — a misfit spread over
+//! the data, the bounds too tight for the model — and then `conflict` is `null` (not searched).
+//! `outer`, `converged`, `conflict`, `outliers`, `support` and `spread` were added to version 1
+//! without breaking it: reports written before read back with `null` (`false`) there.
 //!
 //! Bounds are written with Rust's shortest round-trip formatting (serde_json), so reading them back
 //! gives the same `f64`s: no bound is moved inward by printing. An empty box is written as `null`
@@ -52,6 +57,14 @@ pub struct LegReport {
     /// is configuration k) that cannot be fitted together.
     #[serde(default)]
     pub conflict: Option<Vec<usize>>,
+    /// For an empty leg: the configurations (1-based) the certificate of emptiness weighs, when
+    /// it names them.
+    #[serde(default)]
+    pub support: Option<Vec<usize>>,
+    /// For an empty leg: the support shows a misfit spread over the data (the bounds too tight
+    /// for the model); `conflict` is then `null`, not searched.
+    #[serde(default)]
+    pub spread: bool,
     /// With `--max-outliers`: the configurations (1-based) proved to be outliers.
     #[serde(default)]
     pub outliers: Vec<usize>,

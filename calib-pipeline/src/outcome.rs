@@ -26,8 +26,15 @@ pub struct Outcome {
     /// A certified consistent parameter vector.
     pub witness: Option<Vec<f64>>,
     /// For an empty sub-problem: a minimal set of configurations (0-based) that cannot be fitted
-    /// together.
+    /// together (not searched when the misfit is [`spread`](Outcome::spread)).
     pub conflict: Option<Vec<usize>>,
+    /// For an empty sub-problem: the configurations (0-based) the final certificate of emptiness
+    /// weighs, when it names them ([`calib_core::Certification::support`]).
+    pub support: Option<Vec<usize>>,
+    /// For an empty sub-problem: the support weighs most of what a certificate can weigh — a
+    /// misfit spread over the data, the error bounds too tight for the model, rather than a few
+    /// bad readings ([`calib_core::outliers::is_spread`]); no conflict set was searched.
+    pub spread: bool,
     /// With outliers tolerated: the configurations (0-based) proved to be outliers.
     pub outliers: Vec<usize>,
     /// Newton/LP steps to x1.
@@ -90,6 +97,8 @@ where
                 inner: c.inner.map(vec),
                 witness: c.witness.map(|w| w.to_vec()),
                 conflict: c.conflict,
+                support: c.support,
+                spread: c.spread,
                 outliers: c.outliers,
                 iterations: c.iterations,
                 converged: None,
@@ -115,6 +124,8 @@ where
                 inner: h.inner.map(vec),
                 witness: h.witness.map(|w| w.to_vec()),
                 conflict: h.conflict,
+                support: h.support,
+                spread: h.spread,
                 outliers: h.outliers,
                 iterations: h.iterations,
                 converged: Some(h.converged),

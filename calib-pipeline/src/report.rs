@@ -7,12 +7,17 @@
 //!                     "x0": [lo, hi], "x1": [lo, hi] | null, "outer": [lo, hi] | null,
 //!                     "inner": [lo, hi] | null, "ratio": r | null, "witness": v | null,
 //!                     "lsq": v | null }, ... ],
-//!   "conflict": [configuration, ...] | null, "outliers": [configuration, ...],
+//!   "conflict": [configuration, ...] | null, "support": [configuration, ...] | null,
+//!   "spread": true | false, "outliers": [configuration, ...],
 //!   "outliers_tolerated": q (only when q > 0),
 //!   "verdict": ["sentence", ...], "identifiability": ["sentence", ...],
 //!   "converged": true | false | null, "iterations": n, "boxes": n, "seconds": s }
 //! ```
-//! Configurations are 1-based (the k-th data row of the CSV is configuration k). Bounds are in the
+//! Configurations are 1-based (the k-th data row of the CSV is configuration k). `support` (the
+//! configurations the certificate of emptiness weighs) and `spread` (it weighs most of what a
+//! certificate can: a misfit spread over the data, the bounds too tight for the model, and
+//! `conflict` is `null` — not searched) were added without breaking the layout: reports written
+//! before read back with `null` and `false`. Bounds are in the
 //! units named, written with Rust's shortest round-trip formatting (no bound moves inward by
 //! printing).
 
@@ -53,6 +58,14 @@ pub struct OutcomeReport {
     pub parameters: Vec<ParameterReport>,
     /// For an empty sub-problem: a minimal conflicting set of configurations (1-based).
     pub conflict: Option<Vec<usize>>,
+    /// For an empty sub-problem: the configurations (1-based) the certificate of emptiness
+    /// weighs, when it names them.
+    #[serde(default)]
+    pub support: Option<Vec<usize>>,
+    /// For an empty sub-problem: the support shows a misfit spread over the data (the bounds too
+    /// tight for the model); `conflict` is then `null`, not searched.
+    #[serde(default)]
+    pub spread: bool,
     /// With outliers tolerated: the configurations (1-based) proved to be outliers.
     pub outliers: Vec<usize>,
     /// How many outliers the result tolerates (absent when none).
@@ -111,6 +124,8 @@ impl OutcomeReport {
             status: format!("{:?}", o.status).to_lowercase(),
             parameters,
             conflict: o.conflict.as_deref().map(one_based),
+            support: o.support.as_deref().map(one_based),
+            spread: o.spread,
             outliers: one_based(&o.outliers),
             outliers_tolerated: 0,
             verdict,

@@ -36,6 +36,30 @@ impl ConfigurationNames<'_> {
     }
 }
 
+/// For an empty sub-problem whose certificate weighs most of what a certificate can weigh
+/// ([`Outcome::spread`]): the misfit is spread over the data — the error bounds are too tight for
+/// the model — and what to do next.
+fn spread(r: &Outcome, names: &ConfigurationNames<'_>) -> Vec<String> {
+    let support = r.support.as_deref().unwrap_or_default();
+    let of = if names.lines.is_empty() {
+        String::new()
+    } else {
+        format!(" of the {}", names.lines.len())
+    };
+    vec![
+        format!(
+            "spread: the proof of emptiness weighs {}{of} configurations — {} — a misfit spread \
+             over the data rather than a few bad readings: the error bounds are too tight for the \
+             model (no conflict set was searched: it would name many configurations)",
+            support.len(),
+            names.name(support)
+        ),
+        "find the bounds the data need with --error-scale auto; to look for a few bad readings \
+         all the same, run with --max-outliers auto"
+            .into(),
+    ]
+}
+
 /// What proved a sub-problem empty, in words (`names`: the parameters' names).
 pub fn proof_in_words(proof: Option<EmptinessProof>, names: &[String]) -> String {
     match proof {
@@ -106,6 +130,7 @@ pub fn verdict(r: &Outcome, names: &ConfigurationNames<'_>, max_outliers: usize)
                         if max_outliers == 0 { "" } else { "s" }
                     ));
                 }
+                None if r.spread => out.extend(spread(r, names)),
                 None => out.push(
                     "run with a larger --max-outliers, or check the model and error bounds".into(),
                 ),

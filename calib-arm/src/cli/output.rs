@@ -34,7 +34,8 @@ pub fn print_outcome(run: &ArmRun, names: &ConfigurationNames<'_>, max_outliers:
     for s in verdict::verdict(o, names, max_outliers) {
         println!("{s}");
     }
-    if o.status == calib_core::Status::Empty {
+    if o.status == calib_core::Status::Empty && !o.spread {
+        // (A spread misfit's sentences already say what to do.)
         println!(
             "if a few readings are bad, tolerate them (--max-outliers); if every configuration is \
              a little off — the model does not describe the arm to these bounds (real arms bend \

@@ -24,6 +24,8 @@ fn run(fit: f64) -> ArmRun {
             inner: Some(vec![Interval::new(-0.25, 0.25); 14]),
             witness: Some(vec![0.0; 14]),
             conflict: None,
+            support: None,
+            spread: false,
             outliers: vec![],
             iterations: 3,
             converged: Some(true),

@@ -23,6 +23,8 @@ fn the_json_schema_round_trips_exactly() {
             inner: Some(bounds(&b)),
             converged: Some(true),
             conflict: Some(vec![3, 9]),
+            support: Some(vec![3, 9, 12]),
+            spread: false,
             outliers: vec![9],
             outliers_tolerated: 1,
             witness: Some(vec![0.1; 7]),

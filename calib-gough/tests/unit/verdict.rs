@@ -20,6 +20,8 @@ fn faces_of_x0_reached_by_the_outer_box_are_named() {
         inner: None,
         witness: None,
         conflict: None,
+        support: None,
+        spread: false,
         outliers: vec![],
         tolerated: 0,
         iterations: 1,

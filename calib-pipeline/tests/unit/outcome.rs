@@ -19,6 +19,8 @@ fn outcome(x0: Vec<Interval>, outer: Vec<Interval>) -> Outcome {
         ),
         witness: None,
         conflict: None,
+        support: None,
+        spread: false,
         outliers: vec![],
         iterations: 1,
         converged: Some(true),

@@ -1,7 +1,9 @@
 //! The tests of `calib_pipeline::verdict`.
 
 use calib_core::{EmptinessProof, Interval, Status};
+use calib_pipeline::report::OutcomeReport;
 use calib_pipeline::verdict::*;
+use calib_pipeline::Outcome;
 
 #[test]
 fn factors_below_one_are_not_improvements() {
@@ -80,4 +82,70 @@ fn every_proof_has_words() {
         &names
     )
     .contains("p6"));
+}
+
+/// An empty outcome: a spread misfit (`conflict: None`, not searched) or a conflict set.
+fn empty_outcome(conflict: Option<Vec<usize>>, support: Vec<usize>, spread: bool) -> Outcome {
+    Outcome {
+        names: vec!["a".into()],
+        x0: vec![Interval::new(-1.0, 1.0)],
+        status: Status::Empty,
+        emptiness: Some(EmptinessProof::LpInfeasible),
+        x1: None,
+        outer: None,
+        inner: None,
+        witness: None,
+        conflict,
+        support: Some(support),
+        spread,
+        outliers: vec![],
+        iterations: 1,
+        converged: None,
+        boxes: 1,
+        seconds: 0.0,
+    }
+}
+
+#[test]
+fn a_spread_misfit_points_to_the_error_scale_and_names_no_conflict() {
+    let lines: Vec<usize> = (2..14).collect();
+    let names = ConfigurationNames {
+        file: "m.csv",
+        lines: &lines,
+    };
+    let spread = verdict(&empty_outcome(None, vec![0, 2, 5, 7, 9], true), &names, 0);
+    let text = spread.join("\n");
+    assert!(
+        text.contains("weighs 5 of the 12 configurations — configurations 1, 3, 6, 8, 10"),
+        "{text}"
+    );
+    assert!(text.contains("too tight for the model"), "{text}");
+    assert!(text.contains("--error-scale auto"), "{text}");
+    assert!(!text.contains("conflict:"), "{text}");
+    // The few-bad-readings case keeps its conflict set and its advice.
+    let few = verdict(&empty_outcome(Some(vec![3]), vec![3], false), &names, 0).join("\n");
+    assert!(
+        few.contains("conflict: configuration 4 (m.csv line 5) alone"),
+        "{few}"
+    );
+    assert!(
+        few.contains("--max-outliers 1") && !few.contains("spread"),
+        "{few}"
+    );
+
+    // The JSON keeps every key and adds `support` (1-based) and `spread`; reports written
+    // before read back without them.
+    let o = empty_outcome(None, vec![0, 2, 5, 7, 9], true);
+    let report = OutcomeReport::new(&o, &["mm".into()], spread, vec![], None);
+    let json: serde_json::Value = serde_json::from_str(&report.to_json()).expect("json");
+    assert_eq!(json["status"], "empty");
+    assert!(json["conflict"].is_null() && json["outliers"] == serde_json::json!([]));
+    assert_eq!(json["support"], serde_json::json!([1, 3, 6, 8, 10]));
+    assert_eq!(json["spread"], true);
+    let mut old = json.clone();
+    let fields = old.as_object_mut().expect("an object");
+    fields.remove("support");
+    fields.remove("spread");
+    let back: OutcomeReport = serde_json::from_value(old).expect("an older report");
+    assert_eq!((back.support, back.spread), (None, false));
 }
