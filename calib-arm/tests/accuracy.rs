@@ -223,7 +223,7 @@ fn over_the_certified_set_no_consistent_geometry_exceeds_the_bound() {
         &problem,
         &ToolAccuracySettings {
             rel_tol: 0.04,
-            max_set_boxes: 40,
+            max_set_boxes: 15,
             ..ToolAccuracySettings::default()
         },
     );
@@ -244,7 +244,7 @@ fn over_the_certified_set_no_consistent_geometry_exceeds_the_bound() {
             .map(|p| index.iter().map(|&k| p.x[k]).collect::<Vec<f64>>()),
     );
     let mut largest: f64 = 0.0;
-    for k in 0..3000 {
+    for k in 0..2000 {
         let q: Vec<f64> = space
             .ranges_deg
             .iter()

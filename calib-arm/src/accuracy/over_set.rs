@@ -8,7 +8,7 @@
 //!
 //! with `g_j ⊇ ∂p/∂θ_j` over `Q' ×` the set's outer box (with `θ̂`) and `H ⊇ ∂p/∂q` there.
 //!
-//! **At the set's scale.** On joint boxes up to [`QUADRATIC_WIDTH`] wide, each `g_j` is a
+//! **At the set's scale.** On joint boxes up to 1 rad wide, each `g_j` is a
 //! second-order model in the joints' noise symbols `ε_i` ([`Quadratic`] carried through the
 //! model's derivatives, [`calib_core::Jet`]): `g_j = c_j + Σ_i a_ji ε_i + Σ_{i<=k} b_jik ε_i
 //! ε_k ± e_j`, `e_j` of third order. Along a unit direction `u`, the error's component is then
