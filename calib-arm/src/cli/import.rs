@@ -1,6 +1,6 @@
 //! `arm import`.
 
-use calib_arm::vendor::{chain_to_arm, ur_yaml, urdf, ImportRadii};
+use calib_arm::vendor::{agreement, chain_to_arm, ur_yaml, urdf, ImportRadii};
 use calib_pipeline::{read_text, write_atomically};
 use std::path::PathBuf;
 
@@ -33,6 +33,13 @@ pub struct Args {
     out: PathBuf,
 }
 
+/// Joint configurations at which the import's forward kinematics are compared with the vendor's.
+const AGREEMENT_CONFIGURATIONS: usize = 64;
+/// The largest flange distance (mm) an exact import may show: rounding of metre-scale chains.
+const AGREEMENT_MM: f64 = 1e-6;
+/// The largest flange rotation (radians) an exact import may show.
+const AGREEMENT_RAD: f64 = 1e-9;
+
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     for (v, name) in [
         (a.angle_radius, "--angle-radius"),
@@ -60,11 +67,29 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         length_mm: a.length_radius,
     };
     let arm = chain_to_arm(&origins, radii).map_err(|e| format!("{}: {e}", source.display()))?;
+    // The claim the file's header makes, checked: the model reproduces the vendor's flange.
+    let (distance, angle, at) = agreement(&origins, &arm, AGREEMENT_CONFIGURATIONS);
+    if distance > AGREEMENT_MM || angle > AGREEMENT_RAD {
+        let q: Vec<String> = at
+            .iter()
+            .map(|v| format!("{:.1}", v.to_degrees()))
+            .collect();
+        return Err(format!(
+            "{}: the imported parameters do not reproduce the vendor's forward kinematics: the \
+             flanges differ by up to {distance:.3e} mm and {:.3e}° (at q = ({})°); nothing written",
+            source.display(),
+            angle.to_degrees(),
+            q.join(", ")
+        )
+        .into());
+    }
     let text = format!(
-        "# imported by certicalib {} from {} (exact: the forward kinematics agree)\n\
+        "# imported by certicalib {} from {} (exact: the flanges agree within {distance:.1e} mm \
+         and {:.1e}° at {AGREEMENT_CONFIGURATIONS} configurations)\n\
          # base and tool: placeholders until `arm register` finds them from measurements.\n{}",
         env!("CARGO_PKG_VERSION"),
         source.display(),
+        angle.to_degrees(),
         calib_arm::write::robot_toml(&arm)
     );
     write_atomically(&a.out, &text)
@@ -92,6 +117,11 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             i + 1
         );
     }
+    println!(
+        "the model's flange agrees with the vendor's within {distance:.1e} mm and {:.1e}° at \
+         {AGREEMENT_CONFIGURATIONS} configurations spread over ±180° per joint",
+        angle.to_degrees()
+    );
     println!(
         "wrote {}; next: `arm register --robot {} --measurements …` finds the tracker-to-base \
          transform and the tool point",

@@ -110,6 +110,36 @@ pub fn chain_flange(origins: &[Frame], q: &[f64]) -> Frame {
         .fold(Frame::identity(), |t, (f, q)| t * f * rz(*q))
 }
 
+/// How far the model's flange frame of `arm` is from the vendor chain's, at most, over
+/// `configurations` joint configurations spread over `[-π, π]` for every joint (a
+/// golden-ratio sequence, the same every time): the largest distance (mm) and rotation angle
+/// (radians) between the two frames, and the configuration where the distance is largest. What
+/// `arm import` checks before it writes a robot file: an import is exact only if these are at
+/// rounding level.
+pub fn agreement(origins: &[Frame], arm: &Arm, configurations: usize) -> (f64, f64, Vec<f64>) {
+    let n = origins.len();
+    let mut worst = (0.0f64, 0.0f64, vec![0.0; n]);
+    for k in 0..configurations {
+        let q: Vec<f64> = (0..n)
+            .map(|i| {
+                let t = ((k as f64 + 0.5) * (0.618_033_988_749_895 * (i as f64 + 1.0))).fract();
+                std::f64::consts::PI * (2.0 * t - 1.0)
+            })
+            .collect();
+        let (want, got) = (chain_flange(origins, &q), arm_flange(arm, &q));
+        // A non-finite frame is the worst of all.
+        let finite_or_worst = |v: f64| if v.is_nan() { f64::INFINITY } else { v };
+        let distance = finite_or_worst((got.translation.vector - want.translation.vector).norm());
+        let angle = finite_or_worst(got.rotation.angle_to(&want.rotation));
+        if distance > worst.0 {
+            worst.0 = distance;
+            worst.2 = q;
+        }
+        worst.1 = worst.1.max(angle);
+    }
+    worst
+}
+
 /// The model's flange frame of `arm` (files' units) at joint readings `q` (radians), with the
 /// base transform: `T_base Rz(q_1) D_1 ⋯ Rz(q_N) D_N`.
 pub fn arm_flange(arm: &Arm, q: &[f64]) -> Frame {

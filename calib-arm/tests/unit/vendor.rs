@@ -83,6 +83,33 @@ mod tests {
             }
         }
     }
+
+    #[test]
+    fn the_import_agreement_is_at_rounding_level_and_sees_a_changed_parameter() {
+        use calib_arm::vendor::agreement;
+        let mut rng = rand::rngs::StdRng::seed_from_u64(8);
+        let radii = ImportRadii {
+            angle_deg: 0.1,
+            length_mm: 1.0,
+        };
+        for _ in 0..20 {
+            let origins: Vec<Frame> = (0..6).map(|_| random_frame(&mut rng, 500.0)).collect();
+            let mut arm = chain_to_arm(&origins, radii).expect("an arm");
+            let (distance, angle, _) = agreement(&origins, &arm, 64);
+            assert!(
+                distance < 1e-9 && angle < 1e-12,
+                "{distance} mm, {angle} rad"
+            );
+            // Half a millimetre on one length: seen, at least mostly, somewhere.
+            arm.joints[2].nominal[2] += 0.5;
+            let (distance, _, at) = agreement(&origins, &arm, 64);
+            assert!((0.45..=0.5 + 1e-9).contains(&distance), "{distance} mm");
+            assert_eq!(at.len(), 6);
+            // A NaN is the worst of all.
+            arm.joints[0].nominal[1] = f64::NAN;
+            assert_eq!(agreement(&origins, &arm, 8).0, f64::INFINITY);
+        }
+    }
 }
 
 mod ur10 {
