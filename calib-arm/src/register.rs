@@ -9,6 +9,13 @@
 //! (`t = mean_k (R R_k)ᵀ (p_k − T − R o_k)`, the `R R_k` being rotations); from `t = 0`. Both steps
 //! lower the same sum of squares. Then Levenberg–Marquardt refines the nine base and tool
 //! parameters together ([`crate::certification::fit_arm`]).
+//!
+//! Base and tool can be told apart only when the flange's orientation changes over the rows: with
+//! one orientation `R_0`, the tool's `R R_0 t` is a constant the base's position `T` absorbs, and
+//! the fit sends the tool anywhere (on 60 real UR10 rows of one orientation, 0.9 m from the
+//! flange) for the same residuals. [`separability`] measures it before fitting; below
+//! [`SEPARABLE_SPREAD_DEG`] [`register`] keeps the robot file's tool point, fixed (prior
+//! half-width 0), and fits the base alone ([`ToolPoint`] chooses otherwise).
 
 use crate::certification::fit_arm;
 use crate::pose::orientation::{from_euler_xyz, orientation_errors_deg};
@@ -39,11 +46,30 @@ impl Default for RegistrationPriors {
     }
 }
 
+/// Whether registration fits the tool point or keeps the robot file's.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum ToolPoint {
+    /// Fit it when the rows tell it from the base, keep it otherwise.
+    #[default]
+    Auto,
+    /// Fit it, even when the rows cannot tell it from the base.
+    Fit,
+    /// Keep the robot file's; fit the base alone.
+    Keep,
+}
+
 /// A registered arm and how well it fits.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Registration {
-    /// The arm with the registered base and tool (and their priors); joints as given.
+    /// The arm with the registered base and tool (and their priors); joints as given. A kept
+    /// tool point ([`Registration::tool_kept`]) has the prior half-width 0: where the rows cannot
+    /// tell it from the base, neither can a calibration on them.
     pub arm: Arm,
+    /// Whether the tool point was kept from the robot file rather than fitted.
+    pub tool_kept: bool,
+    /// How well the rows tell the tool point from the base ([`separability`]; whether they
+    /// cannot, [`Separability::inseparable`], whatever was done about it).
+    pub separability: Separability,
     /// Root mean square of every coordinate's residual, mm (nominal joints).
     pub rms: f64,
     /// Largest coordinate residual, mm.
@@ -54,14 +80,86 @@ pub struct Registration {
     pub converged: bool,
 }
 
+/// How well the rows tell the tool point from the base ([`separability`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Separability {
+    /// The flange orientations' spread that the tool point's weakest direction sees, degrees:
+    /// `sqrt(λ_min / n)` of the tool's information once the base has taken all it can.
+    pub spread_deg: f64,
+    /// That weakest direction, a unit vector in the flange frame.
+    pub weakest: [f64; 3],
+    /// The largest angle between a row's flange orientation and their mean, degrees: below
+    /// [`SEPARABLE_SPREAD_DEG`], the rows hold one flange orientation.
+    pub orientation_range_deg: f64,
+    /// The number of rows.
+    pub rows: usize,
+}
+
+impl Separability {
+    /// Whether the rows are too little to fit the tool point: [`Separability::spread_deg`]
+    /// below [`SEPARABLE_SPREAD_DEG`] (or undefined).
+    pub fn inseparable(&self) -> bool {
+        self.spread_deg.is_nan() || self.spread_deg < SEPARABLE_SPREAD_DEG
+    }
+
+    /// Why the rows cannot tell the tool point from the base, a sentence without its final
+    /// full stop (`None` when they can).
+    pub fn reason(&self) -> Option<String> {
+        if !self.inseparable() {
+            return None;
+        }
+        let why = if self.orientation_range_deg < SEPARABLE_SPREAD_DEG {
+            format!(
+                "the {} configurations hold one flange orientation (all within {:.3}° of it)",
+                self.rows, self.orientation_range_deg
+            )
+        } else {
+            let [x, y, z] = self.weakest;
+            format!(
+                "the {} configurations' flange orientations spread {:.4}° across the flange \
+                 direction ({x:.3}, {y:.3}, {z:.3}), below {SEPARABLE_SPREAD_DEG}° (turns about \
+                 that axis only, or too few configurations)",
+                self.rows, self.spread_deg
+            )
+        };
+        Some(format!("{why}: base and tool cannot be told apart there"))
+    }
+}
+
+/// The smallest [`Separability::spread_deg`] at which [`register`] fits the tool point, degrees.
+///
+/// Below it the base's position takes up the tool point: the tool's standard error along its
+/// weakest direction is about `rms / (√n · spread)` (the spread in radians), 0.75 mm / (√60 · 0.1°) ≈ 55 mm at
+/// this threshold on the real UR10's residuals. Measured on that robot's series B (nominal
+/// joints): 60 rows commanded to one orientation spread 0.006° (the fit put the tool 0.9 m
+/// away), with one row of another orientation added 0.0075° (the tool 220 mm off along its weak
+/// axis); rows cycling through the five commanded orientations 10° apart spread 0.30° to 0.40°
+/// over 10 to 20 rows (tool within 9 mm of the others' 93 mm), and rows 1-60, with the home
+/// pose, 5.9°. The threshold sits a factor 3 below the least spread that still located the tool.
+pub const SEPARABLE_SPREAD_DEG: f64 = 0.1;
+
 /// Alternating steps of the closed-form start.
 const START_ITERATIONS: usize = 200;
 
-/// Registers `nominal` (its joints as they are; base and tool found) on `readings`.
+/// Registers `nominal` (its joints as they are; base and tool found) on `readings`: the tool
+/// point is fitted when the rows tell it from the base, and kept from `nominal` otherwise
+/// ([`ToolPoint::Auto`] of [`register_with`]).
 pub fn register(
     nominal: &Arm,
     readings: &[Reading],
     priors: RegistrationPriors,
+) -> Result<Registration, String> {
+    register_with(nominal, readings, priors, ToolPoint::Auto)
+}
+
+/// Registers `nominal` (its joints as they are) on `readings`: the base found, the tool point
+/// fitted or kept as `tool` says. A fitted tool gets the prior half-width `priors.tool_mm`, a
+/// kept one 0.
+pub fn register_with(
+    nominal: &Arm,
+    readings: &[Reading],
+    priors: RegistrationPriors,
+    tool: ToolPoint,
 ) -> Result<Registration, String> {
     if readings.len() < 3 {
         return Err(format!(
@@ -86,7 +184,17 @@ pub fn register(
         })
         .collect();
     let measured: Vec<Vector3<f64>> = readings.iter().map(|r| Vector3::from(r.point)).collect();
-    let mut t = Vector3::zeros();
+    let separability = separability(nominal, readings);
+    let keep = match tool {
+        ToolPoint::Auto => separability.inseparable(),
+        ToolPoint::Fit => false,
+        ToolPoint::Keep => true,
+    };
+    let mut t = if keep {
+        Vector3::from(nominal.tool)
+    } else {
+        Vector3::zeros()
+    };
     let mut pose = Frame::identity();
     for _ in 0..START_ITERATIONS {
         let points: Vec<Vector3<f64>> = flanges
@@ -95,6 +203,9 @@ pub fn register(
             .collect();
         pose = kabsch(&points, &measured)
             .ok_or("the configurations' points are collinear: registration needs a spread")?;
+        if keep {
+            break;
+        }
         let next = flanges
             .iter()
             .zip(&measured)
@@ -120,7 +231,7 @@ pub fn register(
         j.radius = [0.0; 5];
     }
     free.base_radius = [1.0; 6];
-    free.tool_radius = [1.0; 3];
+    free.tool_radius = [if keep { 0.0 } else { 1.0 }; 3];
     let fit = fit_arm(&free, readings)?;
     let n = 5 * arm.joints.len();
     arm.base.copy_from_slice(&fit.x[n..n + 6]);
@@ -133,14 +244,103 @@ pub fn register(
         priors.base_deg,
         priors.base_deg,
     ];
-    arm.tool_radius = [priors.tool_mm; 3];
+    arm.tool_radius = [if keep { 0.0 } else { priors.tool_mm }; 3];
     Ok(Registration {
         arm,
+        tool_kept: keep,
+        separability,
         rms: fit.rms,
         max_abs: fit.max_abs,
         start_rms,
         converged: fit.converged,
     })
+}
+
+/// How well `readings` tell the tool point from the base, with `nominal`'s joints and tool.
+///
+/// Linearised, a configuration's tracked point moves by `δT + δω × x_k + R_k δt` for a move
+/// `δT` of the base's position, `δω` of its rotation and `δt` of the tool point (base frame,
+/// `R_k` the flange's rotation and `x_k` the tracked point, both from the nominal joints and the
+/// file's tool). Over the readings, the tool's information once the base has taken all it can is
+/// the Schur complement `S = N_tt − N_tb N_bb⁻¹ N_bt` of the normal matrix `N = Σ J_kᵀ J_k`
+/// (`J_k = [I, −[x_k]×, R_k]`), independent of the units of the base's columns (and of the
+/// points' origin, a constant the position's columns take). For the base's
+/// position alone it is `Σ (R_k − R̄)ᵀ (R_k − R̄)`, whose smallest eigenvalue is `n` times the
+/// mean square spread of the flange orientations about the axes across the tool's weakest
+/// direction (radians, small spreads). Hence the spread reported, `sqrt(λ_min(S) / n)` in
+/// degrees: 0 when every row has the same flange orientation (or turns it about one axis only,
+/// then the tool's component along that axis is what cannot be found).
+pub fn separability(nominal: &Arm, readings: &[Reading]) -> Separability {
+    let t = Vector3::from(nominal.tool);
+    let flanges: Vec<Frame> = readings
+        .iter()
+        .map(|r| {
+            let q: Vec<f64> = r.joints_deg.iter().map(|d| d.to_radians()).collect();
+            arm_flange(nominal, &q)
+        })
+        .collect();
+    // The rotation's columns about the points' centre and in units of their spread: the same
+    // span with the position's columns, so the same complement, but a well-conditioned `N_bb`.
+    let points: Vec<Vector3<f64>> = flanges
+        .iter()
+        .map(|f| (f * Point3::from(t)).coords)
+        .collect();
+    let centre = points.iter().sum::<Vector3<f64>>() / points.len().max(1) as f64;
+    let scale = (points
+        .iter()
+        .map(|x| (x - centre).norm_squared())
+        .sum::<f64>()
+        / points.len().max(1) as f64)
+        .sqrt()
+        .max(1e-300);
+    let mut n = nalgebra::SMatrix::<f64, 9, 9>::zeros();
+    let mut sum = Matrix3::zeros();
+    for (f, x) in flanges.iter().zip(&points) {
+        let rot = f.rotation.to_rotation_matrix().into_inner();
+        sum += rot;
+        let mut j = nalgebra::SMatrix::<f64, 3, 9>::zeros();
+        j.fixed_view_mut::<3, 3>(0, 0)
+            .copy_from(&Matrix3::identity());
+        j.fixed_view_mut::<3, 3>(0, 3)
+            .copy_from(&(-((x - centre) / scale).cross_matrix()));
+        j.fixed_view_mut::<3, 3>(0, 6).copy_from(&rot);
+        n += j.transpose() * j;
+    }
+    let nbb = n.fixed_view::<6, 6>(0, 0).into_owned();
+    let nbt = n.fixed_view::<6, 3>(0, 6).into_owned();
+    let ntt = n.fixed_view::<3, 3>(6, 6).into_owned();
+    // The base's block is singular only when the points do not fix a rigid transform (then
+    // registration fails anyway); the pseudo-inverse keeps the test defined there.
+    let nbb_inv = nbb
+        .pseudo_inverse(1e-12 * nbb.norm().max(1e-300))
+        .unwrap_or_else(|_| nalgebra::SMatrix::zeros());
+    let s = ntt - nbt.transpose() * nbb_inv * nbt;
+    let s = (s + s.transpose()) * 0.5;
+    let eig = s.symmetric_eigen();
+    let (i, lambda) = eig
+        .eigenvalues
+        .iter()
+        .copied()
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or((0, 0.0));
+    let weakest = eig.eigenvectors.column(i).into_owned();
+    let orientation_range_deg = match nearest_rotation(&sum) {
+        Some(mean) => flanges
+            .iter()
+            .map(|f| (mean.inverse() * f.rotation.to_rotation_matrix()).angle())
+            .fold(0.0_f64, f64::max)
+            .to_degrees(),
+        None => f64::NAN,
+    };
+    Separability {
+        rows: readings.len(),
+        orientation_range_deg,
+        spread_deg: (lambda.max(0.0) / readings.len().max(1) as f64)
+            .sqrt()
+            .to_degrees(),
+        weakest: [weakest[0], weakest[1], weakest[2]],
+    }
 }
 
 /// The rigid transform taking the points `from` onto `to` best in least squares (Kabsch), `None`

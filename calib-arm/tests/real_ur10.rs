@@ -89,6 +89,8 @@ fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
         &tracker("1-60"),
     );
     assert!(o.status.success(), "{}", text(&o));
+    // Five flange orientations and the home pose: base and tool told apart, nothing to warn.
+    assert!(!text(&o).contains("warning"), "{}", text(&o));
     // The T-Mac sits about 93 mm out along the flange axis (the dataset's README).
     let robot = calib_arm::files::read_robot(Path::new(&p("robot.toml"))).expect("robot");
     assert!((robot.tool[2] - 93.0).abs() < 2.0, "{:?}", robot.tool);
@@ -555,4 +557,87 @@ fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
         e.contains("cut.toml") && e.contains("tool.rpy_deg") && e.contains("rotation_radius"),
         "{e}"
     );
+}
+
+#[test]
+fn one_flange_orientation_is_registered_with_the_files_tool_and_a_warning() {
+    let dir = tempdir("one-orientation");
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    import_nominal(&p("nominal.toml"));
+    // Series B's first 60 rows commanded to one orientation (Goal roll, pitch, yaw = 180°,
+    // 100°, 90°), the tracker's file as it comes otherwise.
+    let series = std::fs::read_to_string(data("series_b_joint_configurations.csv")).expect("csv");
+    let mut lines = series.lines();
+    let mut block = vec![lines.next().expect("a header")];
+    block.extend(
+        lines
+            .filter(|l| {
+                let goal: Vec<f64> = l
+                    .split(';')
+                    .skip(4)
+                    .take(3)
+                    .map(|v| v.replace(',', ".").parse::<f64>().expect("a goal angle"))
+                    .collect();
+                [180.0, 100.0, 90.0]
+                    .iter()
+                    .zip(&goal)
+                    .all(|(want, rad)| (rad.to_degrees() - want).abs() < 0.05)
+            })
+            .take(60),
+    );
+    assert_eq!(block.len(), 61);
+    std::fs::write(p("one.csv"), block.join("\n") + "\n").expect("write");
+    let mut args = tracker("1-");
+    args[1] = p("one.csv");
+    let register = |out: &str, extra: &[&str]| {
+        let mut all = args.clone();
+        all.extend(extra.iter().map(|s| s.to_string()));
+        run(
+            &["register", "--robot", &p("nominal.toml"), "--out", &p(out)],
+            &all,
+        )
+    };
+    let o = register("robot.toml", &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let said = text(&o);
+    assert!(
+        said.contains("warning: the 60 configurations hold one flange orientation (all within")
+            && said.contains("base and tool cannot be told apart there")
+            && said.contains("kept from")
+            && said.contains("nominal.toml and fixed (--tool-radius 0)")
+            && said.contains("--tool fit fits it anyway"),
+        "{said}"
+    );
+    // The nominal file's tool point (the flange's centre), fixed; the base found, and the rows
+    // fitted as well as by the nine parameters (0.75 mm with the nominal joints).
+    let robot = calib_arm::files::read_robot(Path::new(&p("robot.toml"))).expect("robot");
+    assert_eq!(robot.tool, [0.0; 3]);
+    assert_eq!(robot.tool_radius, [0.0; 3]);
+    assert_eq!(robot.base_radius, [2.0, 2.0, 2.0, 0.1, 0.1, 0.1]);
+    let header = std::fs::read_to_string(p("robot.toml")).expect("robot");
+    assert!(
+        header
+            .lines()
+            .next()
+            .is_some_and(|l| l.contains("tool point kept")),
+        "{header}"
+    );
+    // Fitting all nine anyway, as before: the tool point goes far from the T-Mac's 93 mm on the
+    // flange axis, for the same residuals, and the warning stays.
+    let o = register("fit.toml", &["--tool", "fit"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(
+        text(&o).contains("warning: the 60 configurations hold one flange orientation")
+            && text(&o).contains("fitted as asked (--tool fit)"),
+        "{}",
+        text(&o)
+    );
+    let fit = calib_arm::files::read_robot(Path::new(&p("fit.toml"))).expect("robot");
+    let off = (fit.tool[0].powi(2) + fit.tool[1].powi(2) + (fit.tool[2] - 93.0).powi(2)).sqrt();
+    assert!(off > 100.0, "{:?}", fit.tool);
+    // A prior asked for is written as asked, around the kept tool point.
+    let o = register("asked.toml", &["--tool-radius", "2"]);
+    assert!(text(&o).contains("the prior ± 2 mm asked"), "{}", text(&o));
+    let asked = calib_arm::files::read_robot(Path::new(&p("asked.toml"))).expect("robot");
+    assert!(asked.tool == [0.0; 3] && asked.tool_radius == [2.0; 3]);
 }

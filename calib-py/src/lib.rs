@@ -548,8 +548,10 @@ fn arm_export(
 /// Registers the tracker and the tool point, as `arm register` does — and with
 /// `orientation_columns` (three names, `orientation_convention` `euler-xyz-deg` or
 /// `euler-xyz-rad`) the tool frame's rotation with the prior `tool_rotation_radius` (degrees):
-/// writes `out` and returns JSON (`base`, `tool`, `rms_mm`, `max_mm`, `start_rms_mm`,
-/// `converged`, and `tool_rotation` with `rpy_deg`, `rms_deg`, `max_deg` or null).
+/// writes `out` and returns JSON (`base`, `tool`, `tool_kept`, `warning`, `rms_mm`, `max_mm`,
+/// `start_rms_mm`, `converged`, and `tool_rotation` with `rpy_deg`, `rms_deg`, `max_deg` or
+/// null). Where the rows cannot tell the tool point from the base (one flange orientation), the
+/// robot file's is kept, fixed, and `warning` says why (else null).
 #[pyfunction]
 #[pyo3(signature = (robot, measurements, out, columns, priors, orientation_columns=None, orientation_convention="euler-xyz-deg", tool_rotation_radius=0.5))]
 #[allow(clippy::too_many_arguments)] // the command line's options, one argument each
@@ -599,9 +601,19 @@ fn arm_register(
     );
     calib_pipeline::write_atomically(&out, &text)
         .map_err(|e| value_error(format!("{}: cannot write: {e}", out.display())))?;
+    // Rows that cannot tell the tool point from the base: the library kept the file's, fixed.
+    let warning = r.separability.reason().map(|why| {
+        format!(
+            "{why}. The tool point is kept from {} and fixed (prior half-width 0); the base is \
+             fitted alone",
+            robot.display()
+        )
+    });
     Ok(serde_json::json!({
         "base": r.arm.base,
         "tool": r.arm.tool,
+        "tool_kept": r.tool_kept,
+        "warning": warning,
         "rms_mm": r.rms,
         "max_mm": r.max_abs,
         "start_rms_mm": r.start_rms,

@@ -138,6 +138,14 @@ enum Command {
     /// fits and linear least squares), then least squares of the nine base and tool parameters
     /// with the nominal joints. Writes the robot file with them and their priors.
     ///
+    /// Base and tool can be told apart only when the flange's orientation changes over the
+    /// rows: at one orientation the base's position takes up the tool point, which the fit
+    /// would then send anywhere (a metre away) for the same residuals. When the orientations
+    /// spread less than 0.1° across some direction of the tool (one orientation, turns about a
+    /// single axis, or too few rows), register says so, keeps the --robot file's tool point,
+    /// fixed (--tool-radius 0 unless given), and fits the base alone; --tool fit fits it anyway,
+    /// --tool keep always keeps it.
+    ///
     /// Example (the real UR10 data of the tutorial, radians and metres as exported):
     ///   arm register --robot nominal.toml --measurements series_b.csv \
     ///                --joint-columns shoulder_pan_joint,shoulder_lift_joint,elbow_joint,\

@@ -2,7 +2,9 @@
 
 use super::DataFiles;
 use calib_arm::files::read_robot;
-use calib_arm::register::{register, register_tool_rotation, RegistrationPriors};
+use calib_arm::register::{
+    register_tool_rotation, register_with, Registration, RegistrationPriors, ToolPoint,
+};
 use calib_pipeline::write_atomically;
 use std::path::PathBuf;
 
@@ -20,9 +22,15 @@ pub struct Args {
         default_value = "2,0.1"
     )]
     base_radius: Vec<f64>,
-    /// The prior half-width written around the registered tool point (mm).
-    #[arg(long, value_name = "MM", default_value_t = 2.0)]
-    tool_radius: f64,
+    /// The prior half-width written around the registered tool point (mm) [default: 2, or 0
+    /// when the tool point is kept].
+    #[arg(long, value_name = "MM")]
+    tool_radius: Option<f64>,
+    /// Fit the tool point, or keep the --robot file's. `auto` fits it when the rows tell it from
+    /// the base (their flange orientations spread at least 0.1° across every direction of the
+    /// tool) and otherwise keeps it, fixed (--tool-radius 0), with a warning.
+    #[arg(long, value_enum, value_name = "WHICH", default_value = "auto")]
+    tool: ToolPoint,
     /// With --orientation-columns: the prior half-width written around the registered tool
     /// frame's rotation (degrees).
     #[arg(long, value_name = "DEG", default_value_t = 0.5)]
@@ -47,10 +55,15 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let priors = RegistrationPriors {
         base_mm,
         base_deg,
-        tool_mm: a.tool_radius,
+        tool_mm: a.tool_radius.unwrap_or(2.0),
     };
-    let mut r = register(&arm, &data.readings, priors)
+    let mut r = register_with(&arm, &data.readings, priors, a.tool)
         .map_err(|e| format!("{}: {e}", a.files.measurements.display()))?;
+    // An explicit --tool-radius is written as asked, around a kept tool point too.
+    if let Some(radius) = a.tool_radius {
+        r.arm.tool_radius = [radius; 3];
+    }
+    let tool_radius = r.arm.tool_radius[0];
     let rotation = match &data.orientations {
         Some(o) => {
             let (t, rms, max) =
@@ -61,6 +74,9 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         }
         None => None,
     };
+    if let Some(w) = inseparable_warning(&r, &a) {
+        println!("{w}");
+    }
     let b = r.arm.base;
     println!(
         "registered on {} configurations of {}:",
@@ -72,11 +88,16 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         b[0], b[1], b[2], b[3], b[4], b[5]
     );
     println!(
-        "  tool point (flange frame): {:.3} {:.3} {:.3} mm (± {} mm), {:.3} mm from the flange",
+        "  tool point (flange frame): {:.3} {:.3} {:.3} mm (± {tool_radius} mm{}), {:.3} mm from \
+         the flange",
         r.arm.tool[0],
         r.arm.tool[1],
         r.arm.tool[2],
-        a.tool_radius,
+        if r.tool_kept {
+            format!(", kept from {}", a.files.robot.display())
+        } else {
+            String::new()
+        },
         r.arm.tool.iter().map(|v| v * v).sum::<f64>().sqrt()
     );
     if let Some((t, rms, max)) = rotation {
@@ -105,8 +126,13 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             b[4]
         );
     }
+    let found = match (r.tool_kept, r.separability.inseparable()) {
+        (false, _) => "base and tool found",
+        (true, false) => "base found, tool point kept",
+        (true, true) => "base found, tool point kept (these rows cannot tell it from the base)",
+    };
     let text = format!(
-        "# registered by certicalib {} from {} and {}: base and tool found, joints as given\n{}",
+        "# registered by certicalib {} from {} and {}: {found}, joints as given\n{}",
         env!("CARGO_PKG_VERSION"),
         a.files.robot.display(),
         a.files.measurements.display(),
@@ -116,4 +142,38 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         .map_err(|e| format!("{}: cannot write: {e}", a.out.display()))?;
     println!("wrote {}", a.out.display());
     Ok(0)
+}
+
+/// The warning when the rows cannot tell the tool point from the base (`None` when they can):
+/// why, and what was done about it.
+fn inseparable_warning(r: &Registration, a: &Args) -> Option<String> {
+    let why = r.separability.reason()?;
+    let robot = a.files.robot.display();
+    let done = if !r.tool_kept {
+        "The tool point is fitted as asked (--tool fit), but these rows do not determine it: \
+         the base's position takes up any move of it"
+            .to_string()
+    } else {
+        let radius = match a.tool_radius {
+            Some(radius) if radius > 0.0 => format!(
+                "written with the prior ± {radius} mm asked (--tool-radius {radius}), though a \
+                 calibration on these rows cannot tell it from the base either"
+            ),
+            _ => "fixed (--tool-radius 0)".to_string(),
+        };
+        format!(
+            "The tool point is kept from {robot} and {radius}; the base is fitted alone, its \
+             position taking up any error of that tool point (right at these orientations, not \
+             at others)"
+        )
+    };
+    Some(format!(
+        "warning: {why}. {done}. To find the tool point, register on configurations with \
+         several flange orientations (turned by degrees about two axes or more){}.",
+        if r.tool_kept {
+            "; --tool fit fits it anyway"
+        } else {
+            ""
+        }
+    ))
 }

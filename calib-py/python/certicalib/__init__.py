@@ -36,6 +36,7 @@ from __future__ import annotations
 import copy
 import json
 import os
+import warnings
 from dataclasses import dataclass
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -599,7 +600,10 @@ def register_arm(robot: PathLike, measurements: PathLike, out: PathLike, *,
     degrees; ``tool_radius``: mm). The measurement file is read as the command line reads it
     (``joint_columns``, ``point_columns``, ``joint_unit`` ``"deg"|"rad"``, ``length_unit``
     ``"mm"|"m"``, ``rows`` such as ``"1-60"``). Returns ``base`` (x, y, z mm, rx, ry, rz °),
-    ``tool`` (mm), ``rms_mm``, ``max_mm``, ``start_rms_mm`` and ``converged``. With
+    ``tool`` (mm), ``tool_kept``, ``warning``, ``rms_mm``, ``max_mm``, ``start_rms_mm`` and
+    ``converged``. Where the rows cannot tell the tool point from the base (one flange
+    orientation), the robot file's tool point is kept, fixed (prior 0 whatever ``tool_radius``),
+    the base fitted alone, and ``warning`` says why (also raised as a ``UserWarning``). With
     ``orientation_columns`` (a 6-DoF probe's three Euler angles, ``orientation_convention``
     ``"euler-xyz-deg"`` or ``"euler-xyz-rad"``) the tool frame's rotation is registered too and
     written with the prior ``tool_rotation_radius`` (degrees): ``tool_rotation`` holds its
@@ -610,7 +614,10 @@ def register_arm(robot: PathLike, measurements: PathLike, out: PathLike, *,
                                  float(tool_radius)),
                                 None if orientation_columns is None else list(orientation_columns),
                                 str(orientation_convention), float(tool_rotation_radius))
-    return json.loads(text)
+    result = json.loads(text)
+    if result.get("warning"):
+        warnings.warn(result["warning"], stacklevel=2)
+    return result
 
 
 def error_scale(robot: PathLike, measurements: PathLike, uncertainty: PathLike, *,
