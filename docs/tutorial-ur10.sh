@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The real-UR10 tutorial (docs/tutorial-ur10.md), every command as written there; CI runs it.
+# The real-UR10 tutorial (docs/src/tutorials/ur10.md), every command as written there; CI runs it.
 # Usage: docs/tutorial-ur10.sh [ARM_BINARY] [WORK_DIR] [EXAMPLES_DIR]
 # With EXAMPLES_DIR (where cargo put calib-arm's examples, e.g. target/debug/examples), the two
 # studies at the end of the tutorial run too.

@@ -16,8 +16,8 @@
 //! cargo run --release -p calib-arm --example compliance_study -- \
 //!     robot.toml docs/data/ur10_ipa/series_b_joint_configurations.csv 60
 //! ```
-//! (`robot.toml` from tutorial steps 1–2, `docs/tutorial-ur10.md`.) A measurement, not a feature:
-//! nothing here is certified except the consistency of the Chebyshev points.
+//! (`robot.toml` from tutorial steps 1–2, `docs/src/tutorials/ur10.md`.) A measurement, not a
+//! feature: nothing here is certified except the consistency of the Chebyshev points.
 
 mod study;
 
