@@ -181,6 +181,51 @@ fn the_certificate_is_one_page_stating_the_certified_boxes_and_the_inputs() {
     assert!(!dir.join("missing").exists());
 }
 
+/// The simulator's own example: one configuration of the built-in arm moved 0.5 mm (50 times
+/// the tracker's bound). Its first-order certificate weighs 19 of the 50 configurations, which
+/// alone would read as a spread misfit; leaving out configuration 12 shows it is one bad reading,
+/// and the conflict set names it.
+#[test]
+fn one_gross_outlier_among_many_weighed_is_still_named() {
+    let dir = tempdir("gross_outlier");
+    let d = dir.to_str().expect("utf-8");
+    let o = arm(&[
+        "simulate",
+        "--configs",
+        "50",
+        "--seed",
+        "7",
+        "--outlier",
+        "12:0.5",
+        "--out",
+        d,
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let o = arm(&[
+        "certify",
+        "--robot",
+        &p("robot.toml"),
+        "--measurements",
+        &p("measurements.csv"),
+        "--uncertainty",
+        &p("uncertainty.toml"),
+        "--json",
+        &p("report.json"),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(p("report.json")).expect("report"))
+            .expect("json");
+    assert_eq!(report["spread"], false, "{}", text(&o));
+    assert!(
+        report["conflict"]
+            .as_array()
+            .is_some_and(|c| c.contains(&12.into())),
+        "{report}"
+    );
+}
+
 #[test]
 fn a_shifted_configuration_is_proved_and_named_then_tolerated() {
     let dir = tempdir("outlier");

@@ -39,7 +39,12 @@
 //! times the smallest consistent bound: 19 of 60, where the search named it and one other in a
 //! minute), and a misfit far beyond it can be weighed like a few readings (the series at 0.13
 //! times the bound: 12 of 60, searched in 7 s, 10 configurations named). `--max-outliers` is the
-//! certified way to find bad readings either way.
+//! certified way to find bad readings either way. A first-order (Farkas) certificate can also
+//! weigh many measurements around one gross error (a simulated arm with one configuration moved
+//! 50 times its bound: 19 of 50), so a spread first-order proof is checked once more: leaving
+//! out each weighed measurement in turn; if the rest is then proved consistent (a witness in
+//! the box one contraction leaves) for one or two of them only, the conflict set is searched
+//! after all ([`crate::certify`]); where a dozen would each do, no reading stands out.
 
 /// Whether a proof of emptiness whose final certificate weighs `support` of `p` measurements, with
 /// `free` parameters not fixed in the box, points at a misfit spread over the data rather than at
