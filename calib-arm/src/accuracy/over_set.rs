@@ -322,26 +322,14 @@ impl SetToolAccuracy {
         if best <= enough {
             return best;
         }
-        // ‖d‖ <= max_k u_k·d / cos α over directions u_k covering the sphere within α.
-        let cover = SphereCover::get();
-        let mut largest = 0.0f64;
-        for (d, u) in cover.directions.iter().enumerate() {
+        cover_bound(best, |d, u| {
             let s = slopes(u);
             let extra = (0..3).fold(Interval::ZERO, |acc, r| {
                 acc + Interval::point(u[r].abs()) * Interval::point(encoder[r])
             });
             let rest = add_up(add_up(s.rest, extra.sup()), terms(&s.joint));
-            let v = add_up(lp(Slot::Cover(d).up(), &s.main), rest);
-            if v.is_nan() {
-                return best;
-            }
-            largest = largest.max(v);
-            if largest / cover.cos_radius > best {
-                // This cover cannot beat the bound already proved.
-                return best;
-            }
-        }
-        best.min((Interval::point(largest) / Interval::point(cover.cos_radius)).sup())
+            add_up(lp(Slot::Cover(d).up(), &s.main), rest)
+        })
     }
 
     /// The columns `∂p/∂θ_j` over the set's outer box and the joint box `q`, as second-order
@@ -483,6 +471,25 @@ fn hints(domain: &[Interval; MAX_JOINTS], nominal: &[f64; NX]) -> Vec<[f64; NX]>
 
 /// Joint configurations whose gradients shape the parallelotope.
 const HINT_CONFIGURATIONS: usize = 24;
+
+/// `‖d‖ <= max_k u_k·d / cos α` over the directions `u_k` of [`SphereCover`], each bound
+/// `u_k·d <= along(k, u_k)`; `best` where that cannot beat it (then the remaining directions
+/// are not bounded) or a bound fails.
+fn cover_bound(best: f64, mut along: impl FnMut(usize, &[f64; 3]) -> f64) -> f64 {
+    let cover = SphereCover::get();
+    let mut largest = 0.0f64;
+    for (k, u) in cover.directions.iter().enumerate() {
+        let v = along(k, u);
+        if v.is_nan() {
+            return best;
+        }
+        largest = largest.max(v);
+        if largest / cover.cos_radius > best {
+            return best;
+        }
+    }
+    best.min((Interval::point(largest) / Interval::point(cover.cos_radius)).sup())
+}
 
 /// `a + b` rounded up.
 fn add_up(a: f64, b: f64) -> f64 {
