@@ -67,15 +67,9 @@ fn import_nominal(out: &str) {
     assert!(o.status.success(), "{}", text(&o));
 }
 
-fn run(args: &[&str], extra: &[String]) -> Output {
-    let mut all: Vec<&str> = args.to_vec();
-    all.extend(extra.iter().map(String::as_str));
-    arm(&all)
-}
-
-#[test]
-fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
-    let dir = tempdir("pipeline");
+/// UR's nominal kinematics imported into `dir/nominal.toml`, then registered on series B's rows
+/// 1-60 into `dir/robot.toml` (tutorial steps 1 and 2): `register`'s output, checked a success.
+fn registered(dir: &Path) -> Output {
     let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
     import_nominal(&p("nominal.toml"));
     let o = run(
@@ -89,6 +83,20 @@ fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
         &tracker("1-60"),
     );
     assert!(o.status.success(), "{}", text(&o));
+    o
+}
+
+fn run(args: &[&str], extra: &[String]) -> Output {
+    let mut all: Vec<&str> = args.to_vec();
+    all.extend(extra.iter().map(String::as_str));
+    arm(&all)
+}
+
+#[test]
+fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
+    let dir = tempdir("pipeline");
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let o = registered(&dir);
     // Five flange orientations and the home pose: base and tool told apart, nothing to warn.
     assert!(!text(&o).contains("warning"), "{}", text(&o));
     // The T-Mac sits about 93 mm out along the flange axis (the dataset's README).
@@ -218,18 +226,7 @@ fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
 fn just_below_the_smallest_consistent_bound_the_misfit_is_spread_over_the_series() {
     let dir = tempdir("spread");
     let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
-    import_nominal(&p("nominal.toml"));
-    let o = run(
-        &[
-            "register",
-            "--robot",
-            &p("nominal.toml"),
-            "--out",
-            &p("robot.toml"),
-        ],
-        &tracker("1-60"),
-    );
-    assert!(o.status.success(), "{}", text(&o));
+    registered(&dir);
     std::fs::write(p("u.toml"), "joint_deg = 0.001\npos = 0.3769\n").expect("write");
     let o = run(
         &[
