@@ -176,13 +176,7 @@ pub fn register_with(
             return Err(format!("{name} {v}: expected a finite half-width >= 0"));
         }
     }
-    let flanges: Vec<Frame> = readings
-        .iter()
-        .map(|r| {
-            let q: Vec<f64> = r.joints_deg.iter().map(|d| d.to_radians()).collect();
-            arm_flange(nominal, &q)
-        })
-        .collect();
+    let flanges = flange_frames(nominal, readings);
     let measured: Vec<Vector3<f64>> = readings.iter().map(|r| Vector3::from(r.point)).collect();
     let separability = separability(nominal, readings);
     let keep = match tool {
@@ -256,6 +250,17 @@ pub fn register_with(
     })
 }
 
+/// The flange frames of `nominal` at each reading's joints (the tracker frame with the file's base).
+fn flange_frames(nominal: &Arm, readings: &[Reading]) -> Vec<Frame> {
+    readings
+        .iter()
+        .map(|r| {
+            let q: Vec<f64> = r.joints_deg.iter().map(|d| d.to_radians()).collect();
+            arm_flange(nominal, &q)
+        })
+        .collect()
+}
+
 /// How well `readings` tell the tool point from the base, with `nominal`'s joints and tool.
 ///
 /// Linearised, a configuration's tracked point moves by `δT + δω × x_k + R_k δt` for a move
@@ -272,13 +277,7 @@ pub fn register_with(
 /// then the tool's component along that axis is what cannot be found).
 pub fn separability(nominal: &Arm, readings: &[Reading]) -> Separability {
     let t = Vector3::from(nominal.tool);
-    let flanges: Vec<Frame> = readings
-        .iter()
-        .map(|r| {
-            let q: Vec<f64> = r.joints_deg.iter().map(|d| d.to_radians()).collect();
-            arm_flange(nominal, &q)
-        })
-        .collect();
+    let flanges = flange_frames(nominal, readings);
     // The rotation's columns about the points' centre and in units of their spread: the same
     // span with the position's columns, so the same complement, but a well-conditioned `N_bb`.
     let points: Vec<Vector3<f64>> = flanges
