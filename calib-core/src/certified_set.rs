@@ -504,6 +504,8 @@ fn coalesce<const NX: usize>(boxes: Vec<[Interval; NX]>, k: usize) -> Vec<[Inter
 pub struct SlotQueries<'a, const NX: usize, const NM: usize> {
     set: &'a CertifiedSet<NX, NM>,
     slots: Vec<Option<SetQuery<'a, NX, NM>>>,
+    /// Whether the programs take the measurements' own rows only.
+    own_rows: bool,
 }
 
 impl<'a, const NX: usize, const NM: usize> SlotQueries<'a, NX, NM> {
@@ -512,6 +514,17 @@ impl<'a, const NX: usize, const NM: usize> SlotQueries<'a, NX, NM> {
         SlotQueries {
             set,
             slots: (0..slots).map(|_| None).collect(),
+            own_rows: true,
+        }
+    }
+
+    /// `slots` slots over `set`, each program over the pieces' whole polyhedra
+    /// ([`CertifiedSet::query`]): tighter than the own rows where a scalar residual couples many
+    /// measured quantities (a hexapod leg's), at the cost of more rows.
+    pub fn with_all_rows(set: &'a CertifiedSet<NX, NM>, slots: usize) -> Self {
+        SlotQueries {
+            own_rows: false,
+            ..SlotQueries::new(set, slots)
         }
     }
 
@@ -522,9 +535,15 @@ impl<'a, const NX: usize, const NM: usize> SlotQueries<'a, NX, NM> {
     ///
     /// If `slot` is not below the number of slots.
     pub fn max_linear(&mut self, slot: usize, slopes: &[Interval; NX], about: &[f64; NX]) -> f64 {
-        let set = self.set;
+        let (set, own_rows) = (self.set, self.own_rows);
         self.slots[slot]
-            .get_or_insert_with(|| set.query_own_rows())
+            .get_or_insert_with(|| {
+                if own_rows {
+                    set.query_own_rows()
+                } else {
+                    set.query()
+                }
+            })
             .max_linear(slopes, about)
             .upper
     }

@@ -8,6 +8,7 @@
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod accuracy;
 pub mod calibrated;
 pub mod design;
 mod error;

@@ -341,7 +341,7 @@ impl AccuracyProblem {
     }
 
     /// The pose-and-nominal inputs `m = (X, θ̂_i)` of [`LegLengthError`] over the box `x`.
-    fn inputs(&self, i: usize, x: &PoseBox) -> [Interval; 13] {
+    pub(crate) fn inputs(&self, i: usize, x: &PoseBox) -> [Interval; 13] {
         let nominal = &self.legs[i].nominal;
         core::array::from_fn(|k| {
             if k < 6 {

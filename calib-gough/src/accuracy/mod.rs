@@ -20,6 +20,7 @@ pub mod enclosure;
 pub mod model;
 #[doc(hidden)]
 pub mod move_paving;
+mod over_set;
 #[doc(hidden)]
 pub mod pose_bound;
 #[doc(hidden)]
@@ -235,6 +236,15 @@ fn bracket_within(
     let mut domain = problem.domain();
     if let Some(p) = positions {
         domain[..3].copy_from_slice(&p);
+    }
+    if problem.over_set(leg) && search {
+        let engine = calib_pipeline::accuracy::BracketSettings {
+            rel_tol: settings.rel_tol,
+            max_boxes: settings.max_set_boxes,
+        };
+        if let Some(b) = over_set::bracket_leg_over_set(problem, leg, &domain, &engine) {
+            return b;
+        }
     }
     let objective = LegLengthObjective {
         problem,

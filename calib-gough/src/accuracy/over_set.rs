@@ -1,0 +1,89 @@
+//! A leg's length error over its certified set: the hexapod's prediction for
+//! [`calib_pipeline::accuracy`], the engine that bounds it at the set's scale.
+//!
+//! The controller commands `L(X; θ̂)` at the pose `X = (p, q)`; the real leg needs `L(X; θ*)`
+//! for some `θ*` in its certified set: the engine brackets `max |L(X; θ*) - L(X; θ̂)|` over the
+//! workspace and the set.
+
+use super::enclosure::{AccuracyProblem, Instance, PoseBox, PoseVector};
+use super::model::{leg_reading, LegCurvature, LegReading};
+use crate::GoughLeg;
+use calib_core::{CertifiedSet, Interval, Jet, Model, Quadratic};
+use calib_pipeline::accuracy::{bracket_over_set, BracketSettings, Prediction, SetAccuracy};
+
+/// One leg's length at a pose as a prediction, the pose `(p, q)` in the measurement slot; the
+/// workspace (its tilt and stroke) from the accuracy problem.
+pub struct LegLength<'a> {
+    problem: &'a AccuracyProblem,
+    leg: usize,
+}
+
+/// A second-order model in the pose's noise symbols, with derivatives in the leg's geometry.
+type PoseJet = Jet<Quadratic<6>, 7>;
+
+impl Prediction<7, 7, 6, 6, 1> for LegLength<'_> {
+    const OWN_ROWS: bool = false;
+
+    const TERMS_BY_PROGRAMS: bool = true;
+
+    type Model = LegReading;
+
+    fn model(&self) -> &LegReading {
+        &LegReading
+    }
+
+    fn second_order(&self, x: &[PoseJet; 7], m: &[PoseJet; 6]) -> [PoseJet; 1] {
+        [leg_reading(x, m)]
+    }
+
+    fn push(&self, set: &mut CertifiedSet<7, 7>, direction: &[f64; 7]) -> bool {
+        set.extreme_point(&GoughLeg, direction).is_some()
+    }
+
+    /// `0 <= L(X; θ) - L(X; θ̂) - ∇_θ L(X; θ̂)·δ <=` [`super::model::leg_curvature`].
+    fn curvature(&self, spread: &[Interval; 7], x: &PoseBox) -> Option<[Interval; 1]> {
+        let c = LegCurvature
+            .residual_interval(spread, &self.problem.inputs(self.leg, x))
+            .sup();
+        (c.is_finite() && c >= 0.0).then(|| [Interval::new(0.0, c)])
+    }
+
+    fn narrow(&self, x: &PoseBox) -> Option<PoseBox> {
+        if !self.problem.may_be_feasible(x) {
+            return None;
+        }
+        self.problem.within_tilt(x)
+    }
+
+    fn admits(&self, x: &PoseVector) -> bool {
+        self.problem.proved_feasible(x)
+    }
+}
+
+/// Brackets leg `leg`'s length error over its certified set on the poses of `domain` (within
+/// the problem's workspace): `None` if the leg has no set.
+pub(crate) fn bracket_leg_over_set(
+    problem: &AccuracyProblem,
+    leg: usize,
+    domain: &PoseBox,
+    settings: &BracketSettings,
+) -> Option<super::Bracket> {
+    let set = problem.leg_set(leg)?.set().clone();
+    let prediction = LegLength { problem, leg };
+    let nominal = *problem.nominal(leg);
+    let engine = SetAccuracy::new(&prediction, set, nominal, *domain, [0.0; 6])?;
+    let b = bracket_over_set(&engine, settings);
+    let worst = b.worst.map(|w| Instance {
+        pose: w.inputs,
+        theta: w.theta.map(Interval::point),
+        value: w.value,
+    });
+    Some(super::Bracket {
+        upper: b.upper,
+        lower: b.lower,
+        worst,
+        frontier: b.frontier,
+        converged: b.converged,
+        boxes: b.boxes,
+    })
+}

@@ -1,0 +1,151 @@
+//! How far a robot's predictions can be off, proved over its certified set: the one engine
+//! every robot's `accuracy` runs on.
+//!
+//! A robot supplies its prediction `g(u; θ)` ([`Prediction`]): the arm's tool point in the
+//! tracker frame as a function of its joints, one hexapod leg's length as a function of the
+//! platform's pose. The controller computes `g(u; θ̂)` with the values `θ̂` it loads; the real
+//! robot has some geometry `θ*` in the certified set `S` and its inputs reach `u + e`, each
+//! `|e_i| <=` the input's own error (encoders). The engine brackets
+//!
+//! `max_{u ∈ U, θ* ∈ S, |e| <= ε} ‖g(u + e; θ*) - g(u; θ̂)‖`
+//!
+//! over a box `U` of inputs: an upper bound proved over all of it ([`SetAccuracy`], the method
+//! in its documentation) and a lower bound attained by an explicit input and a geometry proved
+//! consistent with every measurement ([`Instance`]).
+
+mod over_set;
+mod sphere;
+
+pub use over_set::{bracket_over_set, SetAccuracy};
+
+use calib_core::{CertifiedSet, Interval, Jet, Quadratic, VectorModel};
+
+/// What a robot supplies to the accuracy engine: its prediction `g(u; θ)` of `R` coordinates
+/// from `NX` parameters and `NU` inputs.
+///
+/// The prediction is a vector model ([`VectorModel`], written once under `#[interval_model]`)
+/// whose measurement slot holds the inputs: `u` in its first `NU` entries, the others `0`. The
+/// certified set it is asked over was certified with another model (the calibration's
+/// residual, `NMS` measured quantities per configuration), which [`Prediction::push`] uses.
+pub trait Prediction<
+    const NX: usize,
+    const NMS: usize,
+    const NP: usize,
+    const NU: usize,
+    const R: usize,
+>: Sync
+{
+    /// Input boxes at most this wide (every input) get the second-order columns; wider ones the
+    /// interval slopes. By default every box (a prediction polynomial or rational in its inputs
+    /// keeps its second-order models tight however wide the box); a prediction through sines and
+    /// cosines of its inputs may want `1` ([`Quadratic`]'s second-order reach).
+    const SECOND_ORDER_WIDTH: f64 = f64::INFINITY;
+
+    /// Whether the inputs' terms that are bounded apart take two linear programs each over the
+    /// set (tighter than the parallelotope around it; worth it where the programs are small,
+    /// e.g. a hexapod leg's seven parameters). By default the parallelotope alone.
+    const TERMS_BY_PROGRAMS: bool = false;
+
+    /// Whether the main terms' programs take only each measurement's own rows of the set's
+    /// polyhedra ([`calib_core::CertifiedSet::query_own_rows`]: within 0.02% on the arms
+    /// measured, much cheaper) rather than all of them. A scalar residual that couples many
+    /// measured quantities (a hexapod leg's) needs all of them.
+    const OWN_ROWS: bool = true;
+
+    /// The prediction's evaluators.
+    type Model: VectorModel<NX, NP, R> + Sync;
+
+    /// The prediction's model.
+    fn model(&self) -> &Self::Model;
+
+    /// `g`, evaluated over second-order models in the inputs carried with their derivatives in
+    /// `θ` (the generic function under `#[interval_model]`, called with these numbers).
+    fn second_order(
+        &self,
+        x: &[Jet<Quadratic<NU>, NX>; NX],
+        m: &[Jet<Quadratic<NU>, NX>; NP],
+    ) -> [Jet<Quadratic<NU>, NX>; R];
+
+    /// Moves a certified point of `set` along `direction` ([`CertifiedSet::extreme_point`] with
+    /// the calibration's model): whether a point was found.
+    fn push(&self, set: &mut CertifiedSet<NX, NMS>, direction: &[f64; NX]) -> bool;
+
+    /// An enclosure of `g`'s curvature in `θ`, when the robot has one: per coordinate, an
+    /// interval holding `g_r(u; θ) - g_r(u; θ̂) - ∇_θ g_r(u; θ̂)·(θ - θ̂)` for every `θ - θ̂` in
+    /// `spread` and `u` in `u`. With it the columns `∂g/∂θ` are taken at `θ̂` and this enclosure
+    /// is added (a one-sided one helps one side); without it (the default) they are taken over
+    /// the set's outer box, whose spread times the set's reach is then the curvature term —
+    /// about twice the second-order Taylor term.
+    fn curvature(&self, spread: &[Interval; NX], u: &[Interval; NU]) -> Option<[Interval; R]> {
+        let _ = (spread, u);
+        None
+    }
+
+    /// The part of the input box `u` where the task's inputs may lie (`None`: none do), for a
+    /// task that is not a box (a hexapod's workspace bounds the platform's tilt). By default the
+    /// box itself.
+    fn narrow(&self, u: &[Interval; NU]) -> Option<[Interval; NU]> {
+        Some(*u)
+    }
+
+    /// Whether the input `u` is proved to be one of the task's (instances are taken only there).
+    /// By default every point of the box is.
+    fn admits(&self, u: &[f64; NU]) -> bool {
+        let _ = u;
+        true
+    }
+}
+
+/// The measurement slot of a prediction at the inputs `u`: `u`, then zeros.
+pub(crate) fn slot<T: Copy, const NU: usize, const NP: usize>(u: &[T; NU], zero: T) -> [T; NP] {
+    core::array::from_fn(|k| if k < NU { u[k] } else { zero })
+}
+
+/// An explicit instance of the prediction error: inputs, a geometry proved consistent with
+/// every measurement, and the error they make.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Instance<const NX: usize, const NU: usize, const R: usize> {
+    /// The commanded inputs (inside the box).
+    pub inputs: [f64; NU],
+    /// The true geometry `θ*`: a certified point of the set.
+    pub theta: [f64; NX],
+    /// `g(u; θ*) - g(u; θ̂)` in floating point.
+    pub error: [f64; R],
+    /// `‖g(u; θ*) - g(u; θ̂)‖`, enclosed and rounded down.
+    pub value: f64,
+}
+
+/// A certified bracket of the largest prediction error.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bracket<const NX: usize, const NU: usize, const R: usize> {
+    /// Proved over the whole input box and set (`+∞` when an enclosure failed).
+    pub upper: f64,
+    /// Attained by `worst`.
+    pub lower: f64,
+    /// The worst instance found.
+    pub worst: Option<Instance<NX, NU, R>>,
+    /// Where a larger error could still hide: the input box that gives `upper`.
+    pub frontier: [Interval; NU],
+    /// Whether `upper <= (1 + rel_tol) lower` was reached (else the box budget ran out).
+    pub converged: bool,
+    /// Input boxes examined.
+    pub boxes: usize,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+impl<const NX: usize, const NU: usize, const R: usize> Bracket<NX, NU, R> {
+    /// `upper / lower` (`+∞` without a positive lower bound).
+    pub fn ratio(&self) -> f64 {
+        calib_core::maximum::bracket_ratio(self.upper, self.lower)
+    }
+}
+
+/// When to stop the branch and bound over the inputs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BracketSettings {
+    /// Stop at `upper <= (1 + rel_tol) lower`.
+    pub rel_tol: f64,
+    /// Examine at most this many input boxes.
+    pub max_boxes: usize,
+}

@@ -1,0 +1,825 @@
+//! The prediction error over a certified set, bounded at the set's scale.
+//!
+//! Over an input box `U` (widened by the inputs' own errors to `U'`), with `δ = θ* - θ̂`, the
+//! mean-value theorem gives
+//!
+//! `g(u + e; θ*) - g(u; θ̂) = Σ_j c_j δ_j + Σ_i H_i e_i`
+//!
+//! with `c_j ⊇ ∂g/∂θ_j` over `U' ×` the set's outer box (with `θ̂`) and `H ⊇ ∂g/∂u` there.
+//!
+//! **At the set's scale.** On input boxes up to [`Prediction::SECOND_ORDER_WIDTH`] wide, each `c_j` is a
+//! second-order model in the inputs' noise symbols `ε_i` ([`Quadratic`] carried through the
+//! prediction's derivatives, [`Jet`]): `c_j = c⁰_j + Σ_i a_ji ε_i + Σ_{i<=k} b_jik ε_i ε_k ±
+//! r_j`, `r_j` of third order. Along a unit direction `w`, the error's component is then at most
+//!
+//! `h_S(w̄) + Σ_i max_S |(w·a_i)·δ| + Σ_{i<=k} max_S |(w·b_ik)·δ| + Σ_j (|w|·r_j) max|δ_j|
+//! + |w|·(input term)`,
+//!
+//! `w̄_j = w·c⁰_j`: the main term `h_S` — the support function of the set — is one linear
+//! program over the set's own rows ([`SlotQueries`], safe bounds, warm-started per slot) or,
+//! where that is enough to discard the box, the bound of a parallelotope around the set aligned
+//! with what the data determine ([`Parallelotope`]); the inputs' terms, of first and second order
+//! in the box's width, take the parallelotope; only the remainders `r_j` meet the outer box.
+//! Wider input boxes take the interval slopes `c_j` (midpoints in the program, radii against the
+//! box).
+//!
+//! The error's components along an orthonormal frame — its first axis the direction of the
+//! largest error the catalogue shows at the box's centre — lie in `R` ranges, so its norm is at
+//! most that of the ranges' farthest corner; in three dimensions, where that cannot discard the
+//! box, a cover of the sphere by 42 directions with a proved covering radius bounds it instead.
+//! A branch and bound over the inputs ([`maximize`]) makes the bound proved over the whole box.
+//!
+//! Lower bounds are attained by certified parameter vectors (a catalogue: the set's points
+//! pushed along the error's gradient at inputs spread over the box, and at every input where the
+//! search raises the lower bound), with exact inputs.
+
+use super::sphere::{add_up, cover_bound, farthest_corner, frame, norm, COVER_DIRECTIONS};
+use super::{slot, Bracket, BracketSettings, Instance, Prediction};
+use calib_core::{
+    maximize, CertifiedSet, Evaluation, Interval, Jet, MaximumSettings, Objective, Parallelotope,
+    Quadratic, SlotQueries, VectorModel,
+};
+use std::cell::{Cell, RefCell};
+use std::time::Instant;
+
+/// The prediction-error problem over a certified set (module documentation).
+pub struct SetAccuracy<
+    'p,
+    P,
+    const NX: usize,
+    const NMS: usize,
+    const NP: usize,
+    const NU: usize,
+    const R: usize,
+> {
+    prediction: &'p P,
+    /// The set the bounds are proved over.
+    set: CertifiedSet<NX, NMS>,
+    /// A copy of it that collects the certified points of the lower bounds (pushes add points).
+    pushes: RefCell<CertifiedSet<NX, NMS>>,
+    /// `θ̂`.
+    nominal: [f64; NX],
+    /// The set's outer box, with `θ̂`.
+    hull: [Interval; NX],
+    /// `max |θ_j - θ̂_j|` over the set's outer box, rounded up.
+    reach: [f64; NX],
+    /// The parallelotope around the set (`None` if it could not be bounded).
+    parallelotope: Option<Parallelotope<NX>>,
+    /// The input box.
+    domain: [Interval; NU],
+    /// Per input, the half-width of its own error, enclosed.
+    input_error: [Interval; NU],
+    /// Certified parameter vectors (the instances' geometries).
+    catalogue: RefCell<Vec<[f64; NX]>>,
+}
+
+/// Input points spread over the box whose error directions the catalogue is pushed along, per
+/// coordinate of the prediction (a scalar prediction gets three times as many as a point).
+const CATALOGUE_PUSHES: usize = 18;
+
+/// Input points whose gradients shape the parallelotope.
+const HINT_INPUTS: usize = 24;
+
+/// The stack of the thread that evaluates the second-order columns (a 44-parameter arm's
+/// derivative models are ~21 KB each, and its evaluator holds a few hundred).
+const MODEL_STACK_BYTES: usize = 256 << 20;
+
+/// The point `k` of `count` spread over `domain` (a different golden-ratio fraction per input).
+fn spread<const NU: usize>(domain: &[Interval; NU], k: usize, count: usize) -> [f64; NU] {
+    core::array::from_fn(|i| {
+        let t = (k as f64 + 0.5) / count as f64;
+        let f = (t * (i as f64 + 1.0) * 0.618_033_988_7).fract();
+        domain[i].inf() + f * domain[i].wid()
+    })
+}
+
+impl<
+        'p,
+        P,
+        const NX: usize,
+        const NMS: usize,
+        const NP: usize,
+        const NU: usize,
+        const R: usize,
+    > SetAccuracy<'p, P, NX, NMS, NP, NU, R>
+where
+    P: Prediction<NX, NMS, NP, NU, R>,
+{
+    /// The problem of `prediction` computed with `nominal` over the certified `set`, on the
+    /// input box `domain`, each input within `input_error` of its command. `None` if the set
+    /// is empty.
+    pub fn new(
+        prediction: &'p P,
+        set: CertifiedSet<NX, NMS>,
+        nominal: [f64; NX],
+        domain: [Interval; NU],
+        input_error: [f64; NU],
+    ) -> Option<Self> {
+        let outer = set.outer()?;
+        let hull: [Interval; NX] =
+            core::array::from_fn(|j| outer[j].hull(Interval::point(nominal[j])));
+        let reach = core::array::from_fn(|j| (hull[j] - Interval::point(nominal[j])).mag());
+        let hints = hints(prediction.model(), &domain, &nominal);
+        let parallelotope = Parallelotope::around_along(&set, &nominal, &hints);
+        let out = SetAccuracy {
+            prediction,
+            pushes: RefCell::new(set.clone()),
+            set,
+            nominal,
+            hull,
+            reach,
+            parallelotope,
+            domain,
+            input_error: input_error.map(Interval::point),
+            catalogue: RefCell::new(Vec::new()),
+        };
+        out.fill_catalogue();
+        Some(out)
+    }
+
+    /// The input box searched.
+    pub fn domain(&self) -> [Interval; NU] {
+        self.domain
+    }
+
+    /// The certified parameter vectors the lower bounds take (the set's points and their pushes).
+    pub fn catalogue(&self) -> Vec<[f64; NX]> {
+        self.catalogue.borrow().clone()
+    }
+
+    /// The catalogue: the set's points, pushed along `±∇_θ g_r` at inputs spread over the box.
+    fn fill_catalogue(&self) {
+        let count = CATALOGUE_PUSHES / R.max(1);
+        for k in 0..count {
+            let u = spread(&self.domain, k, count);
+            let rows = self
+                .prediction
+                .model()
+                .evaluate_rows(&self.nominal, &slot(&u, 0.0));
+            for e in rows {
+                for sign in [1.0, -1.0] {
+                    self.prediction
+                        .push(&mut self.pushes.borrow_mut(), &e.dx.map(|v| sign * v));
+                }
+            }
+        }
+        self.refresh_catalogue();
+    }
+
+    /// The catalogue: every certified point the set holds.
+    fn refresh_catalogue(&self) {
+        *self.catalogue.borrow_mut() = self.pushes.borrow().points().iter().map(|p| p.x).collect();
+    }
+
+    /// Pushes the set along the error's gradient at `u` (the direction of the catalogue's
+    /// largest error there), adding the certified point it reaches to the catalogue.
+    fn push_at(&self, u: &[f64; NU]) {
+        let Some(w) = self.direction_at(u) else {
+            return;
+        };
+        let rows = self
+            .prediction
+            .model()
+            .evaluate_rows(&self.nominal, &slot(u, 0.0));
+        let gradient: [f64; NX] =
+            core::array::from_fn(|j| (0..R).map(|r| w[r] * rows[r].dx[j]).sum());
+        if self
+            .prediction
+            .push(&mut self.pushes.borrow_mut(), &gradient)
+        {
+            self.refresh_catalogue();
+        }
+    }
+
+    /// `g(u; θ) - g(u; θ̂)` in floating point.
+    fn error_estimate(&self, u: &[f64; NU], theta: &[f64; NX]) -> [f64; R] {
+        let m = slot(u, 0.0);
+        let model = self.prediction.model();
+        let (p, p0) = (
+            model.residuals(theta, &m),
+            model.residuals(&self.nominal, &m),
+        );
+        core::array::from_fn(|r| p[r] - p0[r])
+    }
+
+    /// Per input, how fast the catalogue's largest error at the box's centre changes with that
+    /// input (its slope plus its curvature times the box's half-width, by central differences):
+    /// where to split the box.
+    fn error_variation(&self, u: &[Interval; NU]) -> [f64; NU] {
+        let centre = u.map(|v| v.mid());
+        let (theta, _) = self.best(&centre);
+        let d0 = self.error_estimate(&centre, &theta);
+        let h = 1e-4;
+        core::array::from_fn(|i| {
+            if u[i].wid() == 0.0 {
+                return 0.0;
+            }
+            let (mut up, mut down) = (centre, centre);
+            up[i] += h;
+            down[i] -= h;
+            let (du, dd) = (
+                self.error_estimate(&up, &theta),
+                self.error_estimate(&down, &theta),
+            );
+            let slope = norm(&core::array::from_fn::<f64, R, _>(|r| {
+                (du[r] - dd[r]) / (2.0 * h)
+            }));
+            let curvature = norm(&core::array::from_fn::<f64, R, _>(|r| {
+                (du[r] - 2.0 * d0[r] + dd[r]) / (h * h)
+            }));
+            slope + 0.5 * curvature * u[i].rad()
+        })
+    }
+
+    /// The unit direction of the catalogue's largest error at `u`.
+    fn direction_at(&self, u: &[f64; NU]) -> Option<[f64; R]> {
+        let (theta, _) = self.best(u);
+        let d = self.error_estimate(u, &theta);
+        let n = norm(&d);
+        (n > 0.0 && n.is_finite()).then(|| d.map(|v| v / n))
+    }
+
+    /// An upper bound of the error over the input box `u` (module documentation): the
+    /// parallelotope's bound, and where that exceeds `enough`, the linear programs' (the smaller
+    /// of the two). `+∞` when an enclosure failed.
+    fn upper(&self, u: &[Interval; NU], enough: f64, lps: &mut SlotQueries<'_, NX, NMS>) -> f64 {
+        // The real robot's inputs lie within their own errors of the box.
+        let widened: [Interval; NU] = core::array::from_fn(|i| {
+            u[i] + Interval::new(-self.input_error[i].sup(), self.input_error[i].sup())
+        });
+        let rows = self
+            .prediction
+            .model()
+            .evaluate_rows_interval(&self.hull, &slot(&widened, Interval::ZERO));
+        let input_term: [f64; R] = core::array::from_fn(|r| {
+            (0..NU)
+                .fold(Interval::ZERO, |s, i| {
+                    s + rows[r].dm[i] * self.input_error[i]
+                })
+                .mag()
+        });
+        let centre = u.map(|v| v.mid());
+        let mut first = [0.0; R];
+        first[0] = 1.0;
+        let axes = frame(self.direction_at(&centre).unwrap_or(first));
+        let widest = widened.iter().map(|v| v.wid()).fold(0.0, f64::max);
+        let spread: [Interval; NX] =
+            core::array::from_fn(|j| self.hull[j] - Interval::point(self.nominal[j]));
+        let curvature = self
+            .prediction
+            .curvature(&spread, &widened)
+            .filter(|c| c.iter().all(|v| v.is_bounded() && !v.is_empty()));
+        let columns = if widest <= P::SECOND_ORDER_WIDTH {
+            let at = match curvature {
+                Some(_) => self.nominal.map(Interval::point),
+                None => self.hull,
+            };
+            self.second_order_columns(&widened, &at)
+        } else {
+            None
+        };
+        let component = |w: &[f64; R]| -> Component<NX> {
+            let (slopes, shift) = match (&columns, curvature) {
+                (Some(c), Some(k)) => (
+                    Slopes::second_order(w, c, &rows, &self.reach),
+                    (0..R).fold(Interval::ZERO, |s, r| s + Interval::point(w[r]) * k[r]),
+                ),
+                (Some(c), None) => (
+                    Slopes::second_order(w, c, &rows, &self.reach),
+                    Interval::ZERO,
+                ),
+                (None, _) => (Slopes::interval(w, &rows), Interval::ZERO),
+            };
+            let inputs = (0..R).fold(Interval::ZERO, |s, r| {
+                s + Interval::point(w[r].abs()) * Interval::point(input_term[r])
+            });
+            self.component(slopes, inputs.sup(), shift)
+        };
+        let mut per_axis: Vec<Component<NX>> = axes.iter().map(component).collect();
+        // The norm's bound from the frame's ranges, the main terms' support from `main` (told
+        // the slot of its linear function: programs warm-start per slot).
+        let bound = |per_axis: &[Component<NX>],
+                     main: &mut dyn FnMut(usize, &[Interval; NX]) -> f64|
+         -> f64 {
+            let ranges: [Interval; R] = core::array::from_fn(|k| {
+                let c = &per_axis[k];
+                let hi = c.max(2 * k, 1.0, main);
+                let lo = -c.max(2 * k + 1, -1.0, main);
+                if lo.is_finite() && hi.is_finite() && lo <= hi {
+                    Interval::new(lo, hi)
+                } else {
+                    Interval::ENTIRE
+                }
+            });
+            farthest_corner(&ranges)
+        };
+        // Stages, each only where the previous ones cannot discard the box: the main terms over
+        // the parallelotope; by linear programs; then (in three dimensions) the norm by the
+        // directions of the sphere's cover instead of the frame's corner.
+        let mut best = f64::INFINITY;
+        if let Some(p) = &self.parallelotope {
+            best = bound(&per_axis, &mut |_, w| p.max_linear(w));
+            if best <= enough {
+                return best;
+            }
+        }
+        let mut lp = |slot: usize, w: &[Interval; NX]| lps.max_linear(slot, w, &self.nominal);
+        if P::TERMS_BY_PROGRAMS {
+            // Each term by two programs over the set, where that is tighter.
+            let base = (2 * R + if R == 3 { COVER_DIRECTIONS } else { 0 }) << VERTEX_INPUTS;
+            let terms = TERM_SLOTS;
+            for (k, c) in per_axis.iter_mut().enumerate() {
+                let by_programs = c.terms.iter().enumerate().fold(c.fixed, |acc, (t, a)| {
+                    let slot = base + 2 * (k * terms + t.min(terms - 1));
+                    let up = lp(slot, a);
+                    let down = lp(slot + 1, &a.map(|v| -v));
+                    add_up(acc, up.max(down).max(0.0))
+                });
+                if by_programs < c.rest {
+                    c.rest = by_programs;
+                }
+            }
+        }
+        best = best.min(bound(&per_axis, &mut lp));
+        if best <= enough || R != 3 {
+            return best;
+        }
+        cover_bound(best, |d, w3| {
+            let w: [f64; R] = core::array::from_fn(|r| w3[r]);
+            component(&w).max(2 * R + d, 1.0, &mut lp)
+        })
+    }
+
+    /// One component's bound from its slopes (module documentation): the inputs' linear terms
+    /// that weigh most go to the vertices of their noise symbols' cube, with the main term;
+    /// every other term, bounded apart, to the rest.
+    fn component(&self, slopes: Slopes<NX>, input_term: f64, shift: Interval) -> Component<NX> {
+        let mut linear: Vec<(f64, [Interval; NX])> = slopes
+            .linear
+            .into_iter()
+            .map(|a| (self.term_bound(&a), a))
+            .collect();
+        linear.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let total: f64 = linear.iter().map(|t| t.0).sum();
+        let kept = linear
+            .iter()
+            .take(VERTEX_INPUTS)
+            .take_while(|t| t.0 > total / 64.0)
+            .count();
+        let fixed = add_up(slopes.rest, input_term);
+        let rest = linear[kept..]
+            .iter()
+            .map(|t| t.0)
+            .chain(slopes.quadratic.iter().map(|a| self.term_bound(a)))
+            .fold(fixed, add_up);
+        let mut linear = linear.into_iter().map(|t| t.1);
+        let vertex = linear.by_ref().take(kept).collect();
+        Component {
+            main: slopes.main,
+            vertex,
+            terms: linear.chain(slopes.quadratic).collect(),
+            fixed,
+            rest,
+            shift,
+        }
+    }
+
+    /// `max_S |a·δ|`: over the parallelotope, or the outer box.
+    fn term_bound(&self, a: &[Interval; NX]) -> f64 {
+        match &self.parallelotope {
+            Some(p) => p.max_abs_linear(a),
+            None => (0..NX)
+                .fold(Interval::ZERO, |s, j| {
+                    s + Interval::point(a[j].mag()) * Interval::point(self.reach[j])
+                })
+                .sup(),
+        }
+    }
+
+    /// The columns `∂g/∂θ_j` over the parameter box `at` (the set's outer box, or `θ̂`) and the
+    /// input box `u`, as second-order models in the inputs (one noise symbol per input), computed
+    /// on a thread with a stack large enough for the derivatives' models. `None` if that thread
+    /// could not run.
+    fn second_order_columns(
+        &self,
+        u: &[Interval; NU],
+        at: &[Interval; NX],
+    ) -> Option<Box<Columns<NX, NU, R>>> {
+        let (at, reach, prediction, u) = (*at, self.reach, self.prediction, *u);
+        let evaluate = move || -> Box<Columns<NX, NU, R>> {
+            let x: [Jet<Quadratic<NU>, NX>; NX] = core::array::from_fn(|j| {
+                let v = Quadratic::from_interval(at[j]);
+                if reach[j] > 0.0 {
+                    Jet::variable(v, j)
+                } else {
+                    Jet::constant(v)
+                }
+            });
+            let inputs: [Jet<Quadratic<NU>, NX>; NU] =
+                core::array::from_fn(|k| Jet::constant(Quadratic::input(u[k], k)));
+            let zero = Jet::constant(Quadratic::from_interval(Interval::ZERO));
+            let g = prediction.second_order(&x, &slot(&inputs, zero));
+            Box::new(core::array::from_fn(|j| {
+                core::array::from_fn(|r| g[r].grad[j])
+            }))
+        };
+        std::thread::scope(|s| {
+            std::thread::Builder::new()
+                .stack_size(MODEL_STACK_BYTES)
+                .spawn_scoped(s, evaluate)
+                .ok()?
+                .join()
+                .ok()
+        })
+    }
+
+    /// The error `g(u; θ) - g(u; θ̂)` at exact inputs `u`, enclosed.
+    fn error_at(&self, u: &[f64; NU], theta: &[f64; NX]) -> [Interval; R] {
+        let m = slot(&u.map(Interval::point), Interval::ZERO);
+        let model = self.prediction.model();
+        let real = model.residuals_interval(&theta.map(Interval::point), &m);
+        let nominal = model.residuals_interval(&self.nominal.map(Interval::point), &m);
+        core::array::from_fn(|r| real[r] - nominal[r])
+    }
+
+    /// The catalogue's geometry with the largest error at `u` (floating point), and its error.
+    fn best(&self, u: &[f64; NU]) -> ([f64; NX], f64) {
+        self.catalogue
+            .borrow()
+            .iter()
+            .map(|t| (*t, norm(&self.error_estimate(u, t))))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap_or((self.nominal, 0.0))
+    }
+
+    /// The instance at `u` with the catalogue's best geometry: its error, enclosed, rounded
+    /// down (`0` where `u` is not proved to be one of the task's inputs).
+    pub fn instance(&self, u: &[f64; NU]) -> Instance<NX, NU, R> {
+        let (theta, _) = self.best(u);
+        let e = self.error_at(u, &theta);
+        let value = e
+            .iter()
+            .fold(Interval::ZERO, |s, v| s + v.sqr())
+            .sqrt()
+            .inf();
+        let attained = !value.is_nan() && self.prediction.admits(u);
+        Instance {
+            inputs: *u,
+            theta,
+            error: e.map(|v| v.mid()),
+            value: if attained { value.max(0.0) } else { 0.0 },
+        }
+    }
+
+    /// A local search over the inputs from `x` for the largest error of the catalogue.
+    fn search(&self, x: &[f64; NU]) -> [f64; NU] {
+        let clamp = |u: [f64; NU]| -> [f64; NU] {
+            core::array::from_fn(|k| u[k].clamp(self.domain[k].inf(), self.domain[k].sup()))
+        };
+        let value = |u: &[f64; NU]| {
+            if self.prediction.admits(u) {
+                self.best(u).1
+            } else {
+                f64::NEG_INFINITY
+            }
+        };
+        let mut best = (clamp(*x), value(&clamp(*x)));
+        let mut step = 0.25;
+        while step >= 1e-4 {
+            let mut moved = false;
+            for k in (0..NU).filter(|&k| self.domain[k].wid() > 0.0) {
+                for sign in [-1.0, 1.0] {
+                    let mut u = best.0;
+                    u[k] += sign * step * self.domain[k].wid();
+                    let u = clamp(u);
+                    let v = value(&u);
+                    if v > best.1 {
+                        best = (u, v);
+                        moved = true;
+                    }
+                }
+            }
+            if !moved {
+                step /= 2.0;
+            }
+        }
+        best.0
+    }
+}
+
+/// The linear functions the bounds ask of the parallelotope: the prediction's gradients in the
+/// parameters, per coordinate, at inputs spread over the box, and their derivatives in each input
+/// (finite differences).
+fn hints<M, const NX: usize, const NP: usize, const NU: usize, const R: usize>(
+    model: &M,
+    domain: &[Interval; NU],
+    nominal: &[f64; NX],
+) -> Vec<[f64; NX]>
+where
+    M: VectorModel<NX, NP, R>,
+{
+    let mut out = Vec::new();
+    let gradients = |u: &[f64; NU]| model.evaluate_rows(nominal, &slot(u, 0.0)).map(|e| e.dx);
+    for k in 0..HINT_INPUTS {
+        let u: [f64; NU] = core::array::from_fn(|i| {
+            let t = ((k as f64 + 0.5) * (i as f64 + 1.0) * 0.618_033_988_7).fract();
+            domain[i].inf() + t * domain[i].wid()
+        });
+        let g = gradients(&u);
+        out.extend(g);
+        for i in (0..NU).filter(|&i| domain[i].wid() > 0.0) {
+            let mut moved = u;
+            moved[i] += 1e-4;
+            let h = gradients(&moved);
+            for r in 0..R {
+                out.push(core::array::from_fn(|j| (h[r][j] - g[r][j]) / 1e-4));
+            }
+        }
+    }
+    out
+}
+
+/// The columns `∂g/∂θ_j` as second-order models, per parameter and coordinate.
+type Columns<const NX: usize, const NU: usize, const R: usize> = [[Quadratic<NU>; R]; NX];
+
+/// The slopes of one component `w·(g(u + e; θ) - g(u; θ̂))` over an input box: `main·δ`, plus
+/// `Σ_i |input_i·δ|`, plus at most `rest` (module documentation).
+struct Slopes<const NX: usize> {
+    /// The main term's slopes (a linear program's, or the parallelotope's, objective).
+    main: [Interval; NX],
+    /// The inputs' first-order terms' slopes (those that are not zero).
+    linear: Vec<[Interval; NX]>,
+    /// The inputs' second-order terms' slopes (those that are not zero).
+    quadratic: Vec<[Interval; NX]>,
+    /// The remainders, rounded up.
+    rest: f64,
+}
+
+impl<const NX: usize> Slopes<NX> {
+    /// From the interval slopes `rows[r].dx` over the whole box (wide input boxes).
+    fn interval<const NP: usize, const R: usize>(
+        w: &[f64; R],
+        rows: &[Evaluation<Interval, NX, NP>; R],
+    ) -> Self {
+        Slopes {
+            main: core::array::from_fn(|j| {
+                (0..R).fold(Interval::ZERO, |s, r| {
+                    s + Interval::point(w[r]) * rows[r].dx[j]
+                })
+            }),
+            linear: Vec::new(),
+            quadratic: Vec::new(),
+            rest: 0.0,
+        }
+    }
+
+    /// From the second-order columns: the centres in the main term; each input's linear
+    /// coefficients and each pair's quadratic ones as terms bounded apart (their noise symbols'
+    /// products lie in `[-1, 1]`); the error radii against the reach.
+    fn second_order<const NP: usize, const NU: usize, const R: usize>(
+        w: &[f64; R],
+        columns: &Columns<NX, NU, R>,
+        rows: &[Evaluation<Interval, NX, NP>; R],
+        reach: &[f64; NX],
+    ) -> Self {
+        let wi = w.map(Interval::point);
+        let mut main = [Interval::ZERO; NX];
+        let mut remainder = Interval::ZERO;
+        let mut linear = vec![[Interval::ZERO; NX]; NU];
+        let mut quadratic = vec![[Interval::ZERO; NX]; NU * (NU + 1) / 2];
+        for j in 0..NX {
+            if reach[j] == 0.0 {
+                continue;
+            }
+            let c = &columns[j];
+            if (0..R).any(|r| !(c[r].error().is_finite() && c[r].centre().is_finite())) {
+                // A failed model: the interval slope, all in the main term.
+                main[j] = (0..R).fold(Interval::ZERO, |s, r| s + wi[r] * rows[r].dx[j]);
+                continue;
+            }
+            let along = |f: &dyn Fn(&Quadratic<NU>) -> f64| {
+                (0..R).fold(Interval::ZERO, |s, r| s + wi[r] * Interval::point(f(&c[r])))
+            };
+            main[j] = along(&|m| m.centre());
+            let e = (0..R).fold(Interval::ZERO, |s, r| {
+                s + Interval::point(w[r].abs()) * Interval::point(c[r].error())
+            });
+            remainder += e * Interval::point(reach[j]);
+            let mut t = 0;
+            for i in 0..NU {
+                linear[i][j] = along(&|m| m.linear()[i]);
+                for k in i..NU {
+                    quadratic[t][j] = along(&|m| m.quadratic(i, k));
+                    t += 1;
+                }
+            }
+        }
+        let nonzero = |a: &[Interval; NX]| a.iter().any(|v| v.mag() > 0.0);
+        linear.retain(nonzero);
+        quadratic.retain(nonzero);
+        Slopes {
+            main,
+            linear,
+            quadratic,
+            rest: remainder.sup(),
+        }
+    }
+}
+
+/// At most this many inputs' linear terms go to the vertices of their cube (`2^n` linear
+/// programs per component and sign).
+const VERTEX_INPUTS: usize = 3;
+
+/// Slots per component for the terms bounded by programs ([`Prediction::TERMS_BY_PROGRAMS`]):
+/// the inputs' linear and second-order terms of up to seven inputs (any beyond share the last).
+const TERM_SLOTS: usize = 7 + 7 * 8 / 2;
+
+/// One component's bound: `max_{s ∈ {±1}^V} max_S (main + Σ_i s_i a_i)·δ + rest + shift`
+/// along its direction, the `a_i` the `vertex` terms.
+struct Component<const NX: usize> {
+    main: [Interval; NX],
+    vertex: Vec<[Interval; NX]>,
+    /// The other inputs' terms, each bounded apart (`max_S |a·δ|`).
+    terms: Vec<[Interval; NX]>,
+    /// The remainders and the inputs' own errors' term.
+    fixed: f64,
+    /// Bounds `fixed` and the terms (over the parallelotope) on both sides.
+    rest: f64,
+    /// Encloses the curvature's term (one side may be 0).
+    shift: Interval,
+}
+
+impl<const NX: usize> Component<NX> {
+    /// The component's largest value times `sign` (`1` or `-1`), the main terms' support from
+    /// `main`, told each linear function's slot: `slot · 2^VERTEX_INPUTS + pattern`.
+    fn max(
+        &self,
+        slot: usize,
+        sign: f64,
+        main: &mut dyn FnMut(usize, &[Interval; NX]) -> f64,
+    ) -> f64 {
+        let s = Interval::point(sign);
+        let mut best = f64::NEG_INFINITY;
+        for pattern in 0..1usize << self.vertex.len() {
+            let w: [Interval; NX] = core::array::from_fn(|j| {
+                let sum = self
+                    .vertex
+                    .iter()
+                    .enumerate()
+                    .fold(self.main[j], |acc, (b, a)| {
+                        if pattern >> b & 1 == 1 {
+                            acc + a[j]
+                        } else {
+                            acc - a[j]
+                        }
+                    });
+                s * sum
+            });
+            best = best.max(main((slot << VERTEX_INPUTS) + pattern, &w));
+            if best.is_nan() {
+                return f64::INFINITY;
+            }
+        }
+        let shift = if sign > 0.0 {
+            self.shift.sup()
+        } else {
+            (-self.shift).sup()
+        };
+        add_up(add_up(best, self.rest), shift)
+    }
+}
+
+/// The error as a function of the inputs, for [`maximize`].
+struct SetError<
+    'a,
+    'p,
+    P,
+    const NX: usize,
+    const NMS: usize,
+    const NP: usize,
+    const NU: usize,
+    const R: usize,
+> {
+    problem: &'a SetAccuracy<'p, P, NX, NMS, NP, NU, R>,
+    /// The largest error attained so far (a box bounded below it needs no linear program).
+    lower: Cell<f64>,
+    /// The programs, per slot ([`Component::max`]): `2k`, `2k + 1` the frame's axis `k` up and
+    /// down, `2R + d` the cover's direction `d`, each with its vertices.
+    lps: RefCell<SlotQueries<'a, NX, NMS>>,
+}
+
+impl<P, const NX: usize, const NMS: usize, const NP: usize, const NU: usize, const R: usize>
+    Objective<NU> for SetError<'_, '_, P, NX, NMS, NP, NU, R>
+where
+    P: Prediction<NX, NMS, NP, NU, R>,
+{
+    fn enclose(&self, u: &[Interval; NU]) -> Interval {
+        self.enclose_up_to(u, self.lower.get())
+    }
+
+    fn enclose_up_to(&self, u: &[Interval; NU], enough: f64) -> Interval {
+        // Inputs outside the task do not raise the error over it.
+        let Some(u) = self.problem.prediction.narrow(u) else {
+            return Interval::ZERO;
+        };
+        let enough = enough.max(self.lower.get());
+        Interval::new(
+            0.0,
+            self.problem.upper(&u, enough, &mut self.lps.borrow_mut()),
+        )
+    }
+
+    fn at(&self, x: &[f64; NU]) -> Interval {
+        // The instance's value, and the cheap bound at the point (a lower bound is what counts).
+        let i = self.problem.instance(x);
+        let upper = self.problem.upper(
+            &x.map(Interval::point),
+            f64::INFINITY,
+            &mut self.lps.borrow_mut(),
+        );
+        if i.value > self.lower.get() {
+            self.lower.set(i.value);
+        }
+        if i.value > 0.0 && i.value <= upper {
+            Interval::new(i.value, upper)
+        } else {
+            Interval::new(0.0, upper)
+        }
+    }
+
+    fn split_reference(&self, domain: &[Interval; NU]) -> [Interval; NU] {
+        let widest = domain
+            .iter()
+            .map(|v| v.wid())
+            .fold(f64::MIN_POSITIVE, f64::max);
+        [Interval::new(0.0, widest); NU]
+    }
+
+    fn split_weights(&self, u: &[Interval; NU]) -> Option<[f64; NU]> {
+        Some(self.problem.error_variation(u))
+    }
+
+    fn improve(&self, x: &[f64; NU]) -> Option<([f64; NU], f64)> {
+        let u = self.problem.search(x);
+        let before = self.problem.instance(&u).value;
+        if before > self.lower.get() {
+            // A new largest error: push the set along its gradient there, and search again.
+            self.problem.push_at(&u);
+            let u = self.problem.search(&u);
+            let i = self.problem.instance(&u);
+            self.lower.set(self.lower.get().max(i.value));
+            return Some((u, i.value));
+        }
+        Some((u, before))
+    }
+}
+
+/// Brackets the prediction error of `problem` over its input box and set (module
+/// documentation).
+pub fn bracket_over_set<
+    P,
+    const NX: usize,
+    const NMS: usize,
+    const NP: usize,
+    const NU: usize,
+    const R: usize,
+>(
+    problem: &SetAccuracy<'_, P, NX, NMS, NP, NU, R>,
+    settings: &BracketSettings,
+) -> Bracket<NX, NU, R>
+where
+    P: Prediction<NX, NMS, NP, NU, R>,
+{
+    let start = Instant::now();
+    let slots =
+        ((2 * R + if R == 3 { COVER_DIRECTIONS } else { 0 }) << VERTEX_INPUTS) + 2 * R * TERM_SLOTS;
+    let objective = SetError {
+        problem,
+        lower: Cell::new(0.0),
+        lps: RefCell::new(if P::OWN_ROWS {
+            SlotQueries::new(&problem.set, slots)
+        } else {
+            SlotQueries::with_all_rows(&problem.set, slots)
+        }),
+    };
+    let m = maximize(
+        &objective,
+        &problem.domain,
+        &MaximumSettings {
+            rel_tol: settings.rel_tol,
+            abs_tol: 0.0,
+            max_boxes: settings.max_boxes,
+        },
+    );
+    let worst = problem.instance(&m.argmax);
+    let lower = worst.value.max(m.lower);
+    Bracket {
+        upper: m.upper.max(lower),
+        lower,
+        worst: Some(worst).filter(|w| w.value > 0.0),
+        frontier: m.frontier,
+        converged: m.converged,
+        boxes: m.boxes,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
