@@ -244,7 +244,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             (PointChoice::LeastSquares, Some(w)) => format!(
                 "towards the least-squares fit within the set, the prior box weighted {w} by \
                  {}-fold cross-validation",
-                calib_core::set_least_squares::FOLDS
+                calib_core::CROSS_VALIDATION_FOLDS
             ),
             (PointChoice::LeastSquares, None) => "towards the least-squares fit".to_string(),
         };

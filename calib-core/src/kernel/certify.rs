@@ -1,13 +1,13 @@
 //! [`certify`]: contraction to a fixed point plus the evidence for the verdict.
 
-use crate::certificate::{find_witness, inner_points, point_hull};
-use crate::certified_set::Cover;
-use crate::contract::{contract, is_fixed, EmptinessProof, Workspace};
-use crate::first_order::wider_inner_points;
-use crate::outliers::{
+use crate::kernel::contract::{contract, is_fixed, EmptinessProof, Workspace};
+use crate::kernel::inner_targets::wider_inner_points;
+use crate::kernel::outliers::{
     certified_outliers, conflict_set, conflict_subset, drop_sets, is_spread, keep_all_but,
 };
-use crate::second_order::second_order_emptiness;
+use crate::proof::consistency::{find_witness, inner_points, point_hull};
+use crate::proof::second_order::second_order_emptiness;
+use crate::set::certified_set::Cover;
 use crate::{Interval, Settings, VectorModel};
 
 /// The verdict on a box of parameters.
@@ -46,7 +46,7 @@ pub struct Certification<const NX: usize> {
     pub lp_failures: usize,
     /// For `Empty` (with no outliers tolerated): a minimal set of measurements (0-based, sorted)
     /// that no parameter vector of `x0` fits together — removing any one of them, the rest is not
-    /// proved empty (see [`crate::outliers`]). Not searched when the misfit is
+    /// proved empty (a conflict set, [`Settings::conflict_sets`]). Not searched when the misfit is
     /// [`spread`](Certification::spread).
     pub conflict: Option<Vec<usize>>,
     /// For `Empty` (with no outliers tolerated): the measurements (0-based, sorted) the final
@@ -58,8 +58,8 @@ pub struct Certification<const NX: usize> {
     /// measurements it weighs tells a misfit spread over the data from a few bad measurements.
     pub support: Option<Vec<usize>>,
     /// For `Empty`: the [`support`](Certification::support) weighs more than half of the
-    /// measurements a certificate can weigh ([`crate::outliers::is_spread`]) — a misfit spread
-    /// over the data (the error bounds too tight for the model) rather than a few bad
+    /// measurements a certificate can weigh ([`crate::kernel::outliers::is_spread`]) — a misfit
+    /// spread over the data (the error bounds too tight for the model) rather than a few bad
     /// measurements; the conflict set is then not searched.
     pub spread: bool,
     /// With [`Settings::max_outliers`] `= q > 0`: the measurements (0-based, sorted) that every

@@ -3,7 +3,7 @@
 //!
 //! At a certified point `p`, with `f_k = f(p, mid M_k)`, `g_k = ∂f/∂x (p, mid M_k)` and
 //! `w_k = Σ_i |∂f/∂M_i| rad(M_{k,i})` (the first-order half-range of `f(p, ·)` over `M_k`, paper
-//! eq. 6; for vector models also every coupling combination, [`crate::coupling`]), a linear
+//! eq. 6; for vector models also every coupling combination, [`crate::model::coupling`]), a linear
 //! program maximises `c·d` subject to `|f_k + g_k·d| <= θ w_k` and `p + d` in the region; the
 //! point `p + d` is kept only when it is certified consistent ([`crate::is_consistent_point`]).
 //! The margin `θ < 1` absorbs the linearisation error and is lowered when a step fails to
@@ -19,9 +19,9 @@
 //! stopped short (largest outer/inner ratio 1.25 after 60 s); with the interior-point engine
 //! none failed and the first pushes alone reach 1.12 (see `benches/README.md`).
 
-use crate::certificate::FailFirst;
-use crate::coupling::for_each_linearised_row;
 use crate::lp::{ClarabelLp, DenseSimplex, LpBackend, LpStatus, Polyhedron, SMALL_DIM};
+use crate::model::coupling::for_each_linearised_row;
+use crate::proof::consistency::FailFirst;
 use crate::{Interval, VectorModel};
 
 /// Local maximisation of `direction·x` over the solution set: from `start`, successive linear
@@ -260,8 +260,8 @@ impl<const NX: usize> PushLp<'_, NX> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::certificate::is_consistent_point;
     use crate::lp::safe_lower_bound;
+    use crate::proof::consistency::is_consistent_point;
     use crate::test_models::{Hyperplane, HYPERPLANE_DIM as N};
     use rand::rngs::StdRng;
     use rand::{Rng, SeedableRng};

@@ -27,7 +27,7 @@
 //! [`Affine::range`] encloses the quantity over the whole box, and the kernel intersects it with
 //! the natural interval evaluation (both are enclosures).
 
-use crate::interval::round::{add_up, mul_up};
+use crate::num::interval::round::{add_up, mul_up};
 use crate::{Interval, LinearEnclosure, Scalar};
 use core::ops::{Add, Div, Mul, Neg, Sub};
 

@@ -31,19 +31,19 @@
 //!
 //! The lower bound is attained: a parameter vector proved consistent with every measurement
 //! ([`crate::is_consistent_point`]: a sign test, or the coupled existence test of
-//! [`crate::existence`]) at which `g` is evaluated rigorously. Such points are found by pushing a
-//! certified point along the objective's gradient with successive linear programs, each step kept
-//! only when its point is certified ([`CertifiedSet::extreme_point`]). The truth lies between the
-//! two bounds.
+//! [`crate::proof::existence`]) at which `g` is evaluated rigorously. Such points are found by
+//! pushing a certified point along the objective's gradient with successive linear programs, each
+//! step kept only when its point is certified ([`CertifiedSet::extreme_point`]). The truth lies
+//! between the two bounds.
 //!
 //! [`maximize_over_set`] refines the pieces where the upper bound is attained (split at the
 //! widest side, both halves contracted by the Newton step, halves proved empty dropped) until the
 //! bracket meets its tolerance or a budget is spent.
 
-use crate::bisection::split_widest;
-use crate::contract::{build_relaxation, contract, Workspace};
+use crate::kernel::bisection::split_widest;
+use crate::kernel::contract::{build_relaxation, contract, Workspace};
+use crate::kernel::farthest_point::{push_towards, PushEngines};
 use crate::lp::{safe_lower_bound, DenseSimplex, LpBackend, LpStatus, Polyhedron};
-use crate::push::{push_towards, PushEngines};
 use crate::{is_consistent_point, Interval, Relaxation, Settings, VectorModel};
 
 /// Boxes whose union contains every solution of a certification, with the measurement subset
@@ -797,9 +797,9 @@ pub struct SetMaximum<const NX: usize> {
 }
 
 impl<const NX: usize> SetMaximum<NX> {
-    /// `upper / lower` (see [`crate::maximum::bracket_ratio`]).
+    /// `upper / lower` (see [`crate::set::maximum::bracket_ratio`]).
     pub fn ratio(&self) -> f64 {
-        crate::maximum::bracket_ratio(self.upper, self.lower)
+        crate::set::maximum::bracket_ratio(self.upper, self.lower)
     }
 }
 

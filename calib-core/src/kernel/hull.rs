@@ -13,13 +13,13 @@
 //! that provide second-order certificates ([`crate::VectorModel::curvature`]) the box is split
 //! across the face's own parameter instead, halfway between the inner bound and the box's face, and
 //! a half the contraction keeps but where no point is certified is tried with the certificate
-//! ([`crate::second_order`]): where the relaxation is too loose near the threshold, the outer half
-//! is often provably empty. Halves proved empty are discarded — every discarded piece carries a
-//! proof; the survivors replace the box. This is a best-first branch and bound on `min x_j` and
-//! `max x_j` over the solution set, shared by the `2n` faces, so that a box proved empty for one
-//! face is gone for all. Boxes that lie within the satisfied zone of every face are retired into
-//! one box `D` that stays in the hull. The same loop handles large prior boxes: while the Newton
-//! step does not bite, the face boxes are simply split until it does.
+//! ([`crate::proof::second_order`]): where the relaxation is too loose near the threshold, the
+//! outer half is often provably empty. Halves proved empty are discarded — every discarded piece
+//! carries a proof; the survivors replace the box. This is a best-first branch and bound on `min
+//! x_j` and `max x_j` over the solution set, shared by the `2n` faces, so that a box proved empty
+//! for one face is gone for all. Boxes that lie within the satisfied zone of every face are retired
+//! into one box `D` that stays in the hull. The same loop handles large prior boxes: while the
+//! Newton step does not bite, the face boxes are simply split until it does.
 //!
 //! **Inner bound.** Certified consistent points ([`crate::is_consistent_point`]) are pushed towards
 //! each face by successive linear programs: at a point `p`, with `f_k = f(p, mid M_k)`,
@@ -41,16 +41,16 @@
 //! merged in a fixed order, so the result does not depend on the number of threads (it does depend
 //! on the time budget, when one is set and reached).
 
-use crate::bisection::split_widest;
-use crate::certificate::{find_witness, inner_points};
-use crate::certified_set::Cover;
-use crate::certify::{certify, hull_box, MAX_SUBSETS};
-use crate::contract::{contract, contract_from, is_fixed, EmptinessProof, Workspace};
-use crate::first_order::wider_inner_points;
+use crate::kernel::bisection::split_widest;
+use crate::kernel::certify::{certify, hull_box, MAX_SUBSETS};
+use crate::kernel::contract::{contract, contract_from, is_fixed, EmptinessProof, Workspace};
+use crate::kernel::farthest_point::{push_towards, PushEngines};
+use crate::kernel::inner_targets::wider_inner_points;
+use crate::kernel::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
 use crate::lp::{LpBackend, LpMemory};
-use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
-use crate::push::{push_towards, PushEngines};
-use crate::second_order::second_order_emptiness;
+use crate::proof::consistency::{find_witness, inner_points};
+use crate::proof::second_order::second_order_emptiness;
+use crate::set::certified_set::Cover;
 use crate::{Interval, Settings, Status, VectorModel};
 use rayon::prelude::*;
 use std::marker::PhantomData;
@@ -92,8 +92,8 @@ pub struct Hull<const NX: usize> {
     /// Wall-clock seconds.
     pub seconds: f64,
     /// For `Empty` (with no outliers tolerated): a minimal set of measurements (0-based, sorted)
-    /// that no parameter vector of `x0` fits together (see [`crate::outliers`]); not searched
-    /// when the misfit is [`spread`](Hull::spread).
+    /// that no parameter vector of `x0` fits together (a conflict set,
+    /// [`Settings::conflict_sets`]); not searched when the misfit is [`spread`](Hull::spread).
     pub conflict: Option<Vec<usize>>,
     /// For `Empty` (with no outliers tolerated, and the conflict search on), when
     /// [`crate::certify`] proves it too: the measurements its certificate weighs
@@ -103,7 +103,7 @@ pub struct Hull<const NX: usize> {
     /// ([`crate::Certification::spread`]); the conflict set is then not searched.
     pub spread: bool,
     /// With [`Settings::max_outliers`] `= q > 0`: the measurements that every parameter vector
-    /// fitting at least `p - q` of them misfits (certified outliers; see [`crate::outliers`]).
+    /// fitting at least `p - q` of them misfits (certified outliers).
     pub outliers: Vec<usize>,
     /// The boxes whose union contains every solution (empty when the status is `Empty`): what
     /// [`crate::CertifiedSet::new`] turns into the certified set.

@@ -8,23 +8,23 @@
 //!
 //! For a [`crate::VectorModel`] with `NR >= 2` residuals per configuration the two-corner test
 //! cannot be applied row by row: each row would be allowed its own reading. A point is then
-//! certified by the coupled existence proof of [`crate::existence`] (a parametric Krawczyk test on
-//! `NR` of the measured quantities), which exhibits one reading per configuration at which every
-//! row vanishes.
+//! certified by the coupled existence proof of [`crate::proof::existence`] (a parametric Krawczyk
+//! test on `NR` of the measured quantities), which exhibits one reading per configuration at which
+//! every row vanishes.
 //!
 //! The same tests with an interval `x` instead of a point prove that a whole box lies in `S(M)`
 //! (used by the paver for inner volume). Inner bounds come from certified points near the extremes
 //! of each parameter: the hull of `S(M)` lies between the hull of certified points and the outer
 //! box.
 
-use crate::chebyshev::minimax_point;
-use crate::existence::configuration_fits;
-use crate::linalg::gauss_jordan_inverse;
+use crate::num::linalg::gauss_jordan_inverse;
+use crate::proof::chebyshev::minimax_point;
+use crate::proof::existence::configuration_fits;
 use crate::{Interval, Model, VectorModel};
 
 /// Whether every `x` in the box `x` (a point when the box is degenerate) is consistent with every
 /// measurement box: by the sign test described in the module documentation for one residual per
-/// configuration, by the coupled existence test of [`crate::existence`] for several.
+/// configuration, by the coupled existence test (a parametric Krawczyk test) for several.
 pub fn is_certified_consistent<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x: &[Interval; NX],
