@@ -38,9 +38,10 @@
 // Index loops mirror the matrix notation of the paper (rows k, parameters j) in the numeric code.
 #![allow(clippy::needless_range_loop)]
 
-// The modules group the crate by concept: number types (`num`), models (`model`), linear programs
-// (`lp`), proofs about points and boxes (`proof`), the certified kernel (`kernel`) and the certified
-// set with its questions (`set`). They are private: every public item is re-exported below, once.
+// The modules group the crate by concept, each using only those before it in this list: number
+// types (`num`), models (`model`), linear programs (`lp`), proofs about points and boxes (`proof`),
+// the certified kernel (`kernel`), and the certified set with its questions (`set`). They are
+// private: every public item is re-exported below, once.
 mod kernel;
 mod lp;
 mod model;
@@ -86,6 +87,7 @@ pub use kernel::certify::{certify, certify_with, Certification, Status};
 pub use kernel::contract::{
     contract, contract_from, is_fixed, Contraction, EmptinessProof, Workspace,
 };
+pub use kernel::cover::Cover;
 pub use kernel::hull::{hull, hull_with, Hull};
 pub use kernel::outliers::is_spread;
 pub use kernel::settings::{Relaxation, Settings};
@@ -95,7 +97,7 @@ pub use set::calibrated_point::{
     calibrated_point, narrowed, CalibratedPoint, PointRule, POINT_MARGINS,
 };
 pub use set::certified_set::{
-    maximize_over_set, CertifiedPoint, CertifiedSet, Cover, LinearFunction, LinearMax, SetMaximum,
+    maximize_over_set, CertifiedPoint, CertifiedSet, LinearFunction, LinearMax, SetMaximum,
     SetMaximumSettings, SetObjective, SetPiece, SetQuery, SlotQueries, DEFAULT_MAX_PIECES,
 };
 pub use set::least_squares::{least_squares_in_set, SetFit, CROSS_VALIDATION_FOLDS, PRIOR_WEIGHTS};
@@ -108,5 +110,5 @@ pub use set::parallelotope::Parallelotope;
 pub mod __private_v1 {
     pub use crate::model::arithmetic::{add, cos, div, mul, neg, powi, sin, sqr, sqrt, sub, tan};
     pub use crate::model::curvature::{second_derivatives, third_derivatives_along, Third};
-    pub use crate::num::affine::{affine_inputs, linear_enclosures};
+    pub use crate::model::{affine_inputs, linear_enclosures};
 }

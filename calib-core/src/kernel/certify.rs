@@ -1,13 +1,14 @@
 //! [`certify`]: contraction to a fixed point plus the evidence for the verdict.
 
 use crate::kernel::contract::{contract, is_fixed, EmptinessProof, Workspace};
+use crate::kernel::cover::Cover;
 use crate::kernel::inner_targets::wider_inner_points;
 use crate::kernel::outliers::{
     certified_outliers, conflict_set, conflict_subset, drop_sets, is_spread, keep_all_but,
 };
-use crate::proof::consistency::{find_witness, inner_points, point_hull};
+use crate::proof::consistency::{inner_points, point_hull};
 use crate::proof::second_order::second_order_emptiness;
-use crate::set::certified_set::Cover;
+use crate::proof::witness::find_witness;
 use crate::{Interval, Settings, VectorModel};
 
 /// The verdict on a box of parameters.

@@ -44,13 +44,14 @@
 use crate::kernel::bisection::split_widest;
 use crate::kernel::certify::{certify, hull_box, MAX_SUBSETS};
 use crate::kernel::contract::{contract, contract_from, is_fixed, EmptinessProof, Workspace};
+use crate::kernel::cover::Cover;
 use crate::kernel::farthest_point::{push_towards, PushEngines};
 use crate::kernel::inner_targets::wider_inner_points;
 use crate::kernel::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
 use crate::lp::{LpBackend, LpMemory};
-use crate::proof::consistency::{find_witness, inner_points};
+use crate::proof::consistency::inner_points;
 use crate::proof::second_order::second_order_emptiness;
-use crate::set::certified_set::Cover;
+use crate::proof::witness::find_witness;
 use crate::{Interval, Settings, Status, VectorModel};
 use rayon::prelude::*;
 use std::marker::PhantomData;

@@ -6,6 +6,7 @@
 pub(crate) mod bisection;
 pub(crate) mod certify;
 pub(crate) mod contract;
+pub(crate) mod cover;
 pub(crate) mod farthest_point;
 pub(crate) mod hull;
 pub(crate) mod inner_targets;

@@ -7,7 +7,7 @@ pub(crate) mod arithmetic;
 pub(crate) mod coupling;
 pub(crate) mod curvature;
 
-use crate::Interval;
+use crate::{Affine, Interval};
 
 /// Value and both Jacobians of a residual at one point or over one box, computed together so that
 /// shared subexpressions are evaluated once.
@@ -229,4 +229,31 @@ impl<T: Model<NX, NM> + ?Sized, const NX: usize, const NM: usize> VectorModel<NX
     fn jacobians_m_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [[Interval; NM]; 1] {
         [self.jacobian_m_interval(x, m)]
     }
+}
+
+/// Affine inputs for a box `x` and a measurement box `m`: noise symbols `0..NX` for the
+/// parameters, `NX..NX + NM` for the measurements (`N` must be `NX + NM`).
+pub fn affine_inputs<const NX: usize, const NM: usize, const N: usize>(
+    x: &[Interval; NX],
+    m: &[Interval; NM],
+) -> ([Affine<N>; NX], [Affine<N>; NM]) {
+    assert_eq!(N, NX + NM, "one noise symbol per input");
+    (
+        core::array::from_fn(|j| Affine::input(x[j], j)),
+        core::array::from_fn(|i| Affine::input(m[i], NX + i)),
+    )
+}
+
+/// The affine forms of `NR` residuals (noise symbols `0..NX` for the parameters, `NX..NX + NM`
+/// for the measurements, as [`affine_inputs`] makes them) as [`LinearEnclosure`]s.
+pub fn linear_enclosures<const NX: usize, const NM: usize, const NR: usize, const N: usize>(
+    forms: &[Affine<N>; NR],
+) -> [LinearEnclosure<NX, NM>; NR] {
+    assert_eq!(N, NX + NM, "one noise symbol per input");
+    core::array::from_fn(|r| LinearEnclosure {
+        c: forms[r].centre(),
+        gx: core::array::from_fn(|j| forms[r].coefficients()[j]),
+        gm: core::array::from_fn(|i| forms[r].coefficients()[NX + i]),
+        e: forms[r].error(),
+    })
 }

@@ -18,7 +18,6 @@
 //! box.
 
 use crate::num::linalg::gauss_jordan_inverse;
-use crate::proof::chebyshev::minimax_point;
 use crate::proof::existence::configuration_fits;
 use crate::{Interval, Model, VectorModel};
 
@@ -218,28 +217,6 @@ where
         }
     }
     p
-}
-
-/// A certified consistent point of the box, if one of the candidates passes: the least-squares
-/// point, its Chebyshev refinement, the centre, and the given extra candidates.
-pub(crate) fn find_witness<M, const NX: usize, const NM: usize, const NR: usize>(
-    model: &M,
-    x: &[Interval; NX],
-    measurements: &[[Interval; NM]],
-    extra: &[[f64; NX]],
-) -> Option<[f64; NX]>
-where
-    M: VectorModel<NX, NM, NR>,
-{
-    let lsq = least_squares_point(model, x, measurements);
-    let centre = x.map(|v| v.mid());
-    let chebyshev = minimax_point(model, x, measurements, &[true; NM], lsq, true);
-    [lsq, chebyshev, centre]
-        .iter()
-        .chain(extra)
-        .filter(|p| (0..NX).all(|j| x[j].contains(p[j])))
-        .find(|p| is_consistent_point(model, p, measurements))
-        .copied()
 }
 
 /// The hull of points, each a degenerate box (empty intervals when there is none): the inner box

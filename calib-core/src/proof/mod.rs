@@ -7,3 +7,4 @@ pub(crate) mod chebyshev;
 pub(crate) mod consistency;
 pub(crate) mod existence;
 pub(crate) mod second_order;
+pub(crate) mod witness;
