@@ -159,8 +159,8 @@ pub fn certify_with<
         out.spread = !(1..=MAX_EXPLAINING_READINGS).contains(&explaining);
     }
     if out.spread || !settings.conflict_sets {
-        // Spread: a minimal conflict set would name many measurements (22 of 60 on the real UR10
-        // at 0.98 s*, in 60 times the verdict's time) where the support already tells.
+        // Spread: a minimal conflict set would name many measurements, at many times the
+        // verdict's cost, where the support already tells (`benches/README.md`).
         return out;
     }
     if out.emptiness == Some(EmptinessProof::SecondOrder) {
@@ -192,10 +192,9 @@ pub fn certify_with<
     };
     // The prover of the verdict, the contraction, alone: the witness and inner-bound
     // searches `certify_plain` runs on the subsets that are not proved empty (most of the
-    // tests once the set is near minimal) decide nothing here. On the real UR10 (60
-    // configurations, encoders ±0.01°) the gain is within the machine's variance (137 s,
-    // against 137–151 s before; the same set): the time is ~120 contractions of ~59
-    // configurations.
+    // tests once the set is near minimal) decide nothing here. On the real UR10 the gain is
+    // within the machine's variance: the time is the contractions themselves, one per tested
+    // subset (`benches/README.md`).
     out.conflict = Some(conflict_set(measurements.len(), &used, |kept| {
         let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
         contract(model, x0, &subset, settings, ws).result.is_err()

@@ -15,10 +15,10 @@ const PAIRS: usize = MAX_CURVATURE_SYMBOLS * (MAX_CURVATURE_SYMBOLS + 1) / 2;
 
 /// The scalar of [`second_derivatives`] and [`third_derivatives_along`]: second-order forward
 /// derivatives (symmetric, [`Jet2`]) of a directional derivative over intervals. One type for
-/// both, so that a model's evaluator is compiled once for them (measured: a second type for the
-/// second derivatives alone added ~18 s to a fresh `cargo test --workspace`). A jet of jets
-/// (`Jet<Jet<Jet<Interval, 1>, 40>, 40>`) gave the same enclosures from twice the entries: the
-/// certificate over the real UR10's prior took 1.19 s with it.
+/// both, so that a model's evaluator is compiled once for them (a second type for the second
+/// derivatives alone made a fresh `cargo test --workspace` measurably longer). A jet of jets
+/// (`Jet<Jet<Jet<Interval, 1>, 40>, 40>`) gives the same enclosures from twice the entries, and
+/// was slower (`benches/README.md`, "Timings moved from code comments").
 pub type Third = Jet2<Jet<Interval, 1>, MAX_CURVATURE_SYMBOLS, PAIRS>;
 
 /// Stack of the threads that evaluate a model over [`Third`] (a value is 27 KB, and a residual's
