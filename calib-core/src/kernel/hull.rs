@@ -221,7 +221,7 @@ where
         // The conflict set, with the prover that gave the verdict: the contraction alone when it
         // proved x0 empty at once, else the hull (with a bounded budget per subset). `certify`
         // first, for the support of its certificate: when it shows a misfit spread over the data
-        // there is no search (on the real UR10 at 0.98 s* it proves x0 empty in about a second).
+        // there is no search (and `certify` alone is quick to prove x0 empty; `benches/README.md`).
         let x1_empty = out.x1.is_none();
         let plain = settings.clone().with_conflict_sets(x1_empty);
         let first = certify(model, x0, measurements, &plain);
@@ -391,9 +391,8 @@ where
             // Vector models: the segment search of `certify` (witness to each LP extreme point,
             // then to first-order extremes) seeds the inner box too. Their pushes below solve LPs
             // over every coupling direction of every configuration (thousands of nearly parallel
-            // rows) and alone leave the inner bound of angles far inside (measured on the
-            // built-in arm: ratios 2.5-4.8 after 90 s, against 1.2-1.3 from the segments in
-            // seconds).
+            // rows) and alone leave the inner bound of angles far inside, where the segments
+            // reach much tighter ratios in a fraction of the time (`benches/README.md`).
             if let Some(w) = witness.or(refiner.witness) {
                 let mut points = inner_points(
                     model,
@@ -691,8 +690,9 @@ where
         let mut jobs: Vec<Job<'_, NX>> = Vec::with_capacity(2 * picked.len());
         let mut atomic = Vec::new();
         // Across a picked face where the second-order certificate can prove the outer half
-        // empty; across the widest parameter otherwise (measured on the Gough leg, a scalar model
-        // without it: face splits took `gough certify` on sample21 from 0.4 s to 155 s).
+        // empty; across the widest parameter otherwise (on the Gough leg, a scalar model without
+        // it, face splits made `gough certify` on sample21 hundreds of times slower;
+        // `benches/README.md`).
         let face_splits = self.model.curvature().is_some();
         for (i, faces) in picked {
             let Piece { b, set, bases, .. } = &self.cover[*i];

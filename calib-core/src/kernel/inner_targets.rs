@@ -27,8 +27,8 @@ use crate::{Interval, VectorModel};
 
 /// A side of the inner box is searched again when more than this share of the outer width lies
 /// between it and the outer face: where the contraction's extremes already took the inner box
-/// near the outer one (a tight relaxation), the extra searches would cost time for nothing
-/// (measured: the built-in arm's `arm demo` 3.8 s → 5.1 s with every side searched, same bounds).
+/// near the outer one (a tight relaxation), the extra searches would cost time for nothing (the
+/// same bounds, a slower `arm demo`; `benches/README.md`).
 pub(crate) const SHORT_SIDE: f64 = 0.2;
 
 /// Rounds of [`wider_inner_points`] after the first: each starts from the farthest certified
