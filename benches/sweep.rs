@@ -4,7 +4,7 @@
 //!
 //! `cargo bench --bench sweep` (all cores) and `RAYON_NUM_THREADS=1 cargo bench --bench sweep`.
 
-use calib_core::lp::LpEngine;
+use calib_core::LpEngine;
 use calib_core::{certify, contract, Interval, Relaxation, Settings, Workspace};
 use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Uncertainty};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};

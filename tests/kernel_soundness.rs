@@ -3,7 +3,7 @@
 //! are proved `Empty`; `Consistent` witnesses are re-checked independently; exact data converge.
 #![allow(clippy::needless_range_loop)] // indices follow the paper (legs, parameters)
 
-use calib_core::lp::LpEngine;
+use calib_core::LpEngine;
 use calib_core::{
     certify, is_consistent_by_corners, pave, sweep, Interval, Model, Relaxation, Settings, Status,
 };

@@ -4,8 +4,8 @@
 //! `hull`, which shaves and discards boxes with the same engine. A lying engine that also asks to
 //! skip LPs whose bound an earlier (lying) optimum attains cannot either.
 
-use calib_core::lp::{LpBackend, LpStatus, Polyhedron};
 use calib_core::{certify_with, hull_with, Interval, Settings, Status, Workspace};
+use calib_core::{LpBackend, LpStatus, Polyhedron};
 use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Uncertainty};
 
 /// A deliberately wrong LP engine driven by a small deterministic generator.

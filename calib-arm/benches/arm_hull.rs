@@ -20,8 +20,8 @@ use calib_arm::certification::{arm_settings, certify_arm, padded_box, RunOptions
 use calib_arm::error_scale::ScaleBounds;
 use calib_arm::simulate::{measurement_box, simulate, Uncertainty};
 use calib_arm::{builtin_arm, Arm, Arm7Point, Joint};
-use calib_core::bisection::split_widest;
-use calib_core::second_order::second_order_emptiness;
+use calib_core::second_order_emptiness;
+use calib_core::split_widest;
 use calib_core::{
     contract, contract_from, is_consistent_point, smallest_scale, Interval, Settings, VectorModel,
     Workspace,

@@ -15,7 +15,6 @@
 
 pub mod accuracy;
 pub mod calibrated;
-pub mod certificate;
 pub mod certification;
 pub mod design;
 pub mod error_scale;
@@ -26,6 +25,7 @@ pub mod params;
 pub mod pose;
 pub mod predict;
 pub mod register;
+pub mod report_page;
 pub mod robot;
 pub mod simulate;
 pub mod tracker_file;

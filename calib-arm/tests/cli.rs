@@ -697,7 +697,7 @@ fn fit_joint_errors(
     point: &[f64; 3],
     u: &calib_arm::simulate::Uncertainty,
 ) -> (Vec<f64>, [f64; 3]) {
-    use calib_core::lp::{DenseSimplex, LpBackend, Polyhedron};
+    use calib_core::{DenseSimplex, LpBackend, Polyhedron};
     let x = arm_model_parameters(arm);
     let residual = |e: &[f64]| -> [f64; 3] {
         let q: Vec<f64> = joints_deg

@@ -130,10 +130,7 @@ fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
     let chosen = &certified["calibrated"];
     assert_eq!(chosen["rule"], "lsq", "{chosen}");
     let weight = chosen["prior_weight"].as_f64().expect("a prior weight");
-    assert!(
-        calib_core::set_least_squares::WEIGHTS.contains(&weight),
-        "{chosen}"
-    );
+    assert!(calib_core::PRIOR_WEIGHTS.contains(&weight), "{chosen}");
     assert!(
         chosen["margin"].as_f64().is_some_and(|m| m > 0.0),
         "{chosen}"

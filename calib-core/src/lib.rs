@@ -38,59 +38,77 @@
 // Index loops mirror the matrix notation of the paper (rows k, parameters j) in the numeric code.
 #![allow(clippy::needless_range_loop)]
 
-pub mod affine;
-pub mod bisection;
-pub mod calibrated_point;
-pub mod certificate;
-pub mod certified_set;
-mod certify;
-pub mod chebyshev;
-pub mod contract;
-pub mod coupling;
-mod dual;
-pub mod existence;
-mod first_order;
-mod hull;
-pub mod interval;
-mod jet;
-mod jet2;
-mod linalg;
-pub mod lp;
-pub mod maximum;
+// The modules group the crate by concept, each using only those before it in this list: number
+// types (`num`), models (`model`), linear programs (`lp`), proofs about points and boxes (`proof`),
+// the certified kernel (`kernel`), and the certified set with its questions (`set`). They are
+// private: every public item is re-exported below, once.
+mod kernel;
+mod lp;
 mod model;
-pub mod outliers;
-pub mod outlined;
-mod parallelotope;
-mod push;
-pub mod quadratic;
-mod scalar;
-pub mod second_order;
-pub mod set_least_squares;
-mod settings;
+mod num;
+mod proof;
+mod set;
 #[cfg(test)]
 mod test_models;
 
-pub use affine::Affine;
-pub use bisection::{pave, sweep, Paving, SweepResult};
 pub use calib_macros::interval_model;
-pub use calibrated_point::{calibrated_point, CalibratedPoint, PointRule};
-pub use certificate::{is_certified_consistent, is_consistent_by_corners, is_consistent_point};
-pub use certified_set::{
-    maximize_over_set, CertifiedPoint, CertifiedSet, Cover, LinearFunction, LinearMax, SetMaximum,
-    SetMaximumSettings, SetObjective, SetPiece, SetQuery, SlotQueries,
-};
-pub use certify::{certify, certify_with, Certification, Status};
-pub use chebyshev::{smallest_scale, ScaleEstimate};
-pub use contract::{contract, contract_from, is_fixed, Contraction, EmptinessProof, Workspace};
-pub use dual::Dual;
-pub use hull::{hull, hull_with, Hull};
-pub use interval::Interval;
-pub use jet::Jet;
-pub use jet2::Jet2;
-pub use maximum::{maximize, Maximum, MaximumSettings, Objective};
+
+// Number types.
+pub use num::affine::Affine;
+pub use num::dual::Dual;
+pub use num::hessian_jet::Jet2;
+pub use num::interval::Interval;
+pub use num::jet::Jet;
+pub use num::quadratic::Quadratic;
+pub use num::scalar::Scalar;
+
+// Models.
+pub use model::curvature::{Curvature, MAX_CURVATURE_SYMBOLS};
 pub use model::{Evaluation, LinearEnclosure, Model, VectorModel};
-pub use parallelotope::Parallelotope;
-pub use quadratic::Quadratic;
-pub use scalar::Scalar;
-pub use second_order::{second_order_emptiness, Curvature, SecondOrderCertificate};
-pub use settings::{Relaxation, Settings};
+
+// Linear programs.
+pub use lp::{
+    proves_infeasible, safe_lower_bound, ClarabelLp, DenseSimplex, LpBackend, LpEngine, LpMemory,
+    LpStatus, Polyhedron,
+};
+
+// Proofs.
+pub use proof::chebyshev::{chebyshev_weights, smallest_scale, ScaleEstimate};
+pub use proof::consistency::{
+    is_certified_consistent, is_consistent_by_corners, is_consistent_point,
+};
+pub use proof::second_order::{
+    combination_lower_bound, second_order_emptiness, SecondOrderCertificate,
+};
+
+// The kernel.
+pub use kernel::bisection::{pave, split_widest, sweep, Paving, SweepResult};
+pub use kernel::certify::{certify, certify_with, Certification, Status};
+pub use kernel::contract::{
+    contract, contract_from, is_fixed, Contraction, EmptinessProof, Workspace,
+};
+pub use kernel::cover::Cover;
+pub use kernel::hull::{hull, hull_with, Hull};
+pub use kernel::outliers::is_spread;
+pub use kernel::settings::{Relaxation, Settings};
+
+// The certified set and its questions.
+pub use set::calibrated_point::{
+    calibrated_point, narrowed, CalibratedPoint, PointRule, POINT_MARGINS,
+};
+pub use set::certified_set::{
+    maximize_over_set, CertifiedPoint, CertifiedSet, LinearFunction, LinearMax, SetMaximum,
+    SetMaximumSettings, SetObjective, SetPiece, SetQuery, SlotQueries, DEFAULT_MAX_PIECES,
+};
+pub use set::least_squares::{least_squares_in_set, SetFit, CROSS_VALIDATION_FOLDS, PRIOR_WEIGHTS};
+pub use set::maximum::{bracket_ratio, maximize, Maximum, MaximumSettings, Objective, Ranked};
+pub use set::parallelotope::Parallelotope;
+
+/// What the code `#[interval_model]` generates calls: not part of the API, and versioned so that a
+/// change in it cannot silently meet code generated for another version. Not for direct use.
+#[doc(hidden)]
+pub mod __private_v1 {
+    pub use crate::model::arithmetic::{add, cos, div, mul, neg, powi, sin, sqr, sqrt, sub, tan};
+    pub use crate::model::curvature::{second_derivatives, third_derivatives_along, Third};
+    pub use crate::model::{affine_inputs, linear_enclosures};
+}

@@ -105,7 +105,7 @@ fn the_set_is_thin_where_its_box_is_wide() {
 
 #[test]
 fn a_lying_lp_engine_cannot_cut_a_consistent_vector() {
-    use calib_core::lp::{LpBackend, LpStatus, Polyhedron};
+    use calib_core::{LpBackend, LpStatus, Polyhedron};
     /// Answers at random: wrong multipliers (negative, huge, NaN), wrong points, false claims.
     struct Liar(u64);
     impl LpBackend for Liar {
@@ -209,7 +209,7 @@ fn the_calibrated_point_fits_every_measurement_with_room_to_spare() {
             PointRule::LeastSquares,
         ] {
             let p = calibrated_point(&Line, &mut set, rule).expect("a consistent set");
-            let narrowed = calib_core::calibrated_point::narrowed(&m, p.margin);
+            let narrowed = calib_core::narrowed(&m, p.margin);
             assert!(
                 is_consistent_by_corners(&Line, &p.x, &narrowed),
                 "seed {seed}: {p:?}"

@@ -6,7 +6,7 @@
 //! stays undecided, `certify` proves inconsistent data empty with it.
 #![allow(clippy::needless_range_loop)]
 
-use calib_core::second_order::combination_lower_bound;
+use calib_core::combination_lower_bound;
 use calib_core::{
     certify, contract, hull, interval_model, is_consistent_point, second_order_emptiness,
     smallest_scale, Curvature, EmptinessProof, Interval, Scalar, Settings, Status, VectorModel,

@@ -10,7 +10,6 @@
 
 pub mod accuracy;
 pub mod calibrated;
-pub mod certificate;
 pub mod certification;
 pub mod design;
 pub mod error_scale;
@@ -22,6 +21,7 @@ pub mod model;
 pub mod plot;
 pub mod predict;
 pub mod report;
+pub mod report_page;
 pub mod simulate;
 pub mod verdict;
 pub mod workspace;

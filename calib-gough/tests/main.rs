@@ -8,9 +8,9 @@ mod scratch_dir;
 mod support;
 
 mod accuracy;
-mod certificate;
 mod cli;
 mod design;
 mod pose_error;
 mod predict;
+mod report_page;
 mod unit;

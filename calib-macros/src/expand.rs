@@ -13,9 +13,10 @@ use crate::rewrite::constant_tokens;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
-/// Bodies with more operations than this call `calib_core::outlined`'s arithmetic instead of the
-/// operators: inlined interval arithmetic makes LLVM's optimisation of a long body superlinear,
-/// and the code it makes no faster (`calib_core::outlined` has the measurements). Every body of the
+/// Bodies with more operations than this call out-of-line arithmetic (`calib_core::__private_v1`,
+/// defined in `calib-core/src/model/arithmetic.rs`) instead of the operators: inlined interval
+/// arithmetic makes LLVM's optimisation of a long body superlinear, and the code it makes no
+/// faster (`benches/README.md` has the measurements). Every body of the
 /// arm's and the Gough leg's models exceeds it; small test residuals stay inline.
 const OUTLINE_ABOVE: usize = 60;
 
@@ -280,8 +281,9 @@ fn vector_model(
                 x: &[#iv; #nx],
                 m: &[#iv; #nm],
             ) -> ::core::option::Option<[::calib_core::LinearEnclosure<#nx, #nm>; #nr]> {
-                let (ax, am) = ::calib_core::affine::affine_inputs::<#nx, #nm, #n_inputs>(x, m);
-                ::core::option::Option::Some(::calib_core::affine::linear_enclosures(
+                let (ax, am) =
+                    ::calib_core::__private_v1::affine_inputs::<#nx, #nm, #n_inputs>(x, m);
+                ::core::option::Option::Some(::calib_core::__private_v1::linear_enclosures(
                     &Self::__values(&ax, &am),
                 ))
             }
@@ -293,8 +295,8 @@ fn vector_model(
 }
 
 /// `VectorModel::curvature` returning the model itself, and the `Curvature` implementation: the
-/// values' evaluator instantiated over `calib_core::second_order`'s jets, and which inputs the
-/// first derivatives depend on (`curved`, parameters then measurements).
+/// values' evaluator instantiated over the curvature jets (`calib_core::__private_v1::Third`), and
+/// which inputs the first derivatives depend on (`curved`, parameters then measurements).
 fn curvature_tokens(
     name: &Ident,
     nx: usize,
@@ -303,7 +305,7 @@ fn curvature_tokens(
     curved: &[bool],
 ) -> (TokenStream, TokenStream) {
     let iv = quote!(::calib_core::Interval);
-    let so = quote!(::calib_core::second_order);
+    let private = quote!(::calib_core::__private_v1);
     let n = nx + nm;
     let method = quote! {
         fn curvature(&self) -> ::core::option::Option<&dyn ::calib_core::Curvature<#nx, #nm, #nr>> {
@@ -322,7 +324,7 @@ fn curvature_tokens(
                 m: &[f64; #nm],
                 symbols: &[usize],
             ) -> ::core::option::Option<::std::vec::Vec<#iv>> {
-                #so::second_derivatives(Self::__values::<#so::Third>, x, m, symbols)
+                #private::second_derivatives(Self::__values::<#private::Third>, x, m, symbols)
             }
             fn third_derivatives_along(
                 &self,
@@ -332,7 +334,9 @@ fn curvature_tokens(
                 m0: &[f64; #nm],
                 symbols: &[usize],
             ) -> ::core::option::Option<::std::vec::Vec<#iv>> {
-                #so::third_derivatives_along(Self::__values::<#so::Third>, x, m, x0, m0, symbols)
+                #private::third_derivatives_along(
+                    Self::__values::<#private::Third>, x, m, x0, m0, symbols,
+                )
             }
         }
     };
@@ -366,7 +370,7 @@ fn evaluator(
     }
     let var = |id: Id| format_ident!("__v{}", id);
     let scalar = quote!(<#s as ::calib_core::Scalar>);
-    // Large bodies call out-of-line arithmetic: see `calib_core::outlined`.
+    // Large bodies call out-of-line arithmetic: see `OUTLINE_ABOVE`.
     let outline = needed.iter().filter(|&&n| n).count() > OUTLINE_ABOVE;
     let lets = (0..graph.len()).filter(|&id| needed[id]).map(|id| {
         let v = var(id);
@@ -391,7 +395,7 @@ fn evaluator(
             Node::Tan(a) if outline => outlined("tan", &[var(a)]),
             Node::Powi(a, n) if outline => {
                 let a = var(a);
-                quote!(::calib_core::outlined::powi(#a, #n))
+                quote!(::calib_core::__private_v1::powi(#a, #n))
             }
             Node::Add(a, b) => binary(var(a), quote!(+), var(b)),
             Node::Sub(a, b) => binary(var(a), quote!(-), var(b)),
@@ -443,10 +447,10 @@ fn nest_shallowly(lets: &[(Ident, TokenStream)], s: &Ident) -> TokenStream {
     quote!(#(#groups)*)
 }
 
-/// A call to `calib_core::outlined::<op>` with the given operands.
+/// A call to the out-of-line `calib_core::__private_v1::<op>` with the given operands.
 fn outlined(op: &str, operands: &[Ident]) -> TokenStream {
     let op = Ident::new(op, Span::call_site());
-    quote!(::calib_core::outlined::#op(#(#operands),*))
+    quote!(::calib_core::__private_v1::#op(#(#operands),*))
 }
 
 fn binary(a: Ident, op: TokenStream, b: Ident) -> TokenStream {

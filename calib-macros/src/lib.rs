@@ -8,9 +8,9 @@
 //! `[S; NR]` (several residuals of one configuration sharing its measurements, `NR >= 2`), the
 //! struct implements `calib_core::VectorModel<NX, NM, NR>` instead (`[S; 1]` gives a `Model`).
 //! `#[interval_model(curvature)]` (vector models) also implements `calib_core::Curvature`: the
-//! values' evaluator over `calib_core::second_order`'s jets of jets, the second and third
-//! derivatives the kernel's second-order emptiness proofs need (compiled only where asked for:
-//! they make the generated code several times larger). The stages, one file each:
+//! values' evaluator over second-order jets of jets, the second and third derivatives the
+//! kernel's second-order emptiness proofs need (compiled only where asked for: they make the
+//! generated code several times larger). The stages, one file each:
 //! `parse.rs` (signature), `lower.rs` (body to an expression graph, rejecting unsupported syntax with
 //! spanned errors), `diff.rs` (symbolic reverse-mode differentiation on the graph, sharing common
 //! subexpressions), `rewrite.rs` (enclosing the literals of the kept function) and `expand.rs`

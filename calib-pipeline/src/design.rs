@@ -23,7 +23,7 @@
 //! These are predictions to choose poses by, not proofs; the robot crate checks a design by
 //! certifying simulated data measured at it.
 
-use calib_core::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
+use calib_core::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 

@@ -33,7 +33,7 @@ pub struct Outcome {
     pub support: Option<Vec<usize>>,
     /// For an empty sub-problem: the support weighs most of what a certificate can weigh — a
     /// misfit spread over the data, the error bounds too tight for the model, rather than a few
-    /// bad readings ([`calib_core::outliers::is_spread`]); no conflict set was searched.
+    /// bad readings ([`calib_core::is_spread`]); no conflict set was searched.
     pub spread: bool,
     /// With outliers tolerated: the configurations (0-based) proved to be outliers.
     pub outliers: Vec<usize>,

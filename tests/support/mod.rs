@@ -2,8 +2,8 @@
 //! problems, box checks, and feasible points found independently of the kernel.
 #![allow(dead_code)] // each test file uses its own subset
 
-use calib_core::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
 use calib_core::{is_consistent_by_corners, Interval, Model};
+use calib_core::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
 use calib_gough::GoughLeg;
 use calib_gough::{builtin_hexapod, simulate, Leg, Simulation, Uncertainty};
 use rand::rngs::StdRng;

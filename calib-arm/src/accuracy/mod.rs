@@ -106,7 +106,7 @@ pub struct ToolBracket {
 impl ToolBracket {
     /// `upper / lower` (`+∞` without a positive lower bound).
     pub fn ratio(&self) -> f64 {
-        calib_core::maximum::bracket_ratio(self.upper, self.lower)
+        calib_core::bracket_ratio(self.upper, self.lower)
     }
 }
 

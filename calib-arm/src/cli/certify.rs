@@ -5,11 +5,11 @@ use super::output::{
 };
 use super::DataFiles;
 use calib_arm::calibrated::{calibrated_arm, calibrated_toml, PointChoice};
-use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{certify_request, CertifyRequest};
 use calib_arm::error_scale::{search, search_pose, ScaleBounds};
 use calib_arm::files::{parse_pose_uncertainty, parse_robot};
 use calib_arm::pose::{certify_pose, require_pose_inputs, PoseReading, PoseUncertainty};
+use calib_arm::report_page::ArmCertificate;
 use calib_arm::simulate::Uncertainty;
 use calib_core::Status;
 use calib_pipeline::error_scale::{check_margin, report as scale_report};
@@ -244,7 +244,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             (PointChoice::LeastSquares, Some(w)) => format!(
                 "towards the least-squares fit within the set, the prior box weighted {w} by \
                  {}-fold cross-validation",
-                calib_core::set_least_squares::FOLDS
+                calib_core::CROSS_VALIDATION_FOLDS
             ),
             (PointChoice::LeastSquares, None) => "towards the least-squares fit".to_string(),
         };

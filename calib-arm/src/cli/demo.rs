@@ -2,8 +2,8 @@
 
 use super::output::{print_identifiability, print_outcome, spinner, write_certificate, write_json};
 use calib_arm::builtin_arm;
-use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{arm_settings, certify_arm, RunOptions};
+use calib_arm::report_page::ArmCertificate;
 use calib_arm::simulate::{simulate, Uncertainty};
 use calib_arm::write::{measurements_csv, robot_toml, uncertainty_toml, write_data_set};
 use calib_pipeline::html::{command_line, now, Input};

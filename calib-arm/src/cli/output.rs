@@ -1,8 +1,8 @@
 //! What `arm certify` and `arm demo` print: the identifiability findings, the verdict, a table of
 //! the parameters, and the JSON report.
 
-use calib_arm::certificate::ArmCertificate;
 use calib_arm::certification::{json_report, units_of, ArmRun};
+use calib_arm::report_page::ArmCertificate;
 use calib_core::{Interval, Status};
 use calib_pipeline::html::outward;
 use calib_pipeline::verdict::{self, ConfigurationNames};

@@ -3,12 +3,12 @@
 
 mod accuracy_directions;
 mod calibrated;
-mod certificate;
 mod error_scale;
 mod joint_space;
 mod params;
 mod pose_orientation;
 mod register;
+mod report_page;
 mod robot;
 mod second_order;
 mod simulate;

@@ -6,8 +6,8 @@
 use calib_arm::certification::{padded_box, NM, NX};
 use calib_arm::simulate::{measurement_box, simulate, Uncertainty};
 use calib_arm::Arm7Point;
-use calib_core::chebyshev::chebyshev_weights;
-use calib_core::second_order::combination_lower_bound;
+use calib_core::chebyshev_weights;
+use calib_core::combination_lower_bound;
 use calib_core::{smallest_scale, Curvature, Interval, VectorModel};
 
 /// Every parameter of the built-in arm that is free, then its six joint readings.
@@ -110,12 +110,12 @@ fn no_combination_excludes_the_truth_of_a_simulated_arm() {
 
 /// Both arm models leave the base translation and the tracked point out of the second-order
 /// symbols (they enter linearly), and keep every angle and length: the UR10 with its tool frame
-/// (31 free parameters, 12 measured quantities) fits within `MAX_SYMBOLS`.
+/// (31 free parameters, 12 measured quantities) fits within `MAX_CURVATURE_SYMBOLS`.
 #[test]
 fn the_linear_inputs_of_both_arm_models_are_left_out() {
     use calib_arm::pose::certification::{NM6, NX6};
     use calib_arm::pose::Arm7Pose;
-    use calib_core::second_order::MAX_SYMBOLS;
+    use calib_core::MAX_CURVATURE_SYMBOLS;
     // Padded indices: base_x, base_y, base_z are 35–37; the tracked point px, py, pz is 7–9.
     for j in 0..NX {
         let linear = (35..38).contains(&j);
@@ -143,7 +143,7 @@ fn the_linear_inputs_of_both_arm_models_are_left_out() {
         .count();
     assert_eq!(readings, 9);
     assert!(
-        parameters + readings <= MAX_SYMBOLS,
+        parameters + readings <= MAX_CURVATURE_SYMBOLS,
         "{parameters} + {readings}"
     );
 }

@@ -5,7 +5,7 @@
 //! `m + 2j + 1` for `-y_j <= -lo_j`; a [`Constraints`] view says what each one is (in whatever
 //! coordinates the engine works in).
 
-use crate::linalg::gauss_jordan_inverse;
+use crate::num::linalg::gauss_jordan_inverse;
 
 /// The constraints of an LP as an engine sees them.
 pub(super) trait Constraints {

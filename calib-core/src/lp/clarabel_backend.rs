@@ -23,13 +23,11 @@ pub struct ClarabelLp {
 impl ClarabelLp {
     /// An engine whose answers serve only as hints checked elsewhere (the candidate points of the
     /// hull's pushes, each certified afterwards): the KKT solves skip iterative refinement, and
-    /// the iterations stop at gaps and infeasibilities of 1e-6 instead of 1e-8. Measured on the
-    /// built-in arm's hull (`arm demo --hull`): the same boxes and ratios in 22 s instead of 31 s
-    /// without refinement. The looser tolerances, measured on the real UR10's hull at 1.05 `s*`
-    /// (60 s, the same build otherwise; the pushes' interior-point LPs are most of it): 75 boxes
-    /// against 65, largest ratio 1.56 against 1.64 (`arm demo --hull`: 35 boxes against 33, the
-    /// same largest ratio; 1e-4 was far worse, 189 boxes in 123 s). Its multipliers still give
-    /// rigorous bounds through [`super::safe_lower_bound`], only possibly weaker ones.
+    /// the iterations stop at gaps and infeasibilities of 1e-6 instead of 1e-8: on the arm's hull,
+    /// the same boxes and ratios sooner without refinement, and more boxes with tighter ratios in
+    /// the same time with the looser tolerances (1e-4 was far worse; `benches/README.md` has the
+    /// measurements). Its multipliers still give rigorous bounds through
+    /// [`super::safe_lower_bound`], only possibly weaker ones.
     pub fn for_hints() -> Self {
         ClarabelLp {
             solver: None,

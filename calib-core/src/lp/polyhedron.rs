@@ -109,9 +109,9 @@ impl Polyhedron {
             row.extend_from_slice(a);
             for (j, f) in self.frozen.iter().enumerate() {
                 if let Some(mag) = f {
-                    b = crate::interval::round::add_up(
+                    b = crate::num::interval::round::add_up(
                         b,
-                        crate::interval::round::mul_up(row[j].abs(), *mag),
+                        crate::num::interval::round::mul_up(row[j].abs(), *mag),
                     );
                     row[j] = 0.0;
                 }

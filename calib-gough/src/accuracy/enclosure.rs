@@ -27,7 +27,7 @@ use crate::files::LegSpec;
 use crate::measurement::measured;
 use crate::workspace::Workspace;
 use crate::GoughLeg;
-use calib_core::lp::LpBackend;
+use calib_core::LpBackend;
 use calib_core::SetQuery;
 use calib_core::{CertifiedSet, Interval, Jet, Model, Quadratic};
 use rand::{Rng, SeedableRng};

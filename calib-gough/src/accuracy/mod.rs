@@ -120,7 +120,7 @@ pub struct Bracket {
 impl Bracket {
     /// `upper / lower` (`+∞` without a positive lower bound).
     pub fn ratio(&self) -> f64 {
-        calib_core::maximum::bracket_ratio(self.upper, self.lower)
+        calib_core::bracket_ratio(self.upper, self.lower)
     }
 }
 
@@ -493,7 +493,7 @@ fn pose_json(
         "over": over,
         "upper": upper,
         "lower": lower,
-        "ratio": upper.zip(lower).map(|(u, l)| calib_core::maximum::bracket_ratio(u, l)),
+        "ratio": upper.zip(lower).map(|(u, l)| calib_core::bracket_ratio(u, l)),
         "worst": worst,
         "unproved_at": unproved,
         "upper_unproved_at": upper_unproved,

@@ -66,8 +66,8 @@
 use super::enclosure::{AccuracyProblem, PoseBox};
 use super::move_paving::{MovePaving, Paved};
 use super::pose_chart::PoseChart;
-use calib_core::bisection::split_widest;
-use calib_core::maximum::Ranked;
+use calib_core::split_widest;
+use calib_core::Ranked;
 use calib_core::{interval_model, Affine, Interval, Model, Scalar};
 use nalgebra::Matrix6;
 use rayon::prelude::*;

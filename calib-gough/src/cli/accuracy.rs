@@ -285,7 +285,7 @@ fn print_pose_upper(after: &PoseErrors, tilt_deg: f64) {
         (Some(p), Some(o)) => {
             let ratio = |u: f64, l: Option<f64>| {
                 l.map_or(String::new(), |l| {
-                    format!(" (bracket {:.2})", calib_core::maximum::bracket_ratio(u, l))
+                    format!(" (bracket {:.2})", calib_core::bracket_ratio(u, l))
                 })
             };
             println!(

@@ -4,7 +4,6 @@ use super::DataFiles;
 use calib_core::Status;
 use calib_gough::accuracy::{accuracy_report, AccuracyProblem, AccuracyReport, AccuracySettings};
 use calib_gough::calibrated::{calibrated_robot, robot_toml, CalibratedRobot};
-use calib_gough::certificate::{self, Certificate, Input, LegEntry};
 use calib_gough::certification::{
     certify_legs, identifiability, report, CertifyOptions, LegResult,
 };
@@ -16,6 +15,7 @@ use calib_gough::lsq::fit_legs;
 use calib_gough::measurement::Uncertainty;
 use calib_gough::plot;
 use calib_gough::report::{ratios, table, write_atomically};
+use calib_gough::report_page::{self, Certificate, Input, LegEntry};
 use calib_gough::verdict::{self, ConfigurationNames};
 use calib_gough::workspace::read_workspace;
 use calib_gough::PARAMETER_NAMES;
@@ -316,11 +316,11 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                 robot.len(),
                 data.configs.len()
             ),
-            command: certificate::command_line(),
-            date: certificate::now(),
+            command: report_page::command_line(),
+            date: report_page::now(),
             inputs,
             configurations: data.configs.len(),
-            error_bounds: certificate::error_bounds(&u, data.rodrigues)
+            error_bounds: report_page::error_bounds(&u, data.rodrigues)
                 .into_iter()
                 .chain(
                     (!scale_words.is_empty())

@@ -1,14 +1,14 @@
 //! `gough reproduce`: the paper's Section V experiment on an embedded default.
 
 use calib_core::{certify, hull, sweep, Interval, Settings, Status};
-use calib_gough::certificate::{
-    error_bounds, Certificate, Figure, Input, LegEntry, Section, Table,
-};
 use calib_gough::certification::LegResult;
 use calib_gough::geometry::Pose;
 use calib_gough::lsq::fit_leg;
 use calib_gough::plot::{self, Layer, PlotError, Points};
 use calib_gough::report::{ratios, write_atomically};
+use calib_gough::report_page::{
+    error_bounds, Certificate, Figure, Input, LegEntry, Section, Table,
+};
 use calib_gough::simulate::data_set_files;
 use calib_gough::verdict::{self, ConfigurationNames, Standing};
 use calib_gough::{
@@ -364,8 +364,8 @@ fn certificate(
         title: format!(
             "the paper's experiment: leg 1 of the built-in hexapod, {CONFIGS} simulated configurations"
         ),
-        command: calib_gough::certificate::command_line(),
-        date: calib_gough::certificate::now(),
+        command: calib_gough::report_page::command_line(),
+        date: calib_gough::report_page::now(),
         inputs,
         configurations: CONFIGS,
         error_bounds: error_bounds(&sim.uncertainty, false),

@@ -1,6 +1,6 @@
 //! The tests of `calib_gough::accuracy::pose_bound`.
 
-use calib_core::bisection::split_widest;
+use calib_core::split_widest;
 use calib_core::{Interval, Model};
 use calib_gough::accuracy::enclosure::{AccuracyProblem, PoseBox};
 use calib_gough::accuracy::pose_bound::*;

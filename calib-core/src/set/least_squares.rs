@@ -16,12 +16,12 @@
 //! with `w_r` the row's first-order half-range over its measurement box (paper eq. 6) and
 //! `θ` = [`SHRINK`] leaving room for the curvature: a convex quadratic program (`clarabel`),
 //! repeated from the new point while the objective falls and the point still fits to first order.
-//! The weight `λ` of the prior is chosen by [`FOLDS`]-fold cross-validation over the
-//! configurations ([`WEIGHTS`], the one-standard-error rule), so that it is the data that say how
-//! much the box's centre is worth. A target, never a proof: the calibrated
+//! The weight `λ` of the prior is chosen by [`CROSS_VALIDATION_FOLDS`]-fold cross-validation over
+//! the configurations ([`PRIOR_WEIGHTS`], the one-standard-error rule), so that it is the data that
+//! say how much the box's centre is worth. A target, never a proof: the calibrated
 //! point is the last point of the segment towards it that [`crate::is_consistent_point`] accepts.
 
-use crate::coupling::for_each_linearised_row;
+use crate::model::coupling::for_each_linearised_row;
 use crate::{Evaluation, Interval, VectorModel};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -30,13 +30,14 @@ use clarabel::solver::{
 use rayon::prelude::*;
 
 /// The fraction of every first-order half-range the quadratic program may use.
-pub const SHRINK: f64 = 0.98;
+pub(crate) const SHRINK: f64 = 0.98;
 
 /// The prior weights `λ` cross-validation chooses from.
-pub const WEIGHTS: [f64; 9] = [0.0, 0.01, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0];
+pub const PRIOR_WEIGHTS: [f64; 9] = [0.0, 0.01, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0];
 
-/// The number of cross-validation folds (configuration `k` is left out in fold `k mod FOLDS`).
-pub const FOLDS: usize = 5;
+/// The number of cross-validation folds (configuration `k` is left out in fold `k mod
+/// CROSS_VALIDATION_FOLDS`).
+pub const CROSS_VALIDATION_FOLDS: usize = 5;
 
 /// At most this many quadratic programs.
 const STEPS: usize = 6;
@@ -172,13 +173,14 @@ fn prior_term<const NX: usize>(x: &[Interval; NX], p: &[f64; NX]) -> f64 {
         .sum()
 }
 
-/// The prior weight of [`WEIGHTS`] chosen by [`FOLDS`]-fold cross-validation: fold `f` holds a
-/// contiguous block of configurations (measured series move along paths: interleaved folds would
-/// test each configuration against its neighbours and favour overfitting); each weight's first
-/// quadratic program at `p` over the other folds predicts the fold's scaled residuals (linearised
-/// at `p`); the score is the mean over the folds of their sums of squares. By the
-/// one-standard-error rule, the largest weight whose score is within one standard error of the
-/// best. 0 with fewer than two configurations or when no program can be solved.
+/// The prior weight of [`PRIOR_WEIGHTS`] chosen by [`CROSS_VALIDATION_FOLDS`]-fold
+/// cross-validation: fold `f` holds a contiguous block of configurations (measured series move
+/// along paths: interleaved folds would test each configuration against its neighbours and favour
+/// overfitting); each weight's first quadratic program at `p` over the other folds predicts the
+/// fold's scaled residuals (linearised at `p`); the score is the mean over the folds of their sums
+/// of squares. By the one-standard-error rule, the largest weight whose score is within one
+/// standard error of the best. 0 with fewer than two configurations or when no program can be
+/// solved.
 fn cross_validated_weight<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x: &[Interval; NX],
@@ -190,7 +192,7 @@ where
     M: VectorModel<NX, NM, NR> + Sync,
 {
     let n = live.len();
-    let folds = FOLDS.min(measurements.len());
+    let folds = CROSS_VALIDATION_FOLDS.min(measurements.len());
     if n == 0 || folds < 2 {
         return 0.0;
     }
@@ -201,7 +203,7 @@ where
     let len = measurements.len();
     // Per weight (in parallel: each is independent of the others): the mean over the folds of
     // each fold's sum of squares, and its standard error.
-    let scores: Vec<(f64, f64, f64)> = WEIGHTS
+    let scores: Vec<(f64, f64, f64)> = PRIOR_WEIGHTS
         .par_iter()
         .filter_map(|&weight| {
             let mut errors = Vec::with_capacity(folds);
@@ -405,7 +407,7 @@ mod tests {
             !is_consistent_point(&Line, &lsq, &m),
             "the test needs a tight set"
         );
-        let start = crate::chebyshev::minimax_point(&Line, &x, &m, &[true; 3], lsq, false);
+        let start = crate::proof::chebyshev::minimax_point(&Line, &x, &m, &[true; 3], lsq, false);
         assert!(is_consistent_point(&Line, &start, &m), "{start:?}");
         let fit = least_squares_in_set(&Line, &x, &m, start);
         assert!(is_consistent_point(&Line, &fit.x, &m), "{fit:?}");
@@ -424,7 +426,11 @@ mod tests {
         let m = points(0.2, 0.0);
         let x = [Interval::new(-1000.0, 1000.0), Interval::new(1.0, 3.0)];
         let fit = least_squares_in_set(&Line, &x, &m, [0.5, 2.7]);
-        assert_eq!(fit.prior_weight, WEIGHTS[WEIGHTS.len() - 1], "{fit:?}");
+        assert_eq!(
+            fit.prior_weight,
+            PRIOR_WEIGHTS[PRIOR_WEIGHTS.len() - 1],
+            "{fit:?}"
+        );
         assert!((fit.x[1] - 2.0).abs() < 1e-6, "{fit:?}");
         // And `x0` stays at the data's slope (its box is too wide for the prior term to matter).
         assert!((fit.x[0] - 0.5).abs() < 0.05, "{fit:?}");

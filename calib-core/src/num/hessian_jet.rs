@@ -1,5 +1,5 @@
 //! [`Jet2`]: second-order forward-mode derivatives with a symmetric Hessian, for the curvature
-//! of a residual ([`crate::second_order`]).
+//! of a residual ([`crate::proof::second_order`]).
 //!
 //! A jet of jets (`Jet<Jet<S, G>, G>`) also carries second derivatives, but stores and computes
 //! all `G²` entries `∂²f/∂z_a∂z_b` although `∂²f/∂z_a∂z_b = ∂²f/∂z_b∂z_a`. This type keeps the
@@ -215,7 +215,7 @@ mod tests {
     /// derivatives are special cases.
     fn f<S: Scalar>(x: [S; 3]) -> S {
         let [a, b, r] = x;
-        crate::jet::tests::f(x) + a.powi(2) * b.powi(1) * r.powi(0) - (S::cst(2.0) - r) * a
+        crate::num::jet::tests::f(x) + a.powi(2) * b.powi(1) * r.powi(0) - (S::cst(2.0) - r) * a
     }
 
     type Nested<S> = Jet<Jet<S, 3>, 3>;

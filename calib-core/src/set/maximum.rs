@@ -28,7 +28,7 @@
 //! `max f >= lower`. Failures (a NaN or unbounded enclosure) never drop a box: the upper bound is
 //! then `+∞`.
 
-use crate::bisection::split_widest;
+use crate::kernel::bisection::split_widest;
 use crate::Interval;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;

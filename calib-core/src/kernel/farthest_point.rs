@@ -3,7 +3,7 @@
 //!
 //! At a certified point `p`, with `f_k = f(p, mid M_k)`, `g_k = ∂f/∂x (p, mid M_k)` and
 //! `w_k = Σ_i |∂f/∂M_i| rad(M_{k,i})` (the first-order half-range of `f(p, ·)` over `M_k`, paper
-//! eq. 6; for vector models also every coupling combination, [`crate::coupling`]), a linear
+//! eq. 6; for vector models also every coupling combination, [`crate::model::coupling`]), a linear
 //! program maximises `c·d` subject to `|f_k + g_k·d| <= θ w_k` and `p + d` in the region; the
 //! point `p + d` is kept only when it is certified consistent ([`crate::is_consistent_point`]).
 //! The margin `θ < 1` absorbs the linearisation error and is lowered when a step fails to
@@ -14,14 +14,13 @@
 //! [`SMALL_DIM`] of them they go to the interior-point engine ([`ClarabelLp::for_hints`]). Its
 //! optimum lies inside the optimal face rather than at one of its vertices, and the thin slabs
 //! `|f_k + g_k·d| <= θ w_k` (hundreds of pairs of nearly parallel rows) do not stall it.
-//! Measured on the built-in arm's hull (`arm demo --hull`, 27 free parameters of 44): the
-//! simplex failed 43% of the push LPs after 676 pivots on average, and the pushes it finished
-//! stopped short (largest outer/inner ratio 1.25 after 60 s); with the interior-point engine
-//! none failed and the first pushes alone reach 1.12 (see `benches/README.md`).
+//! On the built-in arm's hull the simplex failed a large share of the push LPs and the pushes it
+//! finished stopped short; with the interior-point engine none failed and the first pushes alone
+//! reach a tighter hull (see `benches/README.md`).
 
-use crate::certificate::FailFirst;
-use crate::coupling::for_each_linearised_row;
 use crate::lp::{ClarabelLp, DenseSimplex, LpBackend, LpStatus, Polyhedron, SMALL_DIM};
+use crate::model::coupling::for_each_linearised_row;
+use crate::proof::consistency::FailFirst;
 use crate::{Interval, VectorModel};
 
 /// Local maximisation of `direction·x` over the solution set: from `start`, successive linear
@@ -105,9 +104,8 @@ where
         active.extend(rows.iter().map(|r| r.active));
         if !solved {
             // A larger margin or more active rows only shrink this LP's feasible set: from the
-            // same point, if this one was infeasible, every later one is too. Measured on the
-            // real UR10 at 1.05 `s*` (`arm certify --hull`): 1,992 of a hull's 2,946 push steps
-            // were such LPs, ~10 ms each.
+            // same point, if this one was infeasible, every later one is too. On the real UR10
+            // most of a hull's push steps were such LPs (`benches/README.md`).
             break;
         }
         let q: [f64; NX] =
@@ -164,10 +162,10 @@ impl PushEngines {
 }
 
 /// A push ends at a step that gains less than this fraction of the region's extent along the
-/// direction. Measured on the built-in arm's hull (`arm demo --hull`): after the first certified
-/// step, 88% of the steps gained less than 1e-4 of the region (the median 2e-10), nothing the
-/// hull's tolerances (ratios of widths, the region within them of the inner width) can see;
-/// ending there saves 22% of the steps (20.1 s instead of 21.5 s, the same boxes and ratios).
+/// direction. On the built-in arm's hull, after the first certified step, most steps gained less
+/// than that, nothing the hull's tolerances (ratios of widths, the region within them of the inner
+/// width) can see; ending there saves steps and time for the same boxes and ratios
+/// (`benches/README.md`).
 const MIN_GAIN: f64 = 1e-4;
 
 /// One linearised scalar equation of a push (see [`push_outward`]): `|value + dx·d| <= w`.
@@ -260,8 +258,8 @@ impl<const NX: usize> PushLp<'_, NX> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::certificate::is_consistent_point;
     use crate::lp::safe_lower_bound;
+    use crate::proof::consistency::is_consistent_point;
     use crate::test_models::{Hyperplane, HYPERPLANE_DIM as N};
     use rand::rngs::StdRng;
     use rand::{Rng, SeedableRng};

@@ -30,8 +30,8 @@ pub trait Scalar:
     fn enclose(nearest: f64, lo: f64, hi: f64) -> Self;
 
     /// Whether the large generated evaluators call this type's operations out of line
-    /// ([`crate::outlined`]): `true` (the default) for every type whose operations are more than
-    /// a few instructions, `false` for `f64`.
+    /// (`calib-core/src/model/arithmetic.rs`): `true` (the default) for every type whose operations
+    /// are more than a few instructions, `false` for `f64`.
     const OUT_OF_LINE: bool = true;
 
     /// The square `self * self` (tighter than the product for intervals containing zero).

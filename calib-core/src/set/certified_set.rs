@@ -31,66 +31,21 @@
 //!
 //! The lower bound is attained: a parameter vector proved consistent with every measurement
 //! ([`crate::is_consistent_point`]: a sign test, or the coupled existence test of
-//! [`crate::existence`]) at which `g` is evaluated rigorously. Such points are found by pushing a
-//! certified point along the objective's gradient with successive linear programs, each step kept
-//! only when its point is certified ([`CertifiedSet::extreme_point`]). The truth lies between the
-//! two bounds.
+//! [`crate::proof::existence`]) at which `g` is evaluated rigorously. Such points are found by
+//! pushing a certified point along the objective's gradient with successive linear programs, each
+//! step kept only when its point is certified ([`CertifiedSet::extreme_point`]). The truth lies
+//! between the two bounds.
 //!
 //! [`maximize_over_set`] refines the pieces where the upper bound is attained (split at the
 //! widest side, both halves contracted by the Newton step, halves proved empty dropped) until the
 //! bracket meets its tolerance or a budget is spent.
 
-use crate::bisection::split_widest;
-use crate::contract::{build_relaxation, contract, Workspace};
+use crate::kernel::bisection::split_widest;
+use crate::kernel::contract::{build_relaxation, contract, Workspace};
+use crate::kernel::cover::hull_of;
+use crate::kernel::farthest_point::{push_towards, PushEngines};
 use crate::lp::{safe_lower_bound, DenseSimplex, LpBackend, LpStatus, Polyhedron};
-use crate::push::{push_towards, PushEngines};
-use crate::{is_consistent_point, Interval, Relaxation, Settings, VectorModel};
-
-/// Boxes whose union contains every solution of a certification, with the measurement subset
-/// each belongs to (with outliers tolerated, each subset drops some measurements; without, there
-/// is one subset, dropping none).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Cover<const NX: usize> {
-    /// The boxes.
-    pub boxes: Vec<[Interval; NX]>,
-    /// Per box, the index of its subset in `dropped`.
-    pub subsets: Vec<usize>,
-    /// Per subset, the measurements it drops (0-based, sorted).
-    pub dropped: Vec<Vec<usize>>,
-}
-
-impl<const NX: usize> Cover<NX> {
-    /// The cover of nothing (a certification that proved its box empty).
-    pub fn empty() -> Self {
-        Cover {
-            boxes: Vec::new(),
-            subsets: Vec::new(),
-            dropped: vec![Vec::new()],
-        }
-    }
-
-    /// One box, all measurements kept.
-    pub fn single(b: [Interval; NX]) -> Self {
-        Cover {
-            boxes: vec![b],
-            subsets: vec![0],
-            dropped: vec![Vec::new()],
-        }
-    }
-
-    /// The hull of the boxes (`None` when there is none).
-    pub fn hull(&self) -> Option<[Interval; NX]> {
-        hull_of(self.boxes.iter())
-    }
-}
-
-/// The hull of some boxes.
-fn hull_of<'a, const NX: usize>(
-    mut boxes: impl Iterator<Item = &'a [Interval; NX]>,
-) -> Option<[Interval; NX]> {
-    let first = *boxes.next()?;
-    Some(boxes.fold(first, |h, b| core::array::from_fn(|j| h[j].hull(b[j]))))
-}
+use crate::{is_consistent_point, Cover, Interval, Relaxation, Settings, VectorModel};
 
 /// One piece of a [`CertifiedSet`]: a box and a polyhedron that every solution in the box
 /// satisfies (see the module documentation).
@@ -816,9 +771,9 @@ pub struct SetMaximum<const NX: usize> {
 }
 
 impl<const NX: usize> SetMaximum<NX> {
-    /// `upper / lower` (see [`crate::maximum::bracket_ratio`]).
+    /// `upper / lower` (see [`crate::set::maximum::bracket_ratio`]).
     pub fn ratio(&self) -> f64 {
-        crate::maximum::bracket_ratio(self.upper, self.lower)
+        crate::set::maximum::bracket_ratio(self.upper, self.lower)
     }
 }
 

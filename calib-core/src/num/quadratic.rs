@@ -34,8 +34,8 @@
 //! `[-1, 1]^N` the exact value of the quantity lies in `c + l·ε + εᵀ q ε + [-e, e]`, so
 //! [`Quadratic::range`] encloses it over the whole box.
 
-use crate::affine::{roundings, sum_up};
-use crate::interval::round::{add_up, mul_up};
+use crate::num::affine::{roundings, sum_up};
+use crate::num::interval::round::{add_up, mul_up};
 use crate::{Interval, Scalar};
 use core::ops::{Add, Div, Mul, Neg, Sub};
 

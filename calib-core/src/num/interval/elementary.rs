@@ -4,7 +4,7 @@
 //! the index `k` of each critical point `c + k*period` is enclosed by interval arithmetic with an
 //! enclosure of pi, and a critical point is assumed present whenever the enclosure admits an integer.
 //! Otherwise the function is monotone on the argument and the bounds come from the end points,
-//! widened by two ulps (see the module documentation of [`crate::interval`]).
+//! widened by two ulps (see the module documentation of [`crate::num::interval`]).
 
 use super::round::{down, up};
 use super::Interval;

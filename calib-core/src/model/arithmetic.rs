@@ -3,20 +3,17 @@
 //! A generated evaluator is one straight-line body. For a kinematic chain differentiated in every
 //! input (the arm's point model: ~1,300 operations; its six-row pose model: ~4,100) LLVM's
 //! optimisation of that body grows much faster than its length once every interval product — a
-//! nine-way sign case with directed roundings — is inlined into it. Measured on calib-arm's
-//! library (dev profile, opt-level 2, clean build of the crate): 76 s without the pose model and
-//! 9 min 43 s with it, against 18 s and 21 s once these bodies call out of line; calib-gough's
-//! (bodies of 74–333 operations) 36 s against 17 s.
+//! nine-way sign case with directed roundings — is inlined into it: a clean build of calib-arm's
+//! library took minutes with the pose model and seconds once these bodies call out of line
+//! (`benches/README.md`, "Compile time of the generated evaluators", has the measurements).
 //!
 //! Bodies of more than 60 operations (`OUTLINE_ABOVE` in `calib-macros`) therefore call these
 //! functions instead of the operators. For number types whose operations are a few instructions
 //! (`f64`: [`Scalar::OUT_OF_LINE`] is `false`) they are the operators themselves; for the others
 //! the operation is a call to one shared, separately optimised copy. The values are the same
 //! either way: only where the code lives changes (tested below). The code runs no slower, often
-//! faster (less of it competes for the instruction cache): `arm demo` 4.2–5.0 s before and after;
-//! `cargo bench --bench eval`, the Gough leg's `evaluate_interval` 0.96 → 0.67 µs, and
-//! `--bench sweep` (boxes/s, one core) Corners 10.8k → 12.1k, Krawczyk 14.5k → 16.7k, Both 8.5k →
-//! 8.8k (release, the shared 2-core machine: ±15%).
+//! faster: less of it competes for the instruction cache (the same section of
+//! `benches/README.md`).
 
 use crate::Scalar;
 

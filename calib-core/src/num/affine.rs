@@ -27,8 +27,8 @@
 //! [`Affine::range`] encloses the quantity over the whole box, and the kernel intersects it with
 //! the natural interval evaluation (both are enclosures).
 
-use crate::interval::round::{add_up, mul_up};
-use crate::{Interval, LinearEnclosure, Scalar};
+use crate::num::interval::round::{add_up, mul_up};
+use crate::{Interval, Scalar};
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
 /// An affine form over `N` noise symbols (see the module documentation).
@@ -361,33 +361,6 @@ impl<const N: usize> Scalar for Affine<N> {
     fn tan(self) -> Self {
         self.through_interval(Interval::tan)
     }
-}
-
-/// Affine inputs for a box `x` and a measurement box `m`: noise symbols `0..NX` for the
-/// parameters, `NX..NX + NM` for the measurements (`N` must be `NX + NM`).
-pub fn affine_inputs<const NX: usize, const NM: usize, const N: usize>(
-    x: &[Interval; NX],
-    m: &[Interval; NM],
-) -> ([Affine<N>; NX], [Affine<N>; NM]) {
-    assert_eq!(N, NX + NM, "one noise symbol per input");
-    (
-        core::array::from_fn(|j| Affine::input(x[j], j)),
-        core::array::from_fn(|i| Affine::input(m[i], NX + i)),
-    )
-}
-
-/// The affine forms of `NR` residuals (noise symbols `0..NX` for the parameters, `NX..NX + NM`
-/// for the measurements, as [`affine_inputs`] makes them) as [`LinearEnclosure`]s.
-pub fn linear_enclosures<const NX: usize, const NM: usize, const NR: usize, const N: usize>(
-    forms: &[Affine<N>; NR],
-) -> [LinearEnclosure<NX, NM>; NR] {
-    assert_eq!(N, NX + NM, "one noise symbol per input");
-    core::array::from_fn(|r| LinearEnclosure {
-        c: forms[r].c,
-        gx: core::array::from_fn(|j| forms[r].a[j]),
-        gm: core::array::from_fn(|i| forms[r].a[NX + i]),
-        e: forms[r].e,
-    })
 }
 
 #[cfg(test)]

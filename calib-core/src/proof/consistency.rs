@@ -8,23 +8,22 @@
 //!
 //! For a [`crate::VectorModel`] with `NR >= 2` residuals per configuration the two-corner test
 //! cannot be applied row by row: each row would be allowed its own reading. A point is then
-//! certified by the coupled existence proof of [`crate::existence`] (a parametric Krawczyk test on
-//! `NR` of the measured quantities), which exhibits one reading per configuration at which every
-//! row vanishes.
+//! certified by the coupled existence proof of [`crate::proof::existence`] (a parametric Krawczyk
+//! test on `NR` of the measured quantities), which exhibits one reading per configuration at which
+//! every row vanishes.
 //!
 //! The same tests with an interval `x` instead of a point prove that a whole box lies in `S(M)`
 //! (used by the paver for inner volume). Inner bounds come from certified points near the extremes
 //! of each parameter: the hull of `S(M)` lies between the hull of certified points and the outer
 //! box.
 
-use crate::chebyshev::minimax_point;
-use crate::existence::configuration_fits;
-use crate::linalg::gauss_jordan_inverse;
+use crate::num::linalg::gauss_jordan_inverse;
+use crate::proof::existence::configuration_fits;
 use crate::{Interval, Model, VectorModel};
 
 /// Whether every `x` in the box `x` (a point when the box is degenerate) is consistent with every
 /// measurement box: by the sign test described in the module documentation for one residual per
-/// configuration, by the coupled existence test of [`crate::existence`] for several.
+/// configuration, by the coupled existence test (a parametric Krawczyk test) for several.
 pub fn is_certified_consistent<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x: &[Interval; NX],
@@ -218,28 +217,6 @@ where
         }
     }
     p
-}
-
-/// A certified consistent point of the box, if one of the candidates passes: the least-squares
-/// point, its Chebyshev refinement, the centre, and the given extra candidates.
-pub(crate) fn find_witness<M, const NX: usize, const NM: usize, const NR: usize>(
-    model: &M,
-    x: &[Interval; NX],
-    measurements: &[[Interval; NM]],
-    extra: &[[f64; NX]],
-) -> Option<[f64; NX]>
-where
-    M: VectorModel<NX, NM, NR>,
-{
-    let lsq = least_squares_point(model, x, measurements);
-    let centre = x.map(|v| v.mid());
-    let chebyshev = minimax_point(model, x, measurements, &[true; NM], lsq, true);
-    [lsq, chebyshev, centre]
-        .iter()
-        .chain(extra)
-        .filter(|p| (0..NX).all(|j| x[j].contains(p[j])))
-        .find(|p| is_consistent_point(model, p, measurements))
-        .copied()
 }
 
 /// The hull of points, each a degenerate box (empty intervals when there is none): the inner box

@@ -25,11 +25,11 @@ use crate::Evaluation;
 
 /// At most this many coupling directions per configuration (every facet normal of a zonotope with
 /// 9 generators in 3 dimensions: a tracked point with 6 joint readings and 3 tracker coordinates).
-pub const MAX_DIRECTIONS: usize = 36;
+pub(crate) const MAX_DIRECTIONS: usize = 36;
 
 /// Coupling directions of one configuration, stored without allocation.
 #[derive(Clone, Copy, Debug)]
-pub struct Directions<const NR: usize> {
+pub(crate) struct Directions<const NR: usize> {
     list: [[f64; NR]; MAX_DIRECTIONS],
     len: usize,
 }
@@ -78,7 +78,7 @@ impl<const NR: usize> Default for Directions<NR> {
 /// `g_i = b[·][i] · rad[i]` (see the module documentation), from the largest generators so that
 /// at most [`MAX_DIRECTIONS`] are formed. Generators below `1e-6` of the largest are ignored, and
 /// so are normals along an axis (they are the unit rows). Empty for `NR = 1`.
-pub fn coupling_directions<const NR: usize, const NM: usize>(
+pub(crate) fn coupling_directions<const NR: usize, const NM: usize>(
     b: &[[f64; NM]; NR],
     rad: &[f64; NM],
 ) -> Directions<NR> {

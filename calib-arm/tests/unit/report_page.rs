@@ -1,7 +1,7 @@
-//! The tests of `calib_arm::certificate`.
+//! The tests of `calib_arm::report_page`.
 
-use calib_arm::certificate::*;
 use calib_arm::certification::ArmRun;
+use calib_arm::report_page::*;
 use calib_arm::simulate::Uncertainty;
 use calib_core::{Interval, Status};
 use calib_pipeline::html::Input;

@@ -13,15 +13,15 @@
 //! also tested for lying entirely inside the solution set ([`crate::is_certified_consistent`]),
 //! which gives an inner volume next to the outer one.
 
-use crate::certificate::is_certified_consistent;
-use crate::certify::MAX_SUBSETS;
-use crate::contract::{contract, Workspace};
-use crate::outliers::{drop_sets, keep_all_but};
+use crate::kernel::certify::MAX_SUBSETS;
+use crate::kernel::contract::{contract, Workspace};
+use crate::kernel::outliers::{drop_sets, keep_all_but};
+use crate::proof::consistency::is_certified_consistent;
 use crate::{Interval, Settings, VectorModel};
 use rayon::prelude::*;
 
 /// The volume `Π wid(x_j)` (0 for an empty box).
-pub fn volume<const NX: usize>(x: &[Interval; NX]) -> f64 {
+pub(crate) fn volume<const NX: usize>(x: &[Interval; NX]) -> f64 {
     if x.iter().any(|v| v.is_empty()) {
         return 0.0;
     }
@@ -29,7 +29,7 @@ pub fn volume<const NX: usize>(x: &[Interval; NX]) -> f64 {
 }
 
 /// The hull of a list of boxes (`None` for an empty list).
-pub fn hull_of<const NX: usize>(boxes: &[[Interval; NX]]) -> Option<[Interval; NX]> {
+pub(crate) fn hull_of<const NX: usize>(boxes: &[[Interval; NX]]) -> Option<[Interval; NX]> {
     let (first, rest) = boxes.split_first()?;
     Some(
         rest.iter()

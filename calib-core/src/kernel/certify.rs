@@ -1,13 +1,14 @@
 //! [`certify`]: contraction to a fixed point plus the evidence for the verdict.
 
-use crate::certificate::{find_witness, inner_points, point_hull};
-use crate::certified_set::Cover;
-use crate::contract::{contract, is_fixed, EmptinessProof, Workspace};
-use crate::first_order::wider_inner_points;
-use crate::outliers::{
+use crate::kernel::contract::{contract, is_fixed, EmptinessProof, Workspace};
+use crate::kernel::cover::Cover;
+use crate::kernel::inner_targets::wider_inner_points;
+use crate::kernel::outliers::{
     certified_outliers, conflict_set, conflict_subset, drop_sets, is_spread, keep_all_but,
 };
-use crate::second_order::second_order_emptiness;
+use crate::proof::consistency::{inner_points, point_hull};
+use crate::proof::second_order::second_order_emptiness;
+use crate::proof::witness::find_witness;
 use crate::{Interval, Settings, VectorModel};
 
 /// The verdict on a box of parameters.
@@ -46,7 +47,7 @@ pub struct Certification<const NX: usize> {
     pub lp_failures: usize,
     /// For `Empty` (with no outliers tolerated): a minimal set of measurements (0-based, sorted)
     /// that no parameter vector of `x0` fits together — removing any one of them, the rest is not
-    /// proved empty (see [`crate::outliers`]). Not searched when the misfit is
+    /// proved empty (a conflict set, [`Settings::conflict_sets`]). Not searched when the misfit is
     /// [`spread`](Certification::spread).
     pub conflict: Option<Vec<usize>>,
     /// For `Empty` (with no outliers tolerated): the measurements (0-based, sorted) the final
@@ -58,8 +59,8 @@ pub struct Certification<const NX: usize> {
     /// measurements it weighs tells a misfit spread over the data from a few bad measurements.
     pub support: Option<Vec<usize>>,
     /// For `Empty`: the [`support`](Certification::support) weighs more than half of the
-    /// measurements a certificate can weigh ([`crate::outliers::is_spread`]) — a misfit spread
-    /// over the data (the error bounds too tight for the model) rather than a few bad
+    /// measurements a certificate can weigh ([`crate::kernel::outliers::is_spread`]) — a misfit
+    /// spread over the data (the error bounds too tight for the model) rather than a few bad
     /// measurements; the conflict set is then not searched.
     pub spread: bool,
     /// With [`Settings::max_outliers`] `= q > 0`: the measurements (0-based, sorted) that every
@@ -158,8 +159,8 @@ pub fn certify_with<
         out.spread = !(1..=MAX_EXPLAINING_READINGS).contains(&explaining);
     }
     if out.spread || !settings.conflict_sets {
-        // Spread: a minimal conflict set would name many measurements (22 of 60 on the real UR10
-        // at 0.98 s*, in 60 times the verdict's time) where the support already tells.
+        // Spread: a minimal conflict set would name many measurements, at many times the
+        // verdict's cost, where the support already tells (`benches/README.md`).
         return out;
     }
     if out.emptiness == Some(EmptinessProof::SecondOrder) {
@@ -191,10 +192,9 @@ pub fn certify_with<
     };
     // The prover of the verdict, the contraction, alone: the witness and inner-bound
     // searches `certify_plain` runs on the subsets that are not proved empty (most of the
-    // tests once the set is near minimal) decide nothing here. On the real UR10 (60
-    // configurations, encoders ±0.01°) the gain is within the machine's variance (137 s,
-    // against 137–151 s before; the same set): the time is ~120 contractions of ~59
-    // configurations.
+    // tests once the set is near minimal) decide nothing here. On the real UR10 the gain is
+    // within the machine's variance: the time is the contractions themselves, one per tested
+    // subset (`benches/README.md`).
     out.conflict = Some(conflict_set(measurements.len(), &used, |kept| {
         let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
         contract(model, x0, &subset, settings, ws).result.is_err()

@@ -4,7 +4,7 @@
 
 use crate::support;
 
-use calib_gough::certificate::sha256_hex;
+use calib_gough::report_page::sha256_hex;
 use std::path::Path;
 use support::{certify, gough, simulate, tempdir};
 

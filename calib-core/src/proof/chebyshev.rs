@@ -3,7 +3,7 @@
 //! multiplied for the point to fit every measurement.
 //!
 //! At a point `p`, each equation `f` of configuration `k` (each row, and for vector models each
-//! coupling combination, [`crate::coupling`]) fits the measurement box at first order when
+//! coupling combination, [`crate::model::coupling`]) fits the measurement box at first order when
 //! `|f(p, mid M_k)| <= w` with `w = Σ_i |∂f/∂M_i| rad(M_{k,i})` (paper eq. 6). Multiplying the
 //! half-widths of some quantities by `s` makes `w = w_fixed + s w_scaled`. Successive linear
 //! programs in `(δ, t)`, `|f + ∂f/∂x · δ| <= w_fixed + t w_scaled`, minimise `t` over the box.
@@ -12,9 +12,9 @@
 //! [`crate::is_consistent_point`] says so, and a scale is proved too small only by an emptiness
 //! proof of the kernel.
 
-use crate::certificate::{is_consistent_point, least_squares_point};
-use crate::coupling::for_each_split_row;
 use crate::lp::{ClarabelLp, DenseSimplex, LpBackend, LpStatus, Polyhedron};
+use crate::model::coupling::for_each_split_row;
+use crate::proof::consistency::{is_consistent_point, least_squares_point};
 use crate::{Interval, VectorModel};
 
 /// A first-order estimate of the smallest consistent error scale ([`smallest_scale`]).
@@ -55,9 +55,9 @@ where
 
 /// The largest normalised residual at `p`: `max_k |f_k(p, mid M_k)| / w_k`, where `w_k` is the
 /// first-order half-range of `f(p, ·)` over `M_k` (and, for vector models, of every coupling
-/// combination, [`crate::coupling`]): to first order, the factor by which every error bound must
-/// be multiplied for `p` to fit all measurements (`+∞` where a half-range is 0 and the residual
-/// is not).
+/// combination, [`crate::model::coupling`]): to first order, the factor by which every error bound
+/// must be multiplied for `p` to fit all measurements (`+∞` where a half-range is 0 and the
+/// residual is not).
 pub(crate) fn normalised_misfit<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     p: &[f64; NX],
@@ -187,8 +187,8 @@ struct RowOrigin<const NR: usize> {
 /// and their sides). At a Chebyshev point the combination `φ(x, M) = Σ_k Σ_r c_{k,r} f_r(x, M_k)`
 /// is stationary in `x` (its gradient is what keeps `x` in the box) and its measurement
 /// half-ranges add up to 1 per unit of scale: the Farkas certificate of the linearised problem at
-/// any scale below the fit's. [`crate::second_order`] turns it into a proof. `None` if the LP
-/// fails or `point` is not in the box.
+/// any scale below the fit's. [`crate::combination_lower_bound`] turns it into a proof. `None` if
+/// the LP fails or `point` is not in the box.
 pub fn chebyshev_weights<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x: &[Interval; NX],

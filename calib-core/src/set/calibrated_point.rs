@@ -6,15 +6,15 @@
 //! misfit the measurements many times over. The point chosen here is built in three steps:
 //!
 //! 1. **The deepest point** `c`: the minimax fit `argmin_x max_k |f_k(x, mid M_k)| / w_k`
-//!    ([`crate::certificate`]'s normalised misfit: `w_k` is the first-order half-range of the
-//!    residual over the measurement box), by successive linear programs. It is the point that
+//!    ([`crate::proof::consistency`]'s normalised misfit: `w_k` is the first-order half-range of
+//!    the residual over the measurement box), by successive linear programs. It is the point that
 //!    fits the data with the most room to spare.
 //! 2. **A target** `t`, by the [`PointRule`]: the Chebyshev centre of the predictions (the point
 //!    that minimises, to first order, the largest distance from its predictions to the extreme
 //!    predictions of the set: `min_x max_s max(hi_s - g_s·x, g_s·x - lo_s)`, `[lo_s, hi_s]` the
 //!    set's range of the prediction `g_s·x`, one linear program per piece), or the regularised
 //!    least-squares fit of the residuals within the linearised set
-//!    ([`crate::set_least_squares`]).
+//!    ([`crate::least_squares_in_set`]).
 //! 3. **The point itself**: the last point of the segment from `c` to `t` proved consistent with
 //!    every measurement box *narrowed by a margin* (bisection; 5% of every error bound, or 2%, 1%,
 //!    0 when the data leave less room): a vector that fits every measurement with part of each
@@ -23,10 +23,10 @@
 //! Every point returned is proved consistent ([`crate::is_consistent_point`]) with the narrowed
 //! boxes, hence with the measurement boxes themselves.
 
-use crate::certificate::least_squares_point;
-use crate::chebyshev::{minimax_point, normalised_misfit};
 use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
-use crate::set_least_squares::least_squares_in_set;
+use crate::proof::chebyshev::{minimax_point, normalised_misfit};
+use crate::proof::consistency::least_squares_point;
+use crate::set::least_squares::least_squares_in_set;
 use crate::{is_consistent_point, CertifiedSet, Interval, VectorModel};
 
 /// How the calibrated point is chosen (see the module documentation).
@@ -39,21 +39,21 @@ pub enum PointRule<'a, const NX: usize> {
     PredictionCentre(&'a [[f64; NX]]),
     /// Towards the regularised least-squares fit of the residuals at the measurements' midpoints
     /// within the set, linearised: residuals in units of their error bounds, the prior box
-    /// weighted by cross-validation over the configurations ([`crate::set_least_squares`]). On
+    /// weighted by cross-validation over the configurations ([`crate::least_squares_in_set`]). On
     /// data with errors the model does not hold (gravity, gears), the best predictor of unseen
     /// configurations among the points the set allows.
     LeastSquares,
 }
 
 /// The margins tried, as fractions of every error bound, widest first.
-pub const MARGINS: [f64; 4] = [0.05, 0.02, 0.01, 0.0];
+pub const POINT_MARGINS: [f64; 4] = [0.05, 0.02, 0.01, 0.0];
 
 /// The calibrated point and how it was found.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CalibratedPoint<const NX: usize> {
     /// The parameter vector: proved consistent with every measurement box narrowed by `margin`.
     pub x: [f64; NX],
-    /// The fraction of every error bound left to spare (one of [`MARGINS`]).
+    /// The fraction of every error bound left to spare (one of [`POINT_MARGINS`]).
     pub margin: f64,
     /// The deepest point `c` (step 1).
     pub deepest: [f64; NX],
@@ -65,7 +65,7 @@ pub struct CalibratedPoint<const NX: usize> {
     /// How far along the segment from `c` to `t` the point lies (1: the target itself).
     pub reached: f64,
     /// With [`PointRule::LeastSquares`]: the weight `λ` of the prior box in the target's
-    /// regularised fit, chosen by cross-validation ([`crate::set_least_squares`]).
+    /// regularised fit, chosen by cross-validation ([`crate::least_squares_in_set`]).
     pub prior_weight: Option<f64>,
     /// The measurement subset the point fits (see [`crate::Cover`]).
     pub subset: usize,
@@ -127,7 +127,7 @@ where
     let kept = set.subset_measurements(subset);
     // The deepest point with the widest margin it is proved to keep; else a held point.
     let mut start = None;
-    for margin in MARGINS {
+    for margin in POINT_MARGINS {
         let boxes = narrowed(&kept, margin);
         if is_consistent_point(model, &deepest, &boxes) {
             start = Some((deepest, margin, boxes));

@@ -13,13 +13,13 @@
 //! that provide second-order certificates ([`crate::VectorModel::curvature`]) the box is split
 //! across the face's own parameter instead, halfway between the inner bound and the box's face, and
 //! a half the contraction keeps but where no point is certified is tried with the certificate
-//! ([`crate::second_order`]): where the relaxation is too loose near the threshold, the outer half
-//! is often provably empty. Halves proved empty are discarded — every discarded piece carries a
-//! proof; the survivors replace the box. This is a best-first branch and bound on `min x_j` and
-//! `max x_j` over the solution set, shared by the `2n` faces, so that a box proved empty for one
-//! face is gone for all. Boxes that lie within the satisfied zone of every face are retired into
-//! one box `D` that stays in the hull. The same loop handles large prior boxes: while the Newton
-//! step does not bite, the face boxes are simply split until it does.
+//! ([`crate::proof::second_order`]): where the relaxation is too loose near the threshold, the
+//! outer half is often provably empty. Halves proved empty are discarded — every discarded piece
+//! carries a proof; the survivors replace the box. This is a best-first branch and bound on `min
+//! x_j` and `max x_j` over the solution set, shared by the `2n` faces, so that a box proved empty
+//! for one face is gone for all. Boxes that lie within the satisfied zone of every face are retired
+//! into one box `D` that stays in the hull. The same loop handles large prior boxes: while the
+//! Newton step does not bite, the face boxes are simply split until it does.
 //!
 //! **Inner bound.** Certified consistent points ([`crate::is_consistent_point`]) are pushed towards
 //! each face by successive linear programs: at a point `p`, with `f_k = f(p, mid M_k)`,
@@ -41,16 +41,17 @@
 //! merged in a fixed order, so the result does not depend on the number of threads (it does depend
 //! on the time budget, when one is set and reached).
 
-use crate::bisection::split_widest;
-use crate::certificate::{find_witness, inner_points};
-use crate::certified_set::Cover;
-use crate::certify::{certify, hull_box, MAX_SUBSETS};
-use crate::contract::{contract, contract_from, is_fixed, EmptinessProof, Workspace};
-use crate::first_order::wider_inner_points;
+use crate::kernel::bisection::split_widest;
+use crate::kernel::certify::{certify, hull_box, MAX_SUBSETS};
+use crate::kernel::contract::{contract, contract_from, is_fixed, EmptinessProof, Workspace};
+use crate::kernel::cover::Cover;
+use crate::kernel::farthest_point::{push_towards, PushEngines};
+use crate::kernel::inner_targets::wider_inner_points;
+use crate::kernel::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
 use crate::lp::{LpBackend, LpMemory};
-use crate::outliers::{certified_outliers, conflict_set, drop_sets, keep_all_but};
-use crate::push::{push_towards, PushEngines};
-use crate::second_order::second_order_emptiness;
+use crate::proof::consistency::inner_points;
+use crate::proof::second_order::second_order_emptiness;
+use crate::proof::witness::find_witness;
 use crate::{Interval, Settings, Status, VectorModel};
 use rayon::prelude::*;
 use std::marker::PhantomData;
@@ -92,8 +93,8 @@ pub struct Hull<const NX: usize> {
     /// Wall-clock seconds.
     pub seconds: f64,
     /// For `Empty` (with no outliers tolerated): a minimal set of measurements (0-based, sorted)
-    /// that no parameter vector of `x0` fits together (see [`crate::outliers`]); not searched
-    /// when the misfit is [`spread`](Hull::spread).
+    /// that no parameter vector of `x0` fits together (a conflict set,
+    /// [`Settings::conflict_sets`]); not searched when the misfit is [`spread`](Hull::spread).
     pub conflict: Option<Vec<usize>>,
     /// For `Empty` (with no outliers tolerated, and the conflict search on), when
     /// [`crate::certify`] proves it too: the measurements its certificate weighs
@@ -103,7 +104,7 @@ pub struct Hull<const NX: usize> {
     /// ([`crate::Certification::spread`]); the conflict set is then not searched.
     pub spread: bool,
     /// With [`Settings::max_outliers`] `= q > 0`: the measurements that every parameter vector
-    /// fitting at least `p - q` of them misfits (certified outliers; see [`crate::outliers`]).
+    /// fitting at least `p - q` of them misfits (certified outliers).
     pub outliers: Vec<usize>,
     /// The boxes whose union contains every solution (empty when the status is `Empty`): what
     /// [`crate::CertifiedSet::new`] turns into the certified set.
@@ -220,7 +221,7 @@ where
         // The conflict set, with the prover that gave the verdict: the contraction alone when it
         // proved x0 empty at once, else the hull (with a bounded budget per subset). `certify`
         // first, for the support of its certificate: when it shows a misfit spread over the data
-        // there is no search (on the real UR10 at 0.98 s* it proves x0 empty in about a second).
+        // there is no search (and `certify` alone is quick to prove x0 empty; `benches/README.md`).
         let x1_empty = out.x1.is_none();
         let plain = settings.clone().with_conflict_sets(x1_empty);
         let first = certify(model, x0, measurements, &plain);
@@ -390,9 +391,8 @@ where
             // Vector models: the segment search of `certify` (witness to each LP extreme point,
             // then to first-order extremes) seeds the inner box too. Their pushes below solve LPs
             // over every coupling direction of every configuration (thousands of nearly parallel
-            // rows) and alone leave the inner bound of angles far inside (measured on the
-            // built-in arm: ratios 2.5-4.8 after 90 s, against 1.2-1.3 from the segments in
-            // seconds).
+            // rows) and alone leave the inner bound of angles far inside, where the segments
+            // reach much tighter ratios in a fraction of the time (`benches/README.md`).
             if let Some(w) = witness.or(refiner.witness) {
                 let mut points = inner_points(
                     model,
@@ -690,8 +690,9 @@ where
         let mut jobs: Vec<Job<'_, NX>> = Vec::with_capacity(2 * picked.len());
         let mut atomic = Vec::new();
         // Across a picked face where the second-order certificate can prove the outer half
-        // empty; across the widest parameter otherwise (measured on the Gough leg, a scalar model
-        // without it: face splits took `gough certify` on sample21 from 0.4 s to 155 s).
+        // empty; across the widest parameter otherwise (on the Gough leg, a scalar model without
+        // it, face splits made `gough certify` on sample21 hundreds of times slower;
+        // `benches/README.md`).
         let face_splits = self.model.curvature().is_some();
         for (i, faces) in picked {
             let Piece { b, set, bases, .. } = &self.cover[*i];

@@ -2,12 +2,12 @@
 //! certified point.
 //!
 //! The inner bound of parameter `j` is the farthest certified point found on a segment from the
-//! witness `w` towards a target ([`crate::certificate`]). The contraction's LP extreme points are
-//! natural targets when its relaxation is tight; where it carries slack (a wide prior: the affine
-//! remainders of a 27-parameter arm over its prior are a third to a half of the error bound, see
-//! `benches/README.md`) they lie on the prior's faces in directions the data exclude, and the
-//! segment leaves the set after a few per cent of the way: measured on a real UR10, inner bounds
-//! of 5-12% of the prior where the consistent set spans 31-100% of it.
+//! witness `w` towards a target ([`crate::proof::consistency`]). The contraction's LP extreme
+//! points are natural targets when its relaxation is tight; where it carries slack (a wide prior:
+//! the affine remainders of a 27-parameter arm over its prior are a third to a half of the error
+//! bound, see `benches/README.md`) they lie on the prior's faces in directions the data exclude,
+//! and the segment leaves the set after a few per cent of the way: measured on a real UR10, inner
+//! bounds of 5-12% of the prior where the consistent set spans 31-100% of it.
 //!
 //! This module computes the extremes of the *linearised* set at `w` instead:
 //!
@@ -21,14 +21,14 @@
 //! the contraction's extremes). Nothing here is a proof: the points are only targets, and every
 //! inner point is certified on its own by the existence tests.
 
-use crate::certificate::{inner_points, point_hull};
 use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
+use crate::proof::consistency::{inner_points, point_hull};
 use crate::{Interval, VectorModel};
 
 /// A side of the inner box is searched again when more than this share of the outer width lies
 /// between it and the outer face: where the contraction's extremes already took the inner box
-/// near the outer one (a tight relaxation), the extra searches would cost time for nothing
-/// (measured: the built-in arm's `arm demo` 3.8 s → 5.1 s with every side searched, same bounds).
+/// near the outer one (a tight relaxation), the extra searches would cost time for nothing (the
+/// same bounds, a slower `arm demo`; `benches/README.md`).
 pub(crate) const SHORT_SIDE: f64 = 0.2;
 
 /// Rounds of [`wider_inner_points`] after the first: each starts from the farthest certified

@@ -29,10 +29,10 @@
 //! The step is repeated until `‖rad(x_j)‖₁ - ‖rad(x_{j+1})‖₁ < Δ` or the iteration cap. Nothing is
 //! lost: every step keeps all solutions of the box it started from (paper Section IV-A).
 
-use crate::affine::rounding;
-use crate::coupling::{coupling_directions, Directions};
-use crate::interval::round::{add_up, mul_up};
 use crate::lp::{proves_infeasible, safe_lower_bound, LpBackend, LpMemory, LpStatus, Polyhedron};
+use crate::model::coupling::{coupling_directions, Directions};
+use crate::num::affine::rounding;
+use crate::num::interval::round::{add_up, mul_up};
 use crate::{Interval, LinearEnclosure, Relaxation, Settings, VectorModel};
 
 /// Which test proved a box empty.
@@ -51,8 +51,8 @@ pub enum EmptinessProof {
         parameter: usize,
     },
     /// A weighted sum of the residuals (the Chebyshev fit's LP multipliers) proved positive over
-    /// the contracted box by a second-order Taylor bound ([`crate::second_order`]), where the
-    /// linear relaxation was too loose to decide.
+    /// the contracted box by a second-order Taylor bound ([`crate::second_order_emptiness`]), where
+    /// the linear relaxation was too loose to decide.
     SecondOrder,
     /// Every piece of a subdivision of the box was proved empty by one of the tests above
     /// ([`crate::hull`]).

@@ -1,8 +1,8 @@
 //! Proving that one configuration of a vector model is fitted: for every `x` in a box (a point when
 //! the box is degenerate) there is **one** reading `M ∈ M_k` with `f(x, M) = 0` in all `NR` rows.
 //!
-//! For `NR = 1` the sign test of [`crate::certificate`] suffices. For `NR >= 2` the proof is a
-//! parametric Krawczyk test on a square sub-system in the measurement variables:
+//! For `NR = 1` the sign test of [`crate::proof::consistency`] suffices. For `NR >= 2` the proof is
+//! a parametric Krawczyk test on a square sub-system in the measurement variables:
 //!
 //! 1. A *hint*: the reading `M̂` of `M_k` closest to the centre of `M_k` (in the norm scaled by the
 //!    half-widths) that fits the rows at `x̂ = mid(x)`, by successive linear programs
@@ -24,8 +24,8 @@
 //! A failed test proves nothing and certifies nothing: the point is simply not used as a witness
 //! or an inner point.
 
-use crate::linalg::gauss_jordan_inverse;
 use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
+use crate::num::linalg::gauss_jordan_inverse;
 use crate::{Interval, VectorModel};
 
 /// Whether every `x` in the bounded box `x` fits the bounded measurement box `m` with one reading
