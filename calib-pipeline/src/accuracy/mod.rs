@@ -137,7 +137,7 @@ pub struct Bracket<const NX: usize, const NU: usize, const R: usize> {
 impl<const NX: usize, const NU: usize, const R: usize> Bracket<NX, NU, R> {
     /// `upper / lower` (`+∞` without a positive lower bound).
     pub fn ratio(&self) -> f64 {
-        calib_core::maximum::bracket_ratio(self.upper, self.lower)
+        calib_core::bracket_ratio(self.upper, self.lower)
     }
 }
 
