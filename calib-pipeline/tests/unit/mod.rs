@@ -1,5 +1,6 @@
 //! The library's own unit tests, kept out of the library so that `cargo test` compiles it once.
 
+mod accuracy;
 mod calibrated;
 mod design;
 mod error;
