@@ -42,10 +42,12 @@ impl Prediction<7, 7, 6, 6, 1> for LegLength<'_> {
 
     /// `0 <= L(X; θ) - L(X; θ̂) - ∇_θ L(X; θ̂)·δ <=` [`super::model::leg_curvature`].
     fn curvature(&self, spread: &[Interval; 7], x: &PoseBox) -> Option<[Interval; 1]> {
-        let c = LegCurvature
-            .residual_interval(spread, &self.problem.inputs(self.leg, x))
-            .sup();
-        (c.is_finite() && c >= 0.0).then(|| [Interval::new(0.0, c)])
+        // The bound's premise (`|d| < |v|`, a positive denominator) holds where its enclosure
+        // is bounded and non-negative with a positive upper end (a negative denominator over a
+        // zero numerator would give `[-0, -0]`).
+        let c = LegCurvature.residual_interval(spread, &self.problem.inputs(self.leg, x));
+        let premise = c.is_bounded() && !c.is_empty() && c.inf() >= 0.0 && c.sup() > 0.0;
+        premise.then(|| [Interval::new(0.0, c.sup())])
     }
 
     fn narrow(&self, x: &PoseBox) -> Option<PoseBox> {

@@ -107,7 +107,8 @@ pub(crate) fn slot<T: Copy, const NU: usize, const NP: usize>(u: &[T; NU], zero:
 pub struct Instance<const NX: usize, const NU: usize, const R: usize> {
     /// The commanded inputs (inside the box).
     pub inputs: [f64; NU],
-    /// The true geometry `θ*`: a certified point of the set.
+    /// The true geometry `θ*`: a certified point of the set (consistent with every measurement
+    /// the set keeps: all of them, or all but the outliers its cover drops).
     pub theta: [f64; NX],
     /// `g(u; θ*) - g(u; θ̂)` in floating point.
     pub error: [f64; R],

@@ -107,7 +107,7 @@ where
 {
     /// The problem of `prediction` computed with `nominal` over the certified `set`, on the
     /// input box `domain`, each input within `input_error` of its command. `None` if the set
-    /// is empty.
+    /// is empty or an input error is not a finite value `>= 0`.
     pub fn new(
         prediction: &'p P,
         set: CertifiedSet<NX, NMS>,
@@ -115,6 +115,9 @@ where
         domain: [Interval; NU],
         input_error: [f64; NU],
     ) -> Option<Self> {
+        if !input_error.iter().all(|e| e.is_finite() && *e >= 0.0) {
+            return None;
+        }
         let outer = set.outer()?;
         let hull: [Interval; NX] =
             core::array::from_fn(|j| outer[j].hull(Interval::point(nominal[j])));
@@ -251,12 +254,21 @@ where
             .prediction
             .model()
             .evaluate_rows_interval(&self.hull, &slot(&widened, Interval::ZERO));
+        // Σ_i |H_ri| ε_i: each input's error takes its own worst sign (they do not cancel).
+        let bounded = |v: &Interval| v.is_bounded() && !v.is_empty();
+        if !rows
+            .iter()
+            .all(|e| e.dx.iter().all(bounded) && e.dm[..NU].iter().all(bounded))
+        {
+            // No enclosure of the derivatives here: no bound (the branch and bound splits).
+            return f64::INFINITY;
+        }
         let input_term: [f64; R] = core::array::from_fn(|r| {
             (0..NU)
                 .fold(Interval::ZERO, |s, i| {
-                    s + rows[r].dm[i] * self.input_error[i]
+                    s + Interval::point(rows[r].dm[i].mag()) * self.input_error[i]
                 })
-                .mag()
+                .sup()
         });
         let centre = u.map(|v| v.mid());
         let mut first = [0.0; R];
@@ -592,7 +604,13 @@ impl<const NX: usize> Slopes<NX> {
                 continue;
             }
             let c = &columns[j];
-            if (0..R).any(|r| !(c[r].error().is_finite() && c[r].centre().is_finite())) {
+            let usable = |m: &Quadratic<NU>| {
+                m.error().is_finite()
+                    && m.centre().is_finite()
+                    && m.linear().iter().all(|v| v.is_finite())
+                    && (0..NU).all(|i| (i..NU).all(|k| m.quadratic(i, k).is_finite()))
+            };
+            if !(0..R).all(|r| usable(&c[r])) {
                 // A failed model: the interval slope, all in the main term.
                 main[j] = (0..R).fold(Interval::ZERO, |s, r| s + wi[r] * rows[r].dx[j]);
                 continue;
@@ -675,10 +693,11 @@ impl<const NX: usize> Component<NX> {
                     });
                 s * sum
             });
-            best = best.max(main((slot << VERTEX_INPUTS) + pattern, &w));
-            if best.is_nan() {
+            let v = main((slot << VERTEX_INPUTS) + pattern, &w);
+            if v.is_nan() {
                 return f64::INFINITY;
             }
+            best = best.max(v);
         }
         let shift = if sign > 0.0 {
             self.shift.sup()
@@ -811,8 +830,9 @@ where
             max_boxes: settings.max_boxes,
         },
     );
+    // The lower bound is what the reported instance attains (its enclosure, rounded down).
     let worst = problem.instance(&m.argmax);
-    let lower = worst.value.max(m.lower);
+    let lower = worst.value;
     Bracket {
         upper: m.upper.max(lower),
         lower,

@@ -8,9 +8,16 @@ pub(crate) fn norm<const R: usize>(v: &[f64; R]) -> f64 {
     v.iter().map(|c| c * c).sum::<f64>().sqrt()
 }
 
-/// `a + b` rounded up.
+/// `a + b` rounded up; `+∞` when either is `+∞` or not a number (a bound that failed), `-∞`
+/// when either is `-∞` and neither is `+∞`.
 pub(crate) fn add_up(a: f64, b: f64) -> f64 {
-    (Interval::point(a) + Interval::point(b)).sup()
+    if a.is_nan() || b.is_nan() || a == f64::INFINITY || b == f64::INFINITY {
+        f64::INFINITY
+    } else if a == f64::NEG_INFINITY || b == f64::NEG_INFINITY {
+        f64::NEG_INFINITY
+    } else {
+        (Interval::point(a) + Interval::point(b)).sup()
+    }
 }
 
 /// An orthonormal frame whose first axis is the unit `u` (Gram–Schmidt on the coordinate axes,
