@@ -135,3 +135,55 @@ fn the_bracket_holds_for_every_consistent_geometry_sampled_and_its_worst_case_is
         b.lower
     );
 }
+
+#[test]
+fn the_inputs_own_errors_never_cancel_in_the_bound() {
+    // Large joint errors, the controller's geometry the truth itself: the whole error is the
+    // joints', largest at the vertices of their error box (where the partials' signs differ,
+    // a bound that let them cancel falls below it).
+    let truth = [1.0, 0.8, 0.01, -0.02];
+    let boxes: Vec<[Interval; 4]> = [[0.3, 0.9], [-0.4, 1.6], [1.1, -0.7], [-1.2, 0.2]]
+        .iter()
+        .map(|q| {
+            let p = tip(&truth, q);
+            [
+                Interval::mid_rad(q[0], 1e-4),
+                Interval::mid_rad(q[1], 1e-4),
+                Interval::mid_rad(p[0], 1e-3),
+                Interval::mid_rad(p[1], 1e-3),
+            ]
+        })
+        .collect();
+    let prior = truth.map(|v| Interval::mid_rad(v, 0.05));
+    let r = certify(&PlanarTip, &prior, &boxes, &Settings::default());
+    assert_eq!(r.status, Status::Consistent);
+    let set = CertifiedSet::new(
+        &PlanarTip,
+        &Cover::single(r.outer),
+        &boxes,
+        &[r.witness.expect("a point")],
+        2,
+    );
+    let eps = 0.05;
+    let domain = [Interval::new(0.2, 0.3), Interval::new(0.5, 0.6)];
+    let engine = SetAccuracy::new(&Tip, set, truth, domain, [eps; 2]).expect("a set");
+    let b = bracket_over_set(
+        &engine,
+        &BracketSettings {
+            rel_tol: 0.02,
+            max_boxes: 100,
+        },
+    );
+    let mut largest: f64 = 0.0;
+    for i in 0..=10 {
+        for k in 0..=10 {
+            let q = [0.2 + 0.01 * i as f64, 0.5 + 0.01 * k as f64];
+            for s in [[1.0, 1.0], [1.0, -1.0], [-1.0, 1.0], [-1.0, -1.0]] {
+                let p = tip(&truth, &[q[0] + s[0] * eps, q[1] + s[1] * eps]);
+                let p0 = tip(&truth, &q);
+                largest = largest.max(((p[0] - p0[0]).powi(2) + (p[1] - p0[1]).powi(2)).sqrt());
+            }
+        }
+    }
+    assert!(largest <= b.upper, "{largest} above the proved {}", b.upper);
+}
