@@ -19,7 +19,7 @@ fn with_outliers(seed: u64, moved: &[(usize, usize, f64)]) -> Simulation {
     sim
 }
 
-fn leg_problem(sim: &Simulation, leg: usize) -> ([Interval; 7], Vec<[Interval; 7]>) {
+fn leg_problem(sim: &Simulation, leg: usize) -> ([Interval; 7], Vec<[Interval; 8]>) {
     (
         x0_of(sim, leg, 0.1),
         leg_boxes(&sim.measured, &sim.uncertainty, leg),
@@ -27,8 +27,8 @@ fn leg_problem(sim: &Simulation, leg: usize) -> ([Interval; 7], Vec<[Interval; 7
 }
 
 /// The conflict set is proved empty, and removing any one member leaves a set not proved empty.
-fn assert_minimal(x0: &[Interval; 7], boxes: &[[Interval; 7]], conflict: &[usize]) {
-    let pick = |ks: &[usize]| -> Vec<[Interval; 7]> { ks.iter().map(|&k| boxes[k]).collect() };
+fn assert_minimal(x0: &[Interval; 7], boxes: &[[Interval; 8]], conflict: &[usize]) {
+    let pick = |ks: &[usize]| -> Vec<[Interval; 8]> { ks.iter().map(|&k| boxes[k]).collect() };
     let s = Settings::default();
     assert_eq!(
         certify(&GoughLeg, x0, &pick(conflict), &s).status,

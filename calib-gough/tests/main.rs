@@ -13,4 +13,5 @@ mod cli;
 mod design;
 mod pose_error;
 mod predict;
+mod stated_bounds;
 mod unit;
