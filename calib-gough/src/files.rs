@@ -113,6 +113,18 @@ pub fn leg_sets(
                     &[Interval::ZERO; 8],
                 )
                 .map_err(|(f, m)| error(file, None, Some(&field(&f)), m))?;
+            // A measured angle's box is never the point 0 (that marks Rodrigues data, whose
+            // angle is not read; `LegModel::of_measurements`).
+            if LegModel::of_measurements(&restored.measurements) != model {
+                return Err(error(
+                    file,
+                    None,
+                    Some(&field("measurements")),
+                    "every angle is the point [0.0, 0.0]: a measured angle has a box of positive \
+                     width (was the file edited?): recalibrate with `gough certify \
+                     --write-calibrated`",
+                ));
+            }
             let set = CertifiedSet::new(
                 &model,
                 &restored.cover,
