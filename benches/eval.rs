@@ -7,10 +7,11 @@ use calib_gough::GoughLeg;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::hint::black_box;
 
-fn boxes() -> ([Interval; 7], [Interval; 7]) {
+fn boxes() -> ([Interval; 7], [Interval; 8]) {
     let x = [-9.7, 9.1, 0.0, -3.0, 7.3, 0.0, 52.2496].map(|v| Interval::mid_rad(v, 0.1));
-    let m = [4.69, 3.94, 62.55, 0.005, -0.062, -0.003, 11.08];
-    let r = [5e-4, 5e-4, 5e-4, 1e-5, 1e-5, 1e-5, 5e-4];
+    // Position, axis, angle (degrees), reading (`docs/data/sample21`'s first configuration).
+    let m = [4.69, 3.94, 62.55, 0.0802, -0.9956, -0.0491, 7.1448, 11.08];
+    let r = [5e-4, 5e-4, 5e-4, 5e-6, 5e-6, 5e-6, 1e-3, 5e-4];
     let m = core::array::from_fn(|i| Interval::mid_rad(m[i], r[i]));
     (x, m)
 }

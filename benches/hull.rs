@@ -19,7 +19,7 @@ fn bench(c: &mut Criterion) {
     g.throughput(Throughput::Elements(6));
     for radius in [0.1, 1.0] {
         let sim = simulate(&builtin_hexapod(), 21, 7, Uncertainty::PAPER, 1.0, radius);
-        let legs: Vec<([Interval; 7], Vec<[Interval; 7]>)> = (0..6)
+        let legs: Vec<([Interval; 7], Vec<[Interval; 8]>)> = (0..6)
             .map(|leg| {
                 let x0 = sim.nominal[leg]
                     .params()

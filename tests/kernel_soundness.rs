@@ -8,7 +8,7 @@ use calib_core::{
     certify, is_consistent_by_corners, pave, sweep, Interval, Model, Relaxation, Settings, Status,
 };
 use calib_gough::geometry::Pose;
-use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Uncertainty};
+use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, GoughLegRodrigues, Uncertainty};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -87,23 +87,23 @@ fn zero_width_and_ill_conditioned_measurements_stay_sound() {
     // of the simulated readings).
     let sim = simulate(&truth, 12, 7, Uncertainty::PAPER, 0.0, 0.1);
     for leg in 0..6 {
-        let boxes: Vec<[Interval; 7]> = sim
+        let boxes: Vec<[Interval; 8]> = sim
             .poses
             .iter()
             .zip(&sim.exact_lengths)
             .map(|(pose, lengths)| {
-                let q = pose.rodrigues();
                 let mut m = [
                     pose.p[0],
                     pose.p[1],
                     pose.p[2],
-                    q[0],
-                    q[1],
-                    q[2],
+                    pose.axis[0],
+                    pose.axis[1],
+                    pose.axis[2],
+                    pose.angle_deg,
                     lengths[leg],
                 ]
                 .map(Interval::point);
-                m[6] = Interval::mid_rad(lengths[leg], 1e-9);
+                m[7] = Interval::mid_rad(lengths[leg], 1e-9);
                 m
             })
             .collect();
@@ -132,7 +132,8 @@ fn zero_width_and_ill_conditioned_measurements_stay_sound() {
         .collect();
     let u = Uncertainty::PAPER;
     for leg in 0..6 {
-        let boxes: Vec<[Interval; 7]> = poses
+        // Rodrigues data (the Rodrigues residual, its unread angle slot the point 0).
+        let boxes: Vec<[Interval; 8]> = poses
             .iter()
             .map(|p| {
                 let q = p.rodrigues();
@@ -144,6 +145,7 @@ fn zero_width_and_ill_conditioned_measurements_stay_sound() {
                     Interval::mid_rad(q[0], 1e-6),
                     Interval::mid_rad(q[1], 1e-6),
                     Interval::mid_rad(q[2], 1e-6),
+                    Interval::ZERO,
                     Interval::mid_rad(len, u.len),
                 ]
             })
@@ -151,7 +153,7 @@ fn zero_width_and_ill_conditioned_measurements_stay_sound() {
         let x0 = truth[leg]
             .params()
             .map(|v| Interval::new(v - 0.07, v + 0.13));
-        let r = certify(&GoughLeg, &x0, &boxes, &Settings::default());
+        let r = certify(&GoughLegRodrigues, &x0, &boxes, &Settings::default());
         assert_ne!(r.status, Status::Empty);
         assert!(contains(&r.outer, &truth[leg].params()));
     }

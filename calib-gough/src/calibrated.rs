@@ -22,7 +22,7 @@ use crate::files::LegSpec;
 use crate::geometry::Leg;
 use crate::measurement::{leg_boxes, Configuration, Orientation, Uncertainty};
 use crate::workspace::Workspace;
-use crate::GoughLeg;
+use crate::LegModel;
 use calib_core::{calibrated_point, CalibratedPoint, CertifiedSet, Model, PointRule};
 use calib_pipeline::calibrated::radius_about;
 use calib_pipeline::stored_set::StoredSet;
@@ -42,7 +42,7 @@ pub struct CalibratedRobot {
     /// The geometry a controller loads (the legs not certified in this run as they were).
     pub legs: Vec<LegSpec>,
     /// Per leg, its certified set (`None` for a leg not certified in this run).
-    pub sets: Vec<Option<CertifiedSet<7, 7>>>,
+    pub sets: Vec<Option<CertifiedSet<7, 8>>>,
     /// Per leg, how its geometry was chosen (`None` for a leg not certified in this run).
     pub points: Vec<Option<CalibratedPoint<7>>>,
 }
@@ -127,9 +127,10 @@ pub fn calibrated_robot(
         };
         let witness = r.points.first().ok_or_else(undecided)?;
         let boxes = leg_boxes(configs, u, r.leg);
-        let mut set = CertifiedSet::new(&GoughLeg, &r.cover, &boxes, &r.points, MAX_PIECES);
+        let model = LegModel::of(configs);
+        let mut set = CertifiedSet::new(&model, &r.cover, &boxes, &r.points, MAX_PIECES);
         let preds = predictions(robot, workspace, witness);
-        let point = calibrated_point(&GoughLeg, &mut set, PointRule::PredictionCentre(&preds))
+        let point = calibrated_point(&model, &mut set, PointRule::PredictionCentre(&preds))
             .ok_or_else(undecided)?;
         let spec = &robot[r.leg];
         let nominal = spec.nominal.params();
@@ -157,9 +158,10 @@ pub fn calibrated_robot(
 }
 
 /// `robot.toml` text for `legs` (shortest round-trip decimals; read back bit-identical), with
-/// each leg's certified set when given (`[leg.certified_set]`, in cm and the Rodrigues
-/// parameters of the measurements: `px, py, pz, q1, q2, q3, L`).
-pub fn robot_toml(legs: &[LegSpec], sets: &[Option<CertifiedSet<7, 7>>], comment: &str) -> String {
+/// each leg's certified set when given (`[leg.certified_set]`, in cm and degrees, the
+/// measurements as stated: `px, py, pz, ax, ay, az, angle_deg, L` for axis–angle data,
+/// `px, py, pz, q1, q2, q3, L` for Rodrigues data; [`LegModel::stored_quantities`]).
+pub fn robot_toml(legs: &[LegSpec], sets: &[Option<CertifiedSet<7, 8>>], comment: &str) -> String {
     let mut text = String::new();
     for line in comment.lines() {
         let _ = writeln!(text, "# {line}");
@@ -173,7 +175,8 @@ pub fn robot_toml(legs: &[LegSpec], sets: &[Option<CertifiedSet<7, 7>>], comment
             l.a, l.b, l.l, spec.radius
         );
         if let Some(Some(set)) = sets.get(i) {
-            text.push_str(&StoredSet::of(set, &all, &all).to_toml("leg.certified_set"));
+            let quantities = LegModel::of_set(set).stored_quantities();
+            text.push_str(&StoredSet::of(set, &all, quantities).to_toml("leg.certified_set"));
         }
     }
     text

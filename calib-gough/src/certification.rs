@@ -4,7 +4,7 @@
 use crate::files::LegSpec;
 use crate::measurement::{leg_boxes, measured, Configuration, Uncertainty};
 use crate::report::{bounds, LegReport, Report};
-use crate::{GoughLeg, PARAMETER_NAMES};
+use crate::{LegModel, PARAMETER_NAMES};
 use calib_core::{
     certify, hull, pave, sweep, Cover, EmptinessProof, Hull, Interval, Settings, Status,
 };
@@ -237,7 +237,7 @@ pub fn identifiability(
     let nominal = spec.nominal.params();
     let x0 = leg_prior(spec);
     let boxes = leg_boxes(configs, u, leg);
-    let (free, jacobian) = identification_jacobian(&GoughLeg, &nominal, &x0, &boxes);
+    let (free, jacobian) = identification_jacobian(&LegModel::of(configs), &nominal, &x0, &boxes);
     let names: Vec<String> = PARAMETER_NAMES.iter().map(|s| s.to_string()).collect();
     analyse(&free, jacobian).sentences(&names)
 }
@@ -260,8 +260,9 @@ pub fn certify_leg(
     let t = Instant::now();
     let x0 = leg_prior(spec);
     let boxes = leg_boxes(configs, u, leg);
+    let model = LegModel::of(configs);
     let mut r = if options.fast {
-        let c = certify(&GoughLeg, &x0, &boxes, settings);
+        let c = certify(&model, &x0, &boxes, settings);
         let x1 = (c.status != Status::Empty).then_some(c.outer);
         LegResult {
             leg,
@@ -287,15 +288,15 @@ pub fn certify_leg(
             cover: c.cover,
         }
     } else {
-        LegResult::from_hull(leg, x0, hull(&GoughLeg, &x0, &boxes, settings))
+        LegResult::from_hull(leg, x0, hull(&model, &x0, &boxes, settings))
     };
     if options.sweep {
-        let s = sweep(&GoughLeg, &x0, &boxes, settings);
+        let s = sweep(&model, &x0, &boxes, settings);
         r.boxes += s.boxes_contracted;
         r.x2 = Some(s.hull);
     }
     if let Some(tol) = options.pave {
-        let p = pave(&GoughLeg, &x0, &boxes, settings, tol, 20_000);
+        let p = pave(&model, &x0, &boxes, settings, tol, 20_000);
         r.boxes += p.boxes_contracted;
         r.paving = Some((p.boxes.len(), p.inner_volume, p.outer_volume));
     }

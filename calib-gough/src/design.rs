@@ -15,7 +15,7 @@ use crate::geometry::{leg_reading, Leg, Pose};
 use crate::measurement::{leg_boxes, measured, Configuration, Orientation, Uncertainty};
 use crate::simulate::simulate_at;
 use crate::workspace::Workspace;
-use crate::GoughLeg;
+use crate::LegModel;
 use calib_core::Interval;
 use calib_pipeline::design::{
     certified_design, greedy_design, linearized_widths, Criterion, Group,
@@ -132,7 +132,7 @@ pub fn groups(
             let nominal = spec.nominal.params();
             let x0: [Interval; 7] = core::array::from_fn(|j| measured(nominal[j], spec.radius[j]));
             let boxes = leg_boxes(configs, u, leg);
-            let (free, j) = identification_jacobian(&GoughLeg, &nominal, &x0, &boxes);
+            let (free, j) = identification_jacobian(&LegModel::of(configs), &nominal, &x0, &boxes);
             let rows = (0..configs.len())
                 .map(|k| vec![j.row(k).iter().copied().collect()])
                 .collect();

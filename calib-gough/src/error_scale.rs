@@ -7,7 +7,7 @@
 use crate::certification::leg_prior;
 use crate::files::LegSpec;
 use crate::measurement::{leg_boxes, Configuration, Uncertainty};
-use crate::GoughLeg;
+use crate::LegModel;
 use calib_core::{hull, Interval, Settings, Status};
 use calib_pipeline::error_scale::{search_from_estimate, ErrorScale, ScaledProblem};
 
@@ -46,14 +46,14 @@ impl ScaleBounds {
         }
     }
 
-    /// Which measured quantities of a leg (`P`, the Rodrigues vector, the reading;
-    /// [`crate::measurement::leg_boxes`]) the factor widens.
-    pub fn mask(self) -> [bool; 7] {
+    /// Which measured quantities of a leg (`P`, the axis and angle or the Rodrigues vector, the
+    /// reading; [`crate::measurement::leg_boxes`]) the factor widens.
+    pub fn mask(self) -> [bool; 8] {
         core::array::from_fn(|i| match self {
             ScaleBounds::All => true,
             ScaleBounds::Pos => i < 3,
-            ScaleBounds::Orientation => (3..6).contains(&i),
-            ScaleBounds::Len => i == 6,
+            ScaleBounds::Orientation => (3..7).contains(&i),
+            ScaleBounds::Len => i == 7,
         })
     }
 
@@ -101,11 +101,12 @@ pub fn search(
         .iter()
         .map(|&leg| move |s: f64| leg_boxes(configs, &which.scale(u, s), leg))
         .collect();
-    let problems: Vec<ScaledProblem<'_, GoughLeg, 7, 7>> = legs
+    let model = LegModel::of(configs);
+    let problems: Vec<ScaledProblem<'_, LegModel, 7, 8>> = legs
         .iter()
         .zip(&boxes)
         .map(|(&leg, b)| ScaledProblem {
-            model: &GoughLeg,
+            model: &model,
             x0: leg_prior(&robot[leg]),
             boxes: b,
             scaled: which.mask(),
@@ -120,13 +121,7 @@ pub fn search(
         &problems,
         |i, s| {
             Ok::<Status, String>(
-                hull(
-                    &GoughLeg,
-                    &problems[i].x0,
-                    &(problems[i].boxes)(s),
-                    &settings,
-                )
-                .status,
+                hull(&model, &problems[i].x0, &(problems[i].boxes)(s), &settings).status,
             )
         },
         on_trial,

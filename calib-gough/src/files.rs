@@ -3,7 +3,7 @@
 
 use crate::geometry::{Leg, Pose};
 use crate::measurement::{Configuration, Orientation, Uncertainty};
-use crate::GoughLeg;
+use crate::LegModel;
 use calib_core::{CertifiedSet, Interval};
 use calib_pipeline::finite_number;
 use calib_pipeline::stored_set::StoredSet;
@@ -87,7 +87,7 @@ pub fn read_robot_file(file: &Path) -> Result<RobotFile, DataError> {
 pub fn leg_sets(
     file: &Path,
     robot: &RobotFile,
-) -> Result<Vec<Option<CertifiedSet<7, 7>>>, DataError> {
+) -> Result<Vec<Option<CertifiedSet<7, 8>>>, DataError> {
     let all: Vec<usize> = (0..7).collect();
     robot
         .sets
@@ -98,11 +98,35 @@ pub fn leg_sets(
                 return Ok(None);
             };
             let field = |f: &str| format!("leg[{}].certified_set.{f}", i + 1);
+            // Eight quantities per configuration: axis–angle data; seven: Rodrigues data (and
+            // every file written before the axis and angle were measurement inputs: its boxes
+            // are the Rodrigues vectors' hull, and the set was certified against them).
+            let model = match stored.measurements.first().map(Vec::len) {
+                Some(7) => LegModel::Rodrigues,
+                _ => LegModel::AxisAngle,
+            };
             let restored = stored
-                .restore::<7, 7>(&all, &all, &[Interval::ZERO; 7], &[Interval::ZERO; 7])
+                .restore::<7, 8>(
+                    &all,
+                    model.stored_quantities(),
+                    &[Interval::ZERO; 7],
+                    &[Interval::ZERO; 8],
+                )
                 .map_err(|(f, m)| error(file, None, Some(&field(&f)), m))?;
+            // A measured angle's box is never the point 0 (that marks Rodrigues data, whose
+            // angle is not read; `LegModel::of_measurements`).
+            if LegModel::of_measurements(&restored.measurements) != model {
+                return Err(error(
+                    file,
+                    None,
+                    Some(&field("measurements")),
+                    "every angle is the point [0.0, 0.0]: a measured angle has a box of positive \
+                     width (was the file edited?): recalibrate with `gough certify \
+                     --write-calibrated`",
+                ));
+            }
             let set = CertifiedSet::new(
-                &GoughLeg,
+                &model,
                 &restored.cover,
                 &restored.measurements,
                 &restored.points,

@@ -1,8 +1,9 @@
 //! # calib-gough
 //!
 //! The Gough (Stewart) platform: the leg model of the paper's equation (3) written once under
-//! `#[interval_model]` ([`GoughLeg`]), geometry and inverse kinematics, simulated data, and
-//! measurement boxes.
+//! `#[interval_model]` per orientation kind ([`GoughLeg`] for axis–angle data,
+//! [`GoughLegRodrigues`] for Rodrigues data, [`LegModel`] either), geometry and inverse
+//! kinematics, simulated data, and measurement boxes.
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 // Index loops mirror the paper's notation (legs i, parameters j, configurations k).
@@ -27,6 +28,9 @@ pub mod verdict;
 pub mod workspace;
 
 pub use geometry::{leg_reading, Leg, Pose};
-pub use measurement::{leg_boxes, Configuration, Orientation, Uncertainty};
-pub use model::{gough_leg, GoughLeg, PARAMETER_NAMES};
+pub use measurement::{leg_boxes, leg_values, Configuration, Orientation, Uncertainty};
+pub use model::{
+    gough_leg, gough_leg_rodrigues, GoughLeg, GoughLegRodrigues, LegModel, MEASUREMENT_NAMES,
+    PARAMETER_NAMES,
+};
 pub use simulate::{builtin_hexapod, simulate, Simulation};

@@ -3,9 +3,9 @@
 //!
 //! Minimises `Σ_k f(x, M_k)²` over `x = (a, b, l)` with `M_k` the measured values (box centres),
 //! starting from the nominal geometry; the residual and Jacobian come from the generated
-//! [`crate::GoughLeg`] evaluators.
+//! evaluators of the data's [`crate::LegModel`].
 
-use crate::GoughLeg;
+use crate::LegModel;
 use calib_core::Model;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::storage::Owned;
@@ -13,7 +13,8 @@ use nalgebra::{Dyn, OMatrix, OVector, U7};
 
 struct LegProblem<'a> {
     x: OVector<f64, U7>,
-    measurements: &'a [[f64; 7]],
+    model: LegModel,
+    measurements: &'a [[f64; 8]],
 }
 
 impl LeastSquaresProblem<f64, Dyn, U7> for LegProblem<'_> {
@@ -33,7 +34,7 @@ impl LeastSquaresProblem<f64, Dyn, U7> for LegProblem<'_> {
         let x: [f64; 7] = self.x.into();
         Some(OVector::<f64, Dyn>::from_iterator(
             self.measurements.len(),
-            self.measurements.iter().map(|m| GoughLeg.residual(&x, m)),
+            self.measurements.iter().map(|m| self.model.residual(&x, m)),
         ))
     }
 
@@ -41,7 +42,7 @@ impl LeastSquaresProblem<f64, Dyn, U7> for LegProblem<'_> {
         let x: [f64; 7] = self.x.into();
         let mut j = OMatrix::<f64, Dyn, U7>::zeros(self.measurements.len());
         for (k, m) in self.measurements.iter().enumerate() {
-            let d = GoughLeg.jacobian_x(&x, m);
+            let d = self.model.jacobian_x(&x, m);
             for (c, v) in d.iter().enumerate() {
                 j[(k, c)] = *v;
             }
@@ -63,24 +64,23 @@ pub struct Fit {
     pub max_length_error: f64,
 }
 
-/// Fits one leg from `start` to the measurements (each `[p_x, p_y, p_z, q_1, q_2, q_3, L]`).
-pub fn fit_leg(start: &[f64; 7], measurements: &[[f64; 7]]) -> Fit {
+/// Fits one leg from `start` to the measurements (each in the order of `model`'s `M`, e.g.
+/// [`crate::leg_values`]).
+pub fn fit_leg(start: &[f64; 7], model: LegModel, measurements: &[[f64; 8]]) -> Fit {
     let problem = LegProblem {
         x: OVector::<f64, U7>::from(*start),
+        model,
         measurements,
     };
     let (solved, report) = LevenbergMarquardt::new().minimize(problem);
     let x: [f64; 7] = solved.x.into();
-    let residuals: Vec<f64> = measurements
-        .iter()
-        .map(|m| GoughLeg.residual(&x, m))
-        .collect();
+    let residuals: Vec<f64> = measurements.iter().map(|m| model.residual(&x, m)).collect();
     let rms = (residuals.iter().map(|r| r * r).sum::<f64>() / residuals.len().max(1) as f64).sqrt();
     // f = d² - (L + l)², so the length error is f / (d + L + l) ≈ f / (2 (L + l)).
     let max_length_error = measurements
         .iter()
         .zip(&residuals)
-        .map(|(m, r)| (r / (2.0 * (m[6] + x[6]))).abs())
+        .map(|(m, r)| (r / (2.0 * (m[7] + x[6]))).abs())
         .fold(0.0, f64::max);
     Fit {
         x,
@@ -97,20 +97,11 @@ pub fn fit_legs(robot: &[crate::files::LegSpec], configs: &[crate::Configuration
     (0..robot.len())
         .into_par_iter()
         .map(|leg| {
-            let m: Vec<[f64; 7]> = configs
-                .iter()
-                .map(|c| {
-                    let q = match c.orientation {
-                        crate::Orientation::Rodrigues(q) => q,
-                        crate::Orientation::AxisAngle { axis, angle_deg } => {
-                            let t = (angle_deg.to_radians() / 2.0).tan();
-                            axis.map(|v| v * t)
-                        }
-                    };
-                    [c.p[0], c.p[1], c.p[2], q[0], q[1], q[2], c.lengths[leg]]
-                })
-                .collect();
-            fit_leg(&robot[leg].nominal.params(), &m)
+            fit_leg(
+                &robot[leg].nominal.params(),
+                LegModel::of(configs),
+                &crate::leg_values(configs, leg),
+            )
         })
         .collect()
 }

@@ -1,6 +1,6 @@
 //! Measured configurations, their error bounds, and the measurement boxes `M_k` of one leg.
 
-use crate::geometry::{rodrigues_box, Pose};
+use crate::geometry::Pose;
 use calib_core::Interval;
 
 /// How a configuration's orientation was measured.
@@ -88,28 +88,55 @@ pub fn measured(v: f64, h: f64) -> Interval {
     Interval::new(v.next_down(), v.next_up()) + Interval::new(-h.next_up(), h.next_up())
 }
 
-/// The boxes `M_k = (P, q, L)` of leg `leg` (0-based): position ± `pos`, the Rodrigues box of
-/// (axis ± `axis`) × (angle ± `angle_deg`) or q ± `q`, reading ± `len`; all outward rounded.
-pub fn leg_boxes(configs: &[Configuration], u: &Uncertainty, leg: usize) -> Vec<[Interval; 7]> {
+/// The boxes `M_k` of leg `leg` (0-based), in the order of [`crate::LegModel`]'s `M`, as the
+/// user states them: position ± `pos`; axis–angle data: each axis component ± `axis` and the
+/// angle ± `angle_deg`; Rodrigues data: each `q` component ± `q` and the point 0 in the angle slot
+/// (not read by [`crate::GoughLegRodrigues`]); the reading ± `len`. All outward rounded.
+pub fn leg_boxes(configs: &[Configuration], u: &Uncertainty, leg: usize) -> Vec<[Interval; 8]> {
     configs
         .iter()
         .map(|c| {
-            let q = match c.orientation {
-                Orientation::AxisAngle { axis, angle_deg } => rodrigues_box(
-                    &axis.map(|v| measured(v, u.axis)),
+            let (r, angle) = match c.orientation {
+                Orientation::AxisAngle { axis, angle_deg } => (
+                    axis.map(|v| measured(v, u.axis)),
                     measured(angle_deg, u.angle_deg),
                 ),
-                Orientation::Rodrigues(q) => q.map(|v| measured(v, u.q)),
+                Orientation::Rodrigues(q) => (q.map(|v| measured(v, u.q)), Interval::ZERO),
             };
             let p = c.p.map(|v| measured(v, u.pos));
             [
                 p[0],
                 p[1],
                 p[2],
-                q[0],
-                q[1],
-                q[2],
+                r[0],
+                r[1],
+                r[2],
+                angle,
                 measured(c.lengths[leg], u.len),
+            ]
+        })
+        .collect()
+}
+
+/// The measured values of leg `leg` (0-based) in the order of [`crate::LegModel`]'s `M` (the
+/// centres of [`leg_boxes`]; 0 in a Rodrigues configuration's angle slot).
+pub fn leg_values(configs: &[Configuration], leg: usize) -> Vec<[f64; 8]> {
+    configs
+        .iter()
+        .map(|c| {
+            let (r, angle) = match c.orientation {
+                Orientation::AxisAngle { axis, angle_deg } => (axis, angle_deg),
+                Orientation::Rodrigues(q) => (q, 0.0),
+            };
+            [
+                c.p[0],
+                c.p[1],
+                c.p[2],
+                r[0],
+                r[1],
+                r[2],
+                angle,
+                c.lengths[leg],
             ]
         })
         .collect()

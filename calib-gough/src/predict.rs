@@ -23,7 +23,7 @@ use crate::calibrated::measured_workspace;
 use crate::files::LegSpec;
 use crate::geometry::rodrigues_box;
 use crate::measurement::{measured, Configuration, Orientation, Uncertainty};
-use crate::GoughLeg;
+use crate::LegModel;
 use calib_core::{
     maximize_over_set, CertifiedSet, Interval, LinearFunction, Model, SetMaximumSettings,
     SetObjective,
@@ -81,7 +81,7 @@ const MAX_PIECES: usize = 96;
 /// refinement ([`maximize_over_set`] until the bracket is within 1% of the range or the
 /// refinements are spent) and `0 <= r <=` the curvature bound ([`crate::accuracy::LegCurvature`]).
 fn range_over_set(
-    set: &mut CertifiedSet<7, 7>,
+    set: &mut CertifiedSet<7, 8>,
     nominal: &[f64; 7],
     x: &[f64; 6],
 ) -> Option<Interval> {
@@ -102,8 +102,9 @@ fn range_over_set(
         },
         ..SetMaximumSettings::default()
     };
-    let up = maximize_over_set(&GoughLeg, set, &LinearFunction(g), &settings).upper;
-    let down = maximize_over_set(&GoughLeg, set, &LinearFunction(g.map(|v| -v)), &settings).upper;
+    let model = LegModel::of_set(set);
+    let up = maximize_over_set(&model, set, &LinearFunction(g), &settings).upper;
+    let down = maximize_over_set(&model, set, &LinearFunction(g.map(|v| -v)), &settings).upper;
     let gn = LinearFunction(g).value(&nominal.map(Interval::point));
     let spread: [Interval; 7] = core::array::from_fn(|j| {
         outer[j].hull(Interval::point(nominal[j])) - Interval::point(nominal[j])
@@ -128,7 +129,7 @@ fn range_over_set(
 /// of `configs`; with `measured`, their readings are checked (see the module documentation).
 pub fn predict(
     robot: &[LegSpec],
-    sets: &[Option<CertifiedSet<7, 7>>],
+    sets: &[Option<CertifiedSet<7, 8>>],
     configs: &[Configuration],
     u: &Uncertainty,
     measured_readings: bool,

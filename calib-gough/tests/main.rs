@@ -13,4 +13,5 @@ mod design;
 mod pose_error;
 mod predict;
 mod report_page;
+mod stated_bounds;
 mod unit;

@@ -51,7 +51,7 @@ pub fn extreme(
     j: usize,
     sign: f64,
     x0: &[Interval; 7],
-    boxes: &[[Interval; 7]],
+    boxes: &[[Interval; 8]],
 ) -> [f64; 7] {
     let mut p = start;
     let mut lp = DenseSimplex::default();
@@ -66,7 +66,7 @@ pub fn extreme(
         poly.reset(&lo, &hi);
         for m in boxes {
             let e = GoughLeg.evaluate(&p, &m.map(|v| v.mid()));
-            let w: f64 = (0..7).map(|i| e.dm[i].abs() * m[i].rad()).sum();
+            let w: f64 = (0..8).map(|i| e.dm[i].abs() * m[i].rad()).sum();
             poly.push_row(&e.dx, theta * w - e.value);
             poly.push_row(&e.dx.map(|v| -v), theta * w + e.value);
         }

@@ -26,7 +26,7 @@ use super::model::{leg_reading, LegCurvature, LegLengthError, LegReading};
 use crate::files::LegSpec;
 use crate::measurement::measured;
 use crate::workspace::Workspace;
-use crate::GoughLeg;
+use crate::LegModel;
 use calib_core::LpBackend;
 use calib_core::SetQuery;
 use calib_core::{CertifiedSet, Interval, Jet, Model, Quadratic};
@@ -62,11 +62,11 @@ struct LegBounds {
 /// documentation): the instances' true geometries.
 #[derive(Clone, Debug)]
 pub struct LegSet {
-    set: CertifiedSet<7, 7>,
+    set: CertifiedSet<7, 8>,
     /// The same set as one piece (its hull, contracted, with the relaxation over it): for the
     /// many small terms of [`AccuracyProblem::set_error`], where one linear program per term is
     /// enough.
-    coarse: CertifiedSet<7, 7>,
+    coarse: CertifiedSet<7, 8>,
     catalogue: Vec<[f64; 7]>,
 }
 
@@ -94,10 +94,11 @@ const CATALOGUE_POSES: usize = 40;
 
 impl LegSet {
     /// The catalogue for `set` on the poses of `domain` (see the module documentation).
-    fn new(set: CertifiedSet<7, 7>, nominal: &[f64; 7], domain: &PoseBox) -> LegSet {
+    fn new(set: CertifiedSet<7, 8>, nominal: &[f64; 7], domain: &PoseBox) -> LegSet {
         let points: Vec<[f64; 7]> = set.points().iter().map(|p| p.x).collect();
+        let model = LegModel::of_set(&set);
         let mut set = CertifiedSet::new(
-            &GoughLeg,
+            &model,
             &set.cover(),
             set.measurements(),
             &points,
@@ -130,12 +131,12 @@ impl LegSet {
             let m: [f64; 13] = core::array::from_fn(|c| if c < 6 { x[c] } else { nominal[c - 6] });
             let g = LegLengthError.jacobian_x(nominal, &m);
             for sign in [1.0, -1.0] {
-                set.extreme_point(&GoughLeg, &g.map(|v| sign * v));
+                set.extreme_point(&model, &g.map(|v| sign * v));
             }
         }
         let catalogue: Vec<[f64; 7]> = set.points().iter().map(|p| p.x).collect();
         let coarse = CertifiedSet::new(
-            &GoughLeg,
+            &model,
             &set.cover(),
             set.measurements(),
             &catalogue[..catalogue.len().min(1)],
@@ -149,7 +150,7 @@ impl LegSet {
     }
 
     /// The certified set.
-    pub fn set(&self) -> &CertifiedSet<7, 7> {
+    pub fn set(&self) -> &CertifiedSet<7, 8> {
         &self.set
     }
 
@@ -161,7 +162,7 @@ impl LegSet {
 
 impl LegBounds {
     /// Over the certified set: `Θ` the hull of the set and `θ̂`.
-    fn over_set(spec: &LegSpec, set: CertifiedSet<7, 7>, domain: &PoseBox) -> LegBounds {
+    fn over_set(spec: &LegSpec, set: CertifiedSet<7, 8>, domain: &PoseBox) -> LegBounds {
         let nominal = spec.nominal.params();
         let theta: [Interval; 7] = match set.outer() {
             Some(o) => core::array::from_fn(|j| o[j].hull(Interval::point(nominal[j]))),
@@ -226,7 +227,7 @@ impl AccuracyProblem {
     /// when given, else over its box (a robot file without a set).
     pub fn over_sets(
         robot: &[LegSpec],
-        sets: &[Option<CertifiedSet<7, 7>>],
+        sets: &[Option<CertifiedSet<7, 8>>],
         workspace: &Workspace,
     ) -> AccuracyProblem {
         let mut problem = AccuracyProblem::new(robot, workspace);
@@ -679,8 +680,8 @@ fn set_error_bounds(
     g: &[SlopeForm; 7],
     delta: &[f64; 7],
     rest: Interval,
-    q: &mut SetQuery<'_, 7, 7>,
-    coarse: &mut SetQuery<'_, 7, 7>,
+    q: &mut SetQuery<'_, 7, 8>,
+    coarse: &mut SetQuery<'_, 7, 8>,
     nominal: &[f64; 7],
     enough: f64,
 ) -> Interval {

@@ -7,7 +7,7 @@
 
 use super::enclosure::{AccuracyProblem, Instance, PoseBox, PoseVector};
 use super::model::{leg_reading, LegCurvature, LegReading};
-use crate::GoughLeg;
+use crate::LegModel;
 use calib_core::{CertifiedSet, Interval, Jet, Model, Quadratic};
 use calib_pipeline::accuracy::{bracket_over_set, BracketSettings, Prediction, SetAccuracy};
 
@@ -21,7 +21,7 @@ pub struct LegLength<'a> {
 /// A second-order model in the pose's noise symbols, with derivatives in the leg's geometry.
 type PoseJet = Jet<Quadratic<6>, 7>;
 
-impl Prediction<7, 7, 6, 6, 1> for LegLength<'_> {
+impl Prediction<7, 8, 6, 6, 1> for LegLength<'_> {
     const OWN_ROWS: bool = false;
 
     const TERMS_BY_PROGRAMS: bool = true;
@@ -36,8 +36,9 @@ impl Prediction<7, 7, 6, 6, 1> for LegLength<'_> {
         [leg_reading(x, m)]
     }
 
-    fn push(&self, set: &mut CertifiedSet<7, 7>, direction: &[f64; 7]) -> bool {
-        set.extreme_point(&GoughLeg, direction).is_some()
+    fn push(&self, set: &mut CertifiedSet<7, 8>, direction: &[f64; 7]) -> bool {
+        let model = LegModel::of_set(set);
+        set.extreme_point(&model, direction).is_some()
     }
 
     /// `0 <= L(X; θ) - L(X; θ̂) - ∇_θ L(X; θ̂)·δ <=` [`super::model::leg_curvature`].

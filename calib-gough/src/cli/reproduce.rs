@@ -2,7 +2,6 @@
 
 use calib_core::{certify, hull, sweep, Interval, Settings, Status};
 use calib_gough::certification::LegResult;
-use calib_gough::geometry::Pose;
 use calib_gough::lsq::fit_leg;
 use calib_gough::plot::{self, Layer, PlotError, Points};
 use calib_gough::report::{ratios, write_atomically};
@@ -162,7 +161,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         .map(|i| {
             let mut rng =
                 StdRng::seed_from_u64(a.seed ^ (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
-            let m: Vec<[f64; 7]> = sim
+            let m: Vec<[f64; 8]> = sim
                 .measured
                 .iter()
                 .zip(&sim.poses)
@@ -171,26 +170,27 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                     let Orientation::AxisAngle { axis, angle_deg } = c.orientation else {
                         unreachable!()
                     };
-                    let drawn = Pose {
-                        p: core::array::from_fn(|k| draw(&mut rng, c.p[k], pose.p[k], u.pos)),
-                        axis: core::array::from_fn(|k| {
-                            draw(&mut rng, axis[k], pose.axis[k], u.axis)
-                        }),
-                        angle_deg: draw(&mut rng, angle_deg, pose.angle_deg, u.angle_deg),
-                    };
-                    let q = drawn.rodrigues();
+                    let p: [f64; 3] =
+                        core::array::from_fn(|k| draw(&mut rng, c.p[k], pose.p[k], u.pos));
+                    let axis: [f64; 3] =
+                        core::array::from_fn(|k| draw(&mut rng, axis[k], pose.axis[k], u.axis));
                     [
-                        drawn.p[0],
-                        drawn.p[1],
-                        drawn.p[2],
-                        q[0],
-                        q[1],
-                        q[2],
+                        p[0],
+                        p[1],
+                        p[2],
+                        axis[0],
+                        axis[1],
+                        axis[2],
+                        draw(&mut rng, angle_deg, pose.angle_deg, u.angle_deg),
                         draw(&mut rng, c.lengths[0], lengths[0], u.len),
                     ]
                 })
                 .collect();
-            let fit = fit_leg(&sim.nominal[0].params(), &m);
+            let fit = fit_leg(
+                &sim.nominal[0].params(),
+                calib_gough::LegModel::AxisAngle,
+                &m,
+            );
             bar.inc(1);
             fit.x
         })

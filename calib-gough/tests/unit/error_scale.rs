@@ -17,7 +17,11 @@ fn only_the_chosen_bounds_scale() {
     assert!(o.axis >= 2.0 * u.axis && o.angle_deg >= 2.0 * u.angle_deg && o.pos == u.pos);
     assert_eq!(
         ScaleBounds::Len.mask(),
-        [false, false, false, false, false, false, true]
+        [false, false, false, false, false, false, false, true]
+    );
+    assert_eq!(
+        ScaleBounds::Orientation.mask(),
+        [false, false, false, true, true, true, true, false]
     );
 }
 

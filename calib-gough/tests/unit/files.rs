@@ -157,3 +157,70 @@ fn non_finite_numbers_are_refused_with_line_and_field() {
         );
     }
 }
+
+#[test]
+fn stored_sets_keep_the_measurements_as_stated_and_their_kind() {
+    use calib_gough::calibrated::{calibrated_robot, robot_toml};
+    use calib_gough::certification::{certify_legs, CertifyOptions};
+    use calib_gough::files::{leg_sets, parse_robot_file, LegSpec};
+    use calib_gough::{
+        builtin_hexapod, leg_boxes, simulate, Configuration, LegModel, Orientation, Uncertainty,
+    };
+    let sim = simulate(&builtin_hexapod(), 12, 4, Uncertainty::PAPER, 1.0, 0.1);
+    let robot: Vec<LegSpec> = sim
+        .nominal
+        .iter()
+        .map(|&nominal| LegSpec {
+            nominal,
+            radius: [0.1; 7],
+        })
+        .collect();
+    let rodrigues: Vec<Configuration> = sim
+        .measured
+        .iter()
+        .map(|c| {
+            let Orientation::AxisAngle { axis, angle_deg } = c.orientation else {
+                unreachable!()
+            };
+            let t = (angle_deg.to_radians() / 2.0).tan();
+            Configuration {
+                orientation: Orientation::Rodrigues(axis.map(|v| v * t)),
+                ..c.clone()
+            }
+        })
+        .collect();
+    let u = Uncertainty {
+        q: 2e-5,
+        ..Uncertainty::PAPER
+    };
+    let options = CertifyOptions {
+        legs: Some(vec![1]),
+        fast: true,
+        ..CertifyOptions::default()
+    };
+    let path = Path::new("calibrated.toml");
+    for (configs, kind, columns) in [
+        (&sim.measured, LegModel::AxisAngle, 8),
+        (&rodrigues, LegModel::Rodrigues, 7),
+    ] {
+        let results = certify_legs(&robot, configs, &u, &options, &|| {}).unwrap();
+        let cal = calibrated_robot(&robot, &results, configs, &u, None).unwrap();
+        let text = robot_toml(&cal.legs, &cal.sets, "test");
+        let file = parse_robot_file(path, &text).unwrap();
+        let stored = file.sets[0].as_ref().unwrap();
+        assert!(stored.measurements.iter().all(|m| m.len() == columns));
+        let sets = leg_sets(path, &file).unwrap();
+        let set = sets[0].as_ref().unwrap();
+        assert_eq!(LegModel::of_set(set), kind);
+        assert_eq!(set.measurements(), &leg_boxes(configs, &u, 0)[..]);
+        if kind == LegModel::AxisAngle {
+            // An angle column edited to the point 0 is refused, not read as Rodrigues data.
+            let mut edited = file.clone();
+            for m in &mut edited.sets[0].as_mut().unwrap().measurements {
+                m[6] = [0.0, 0.0];
+            }
+            let e = leg_sets(path, &edited).unwrap_err().to_string();
+            assert!(e.contains("certified_set.measurements"), "{e}");
+        }
+    }
+}

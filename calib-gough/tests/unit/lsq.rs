@@ -1,19 +1,15 @@
 //! The tests of `calib_gough::lsq`.
 
 use calib_gough::lsq::*;
-use calib_gough::measurement::leg_boxes;
-use calib_gough::{builtin_hexapod, simulate, Uncertainty};
+use calib_gough::{builtin_hexapod, leg_values, simulate, LegModel, Uncertainty};
 
 #[test]
 fn recovers_the_truth_from_exact_data() {
     let truth = builtin_hexapod();
     let sim = simulate(&truth, 21, 9, Uncertainty::uniform(0.0), 0.0, 0.1);
     for leg in 0..6 {
-        let m: Vec<[f64; 7]> = leg_boxes(&sim.measured, &sim.uncertainty, leg)
-            .iter()
-            .map(|b| b.map(|v| v.mid()))
-            .collect();
-        let fit = fit_leg(&sim.nominal[leg].params(), &m);
+        let m = leg_values(&sim.measured, leg);
+        let fit = fit_leg(&sim.nominal[leg].params(), LegModel::of(&sim.measured), &m);
         let t = truth[leg].params();
         assert!(fit.converged);
         for j in 0..7 {
