@@ -95,13 +95,19 @@ impl SetToolAccuracy {
         self.engine.domain()
     }
 
-    /// An instance in the arm's terms (degrees, unpadded parameters).
+    /// An instance in the arm's terms (degrees, unpadded parameters; the joint error reached,
+    /// `e_i`, moved into `theta_i` as the model's `Rz(theta_i + q_i)` allows).
     fn tool_instance(&self, i: &Instance<NX, MAX_JOINTS, 3>) -> ToolInstance {
         let index = padded_index(self.joints);
+        let mut theta: Vec<Interval> = index.iter().map(|&p| Interval::point(i.theta[p])).collect();
+        for k in 0..self.joints {
+            let e = Interval::point(i.reached[k]) - Interval::point(i.inputs[k]);
+            theta[5 * k] += e;
+        }
         ToolInstance {
             joints_deg: i.inputs[..self.joints].iter().map(|v| to_deg(*v)).collect(),
             joints_rad: i.inputs[..self.joints].to_vec(),
-            theta: index.iter().map(|&p| Interval::point(i.theta[p])).collect(),
+            theta,
             error: i.error,
             value: i.value,
         }

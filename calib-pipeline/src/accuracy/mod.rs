@@ -107,12 +107,14 @@ pub(crate) fn slot<T: Copy, const NU: usize, const NP: usize>(u: &[T; NU], zero:
 pub struct Instance<const NX: usize, const NU: usize, const R: usize> {
     /// The commanded inputs (inside the box).
     pub inputs: [f64; NU],
+    /// The inputs the robot reached: each within its own error of its command.
+    pub reached: [f64; NU],
     /// The true geometry `θ*`: a certified point of the set (consistent with every measurement
     /// the set keeps: all of them, or all but the outliers its cover drops).
     pub theta: [f64; NX],
-    /// `g(u; θ*) - g(u; θ̂)` in floating point.
+    /// `g(u + e; θ*) - g(u; θ̂)` in floating point (`u + e` the reached inputs).
     pub error: [f64; R],
-    /// `‖g(u; θ*) - g(u; θ̂)‖`, enclosed and rounded down.
+    /// `‖g(u + e; θ*) - g(u; θ̂)‖`, enclosed and rounded down.
     pub value: f64,
 }
 

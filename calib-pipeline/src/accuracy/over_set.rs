@@ -446,12 +446,30 @@ where
     }
 
     /// The error `g(u; θ) - g(u; θ̂)` at exact inputs `u`, enclosed.
-    fn error_at(&self, u: &[f64; NU], theta: &[f64; NX]) -> [Interval; R] {
-        let m = slot(&u.map(Interval::point), Interval::ZERO);
+    fn error_at(&self, u: &[f64; NU], reached: &[f64; NU], theta: &[f64; NX]) -> [Interval; R] {
+        let at = |u: &[f64; NU]| slot(&u.map(Interval::point), Interval::ZERO);
         let model = self.prediction.model();
-        let real = model.residuals_interval(&theta.map(Interval::point), &m);
-        let nominal = model.residuals_interval(&self.nominal.map(Interval::point), &m);
+        let real = model.residuals_interval(&theta.map(Interval::point), &at(reached));
+        let nominal = model.residuals_interval(&self.nominal.map(Interval::point), &at(u));
         core::array::from_fn(|r| real[r] - nominal[r])
+    }
+
+    /// Where the robot commanded to `u` may reach with the geometry `theta`: each input moved by
+    /// its own error, to the side that lengthens the error there (first order); `u` itself where
+    /// the move would leave the errors' bounds by rounding.
+    fn reached(&self, u: &[f64; NU], theta: &[f64; NX]) -> [f64; NU] {
+        let d = self.error_estimate(u, theta);
+        let rows = self.prediction.model().evaluate_rows(theta, &slot(u, 0.0));
+        core::array::from_fn(|i| {
+            let eps = self.input_error[i].inf();
+            let along: f64 = (0..R).map(|r| d[r] * rows[r].dm[i]).sum();
+            let moved = u[i] + eps * (1.0 - 1e-12) * along.signum();
+            if eps > 0.0 && along != 0.0 && (moved - u[i]).abs() <= eps {
+                moved
+            } else {
+                u[i]
+            }
+        })
     }
 
     /// The catalogue's geometry with the largest error at `u` (floating point), and its error.
@@ -468,18 +486,37 @@ where
     /// down (`0` where `u` is not proved to be one of the task's inputs).
     pub fn instance(&self, u: &[f64; NU]) -> Instance<NX, NU, R> {
         let (theta, _) = self.best(u);
-        let e = self.error_at(u, &theta);
-        let value = e
-            .iter()
-            .fold(Interval::ZERO, |s, v| s + v.sqr())
-            .sqrt()
-            .inf();
-        let attained = !value.is_nan() && self.prediction.admits(u);
+        let norm_down = |e: &[Interval; R]| {
+            let v = e
+                .iter()
+                .fold(Interval::ZERO, |s, v| s + v.sqr())
+                .sqrt()
+                .inf();
+            if v.is_nan() {
+                0.0
+            } else {
+                v.max(0.0)
+            }
+        };
+        // The inputs' own errors moved to where they lengthen the error, or none.
+        let (reached, e, value) = [self.reached(u, &theta), *u]
+            .into_iter()
+            .map(|r| {
+                let e = self.error_at(u, &r, &theta);
+                (r, e, norm_down(&e))
+            })
+            .max_by(|a, b| a.2.total_cmp(&b.2))
+            .unwrap_or((*u, [Interval::ZERO; R], 0.0));
         Instance {
             inputs: *u,
+            reached,
             theta,
             error: e.map(|v| v.mid()),
-            value: if attained { value.max(0.0) } else { 0.0 },
+            value: if self.prediction.admits(u) {
+                value
+            } else {
+                0.0
+            },
         }
     }
 

@@ -122,11 +122,13 @@ fn the_bracket_holds_for_every_consistent_geometry_sampled_and_its_worst_case_is
         largest = largest.max(e);
         assert!(e <= b.upper * (1.0 + 1e-9), "error {e} above {}", b.upper);
     }
-    // The worst instance: a consistent geometry, inputs in the box, its value recomputed.
+    // The worst instance: a consistent geometry, inputs in the box reached within their
+    // errors, its value recomputed.
     let w = b.worst.as_ref().expect("an instance");
     assert!(is_consistent_point(&PlanarTip, &w.theta, &boxes));
     assert!((0..2).all(|i| domain[i].contains(w.inputs[i])));
-    let (p, p0) = (tip(&w.theta, &w.inputs), tip(&nominal, &w.inputs));
+    assert!((0..2).all(|i| (w.reached[i] - w.inputs[i]).abs() <= joint_err));
+    let (p, p0) = (tip(&w.theta, &w.reached), tip(&nominal, &w.inputs));
     let value = ((p[0] - p0[0]).powi(2) + (p[1] - p0[1]).powi(2)).sqrt();
     assert!(value >= b.lower * (1.0 - 1e-9), "{value} below {}", b.lower);
     assert!(
@@ -186,4 +188,6 @@ fn the_inputs_own_errors_never_cancel_in_the_bound() {
         }
     }
     assert!(largest <= b.upper, "{largest} above the proved {}", b.upper);
+    // The lower bound reaches the joints' errors too (without them it would stay near 0).
+    assert!(b.lower >= 0.9 * largest, "lower {} for {largest}", b.lower);
 }
