@@ -906,6 +906,60 @@ fn accuracy(
     Ok(report.json().to_string())
 }
 
+/// Brackets the tool-point error of an arm's robot file over a joint box, as `arm accuracy`
+/// does (over the file's certified set when it carries one, else over its boxes; with
+/// `before`, the uncalibrated robot over its boxes and the improvement as a proved factor);
+/// returns the JSON of `arm accuracy --json`.
+#[pyfunction]
+#[pyo3(signature = (robot, joints=None, before=None, uncertainty=None, tolerance=0.04, max_boxes=20_000, max_set_boxes=300))]
+#[allow(clippy::too_many_arguments)]
+fn arm_accuracy(
+    py: Python<'_>,
+    robot: PathBuf,
+    joints: Option<PathBuf>,
+    before: Option<PathBuf>,
+    uncertainty: Option<PathBuf>,
+    tolerance: f64,
+    max_boxes: usize,
+    max_set_boxes: usize,
+) -> PyResult<String> {
+    use calib_arm::accuracy::{tool_accuracy, ToolAccuracySettings};
+    use calib_arm::joint_space::{read_joint_space, JointSpace};
+    if !(tolerance > 0.0 && tolerance.is_finite()) {
+        return Err(value_error(format!(
+            "tolerance: expected a number > 0, found {tolerance}"
+        )));
+    }
+    let (arm, set) = calib_arm::files::read_calibrated(&robot).map_err(value_error)?;
+    let n = arm.joints.len();
+    let before = before
+        .map(|p| calib_arm::files::read_robot(&p))
+        .transpose()
+        .map_err(value_error)?;
+    let space = match joints {
+        Some(p) => read_joint_space(&p, n).map_err(value_error)?,
+        None => JointSpace::simulator(n),
+    };
+    let joint_deg = uncertainty
+        .map(|p| calib_arm::files::read_uncertainty(&p))
+        .transpose()
+        .map_err(value_error)?
+        .map_or(0.0, |u| u.joint_deg);
+    let settings = ToolAccuracySettings {
+        rel_tol: tolerance,
+        max_boxes,
+        max_set_boxes,
+    };
+    let report = py
+        .detach(|| tool_accuracy(&arm, set, before.as_ref(), space, joint_deg, &settings))
+        .map_err(value_error)?;
+    let units: Vec<calib_arm::params::Unit> = calib_arm::params::names(n)
+        .into_iter()
+        .map(|(_, u)| u)
+        .collect();
+    Ok(report.to_json(&calib_arm::certification::names(n), &units))
+}
+
 /// The parameter names, in order.
 #[pyfunction]
 fn parameter_names() -> Vec<&'static str> {
@@ -935,6 +989,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(arm_predict, m)?)?;
     m.add_function(wrap_pyfunction!(design, m)?)?;
     m.add_function(wrap_pyfunction!(accuracy, m)?)?;
+    m.add_function(wrap_pyfunction!(arm_accuracy, m)?)?;
     m.add_function(wrap_pyfunction!(parameter_names, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())

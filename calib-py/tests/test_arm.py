@@ -103,3 +103,28 @@ def test_write_calibrated_gives_the_cli_file_and_fits_the_data(tmp_path):
     assert check["over"] == "certified set" and check["refuting"] == []
     # The package's predict_arm gives the command line's JSON.
     assert certicalib.predict_arm(mine, unc, meas) == check
+
+
+def test_accuracy_arm_is_the_cli_report_over_the_certified_set(tmp_path):
+    simulated(tmp_path)
+    cal = tmp_path / "cal.toml"
+    robot, meas, unc = files(tmp_path)
+    assert certicalib.certify_arm(robot, meas, unc, write_calibrated=cal).status == "consistent"
+    cell = tmp_path / "cell.toml"
+    cell.write_text("q1 = [10, 20]\nq2 = [-30, -20]\nq3 = [40, 50]\n")
+    mine = certicalib.accuracy_arm(cal, joints=cell, before=robot, uncertainty=unc,
+                                   max_set_boxes=20, max_boxes=500)
+    out = tmp_path / "accuracy.json"
+    subprocess.run([repo_binary("arm"), "accuracy", "--robot", str(cal), "--joints", str(cell),
+                    "--before", str(robot), "--uncertainty", str(unc), "--max-set-boxes", "20",
+                    "--max-boxes", "500", "--json", str(out)], check=True, capture_output=True)
+    cli = json.loads(out.read_text())
+    # The same report but for the wall-clock seconds.
+    for r in (mine, cli):
+        for key in ("position", "before"):
+            r[key].pop("seconds")
+    assert mine == cli
+    after = mine["position"]
+    assert after["over"] == "certified set"
+    assert 0 < after["lower"] <= after["upper"]
+    assert mine["before"]["lower"] > 0 and mine["improvement"] is not None

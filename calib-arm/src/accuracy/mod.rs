@@ -558,6 +558,56 @@ pub fn certify_tool_accuracy(
     }
 }
 
+/// `arm accuracy` as a library step: the calibrated `arm`'s bracket over its certified `set`
+/// (over its box without one) and, with `before`, the uncalibrated robot's over its box (in
+/// parallel), on the joint box `space` with every joint within `joint_deg` of its command. An
+/// error when a robot does not match the joint space or the joint error is not a finite value
+/// `>= 0`.
+pub fn tool_accuracy(
+    arm: &Arm,
+    set: Option<crate::certification::ArmSet>,
+    before: Option<&Arm>,
+    space: JointSpace,
+    joint_deg: f64,
+    settings: &ToolAccuracySettings,
+) -> Result<ToolAccuracyReport, String> {
+    let over_set = set.is_some();
+    let after_problem = match set {
+        Some(set) => After::Set(Box::new(over_set::SetToolAccuracy::new(
+            arm, set, &space, joint_deg,
+        )?)),
+        None => After::Box(Box::new(ToolAccuracyProblem::new(arm, &space, joint_deg)?)),
+    };
+    let before_problem = before
+        .map(|b| ToolAccuracyProblem::new(b, &space, joint_deg))
+        .transpose()?;
+    let (after, before) = std::thread::scope(|s| {
+        let b = s.spawn(|| {
+            before_problem
+                .as_ref()
+                .map(|p| certify_tool_accuracy(p, settings))
+        });
+        let after = match &after_problem {
+            After::Set(p) => over_set::certify_set_accuracy(p, settings),
+            After::Box(p) => certify_tool_accuracy(p, settings),
+        };
+        (after, b.join().ok().flatten())
+    });
+    Ok(ToolAccuracyReport {
+        space,
+        joint_deg,
+        after,
+        before,
+        over_set,
+    })
+}
+
+/// The calibrated robot's problem: over its certified set, or over its box.
+enum After {
+    Set(Box<over_set::SetToolAccuracy>),
+    Box(Box<ToolAccuracyProblem>),
+}
+
 /// The tool-point accuracy of a robot file after calibration and, when given, before it: what
 /// `arm accuracy` reports.
 #[derive(Clone, Debug, PartialEq)]

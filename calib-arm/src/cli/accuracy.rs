@@ -1,11 +1,7 @@
 //! `arm accuracy`.
 
 use super::output::spinner;
-use calib_arm::accuracy::over_set::{certify_set_accuracy, SetToolAccuracy};
-use calib_arm::accuracy::{
-    certify_tool_accuracy, ToolAccuracyProblem, ToolAccuracyReport, ToolAccuracySettings,
-    ToolBracket,
-};
+use calib_arm::accuracy::{tool_accuracy, ToolAccuracyReport, ToolAccuracySettings, ToolBracket};
 use calib_arm::certification::names;
 use calib_arm::files::{read_calibrated, read_robot, read_uncertainty};
 use calib_arm::joint_space::{read_joint_space, JointSpace};
@@ -94,40 +90,13 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             a.robot.display()
         );
     }
-    let after_problem = match set {
-        Some(set) => After::Set(Box::new(SetToolAccuracy::new(
-            &arm, set, &space, joint_deg,
-        )?)),
-        None => After::Box(Box::new(ToolAccuracyProblem::new(&arm, &space, joint_deg)?)),
-    };
-    let before_problem = before
-        .as_ref()
-        .map(|b| ToolAccuracyProblem::new(b, &space, joint_deg))
-        .transpose()?;
     let bar = spinner(&format!(
         "bounding the tool-point error over the joint space ({} boxes at most per robot)",
         a.max_boxes
     ));
-    let (after, before) = std::thread::scope(|s| {
-        let b = s.spawn(|| {
-            before_problem
-                .as_ref()
-                .map(|p| certify_tool_accuracy(p, &settings))
-        });
-        let after = match &after_problem {
-            After::Set(p) => certify_set_accuracy(p, &settings),
-            After::Box(p) => certify_tool_accuracy(p, &settings),
-        };
-        (after, b.join().ok().flatten())
-    });
+    let report = tool_accuracy(&arm, set, before.as_ref(), space, joint_deg, &settings);
     bar.finish_and_clear();
-    let report = ToolAccuracyReport {
-        space,
-        joint_deg,
-        after,
-        before,
-        over_set,
-    };
+    let report = report?;
     print_report(&report, &a);
     if let Some(path) = &a.json {
         let units: Vec<params::Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
@@ -136,12 +105,6 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("wrote {}", path.display());
     }
     Ok(0)
-}
-
-/// The calibrated robot's problem: over its certified set, or over its box.
-enum After {
-    Set(Box<SetToolAccuracy>),
-    Box(Box<ToolAccuracyProblem>),
 }
 
 fn print_report(r: &ToolAccuracyReport, a: &Args) {

@@ -661,8 +661,8 @@ impl<const NX: usize> Slopes<NX> {
             });
             remainder += e * Interval::point(reach[j]);
             let mut t = 0;
-            for i in 0..NU {
-                linear[i][j] = along(&|m| m.linear()[i]);
+            for (i, term) in linear.iter_mut().enumerate() {
+                term[j] = along(&|m| m.linear()[i]);
                 for k in i..NU {
                     quadratic[t][j] = along(&|m| m.quadratic(i, k));
                     t += 1;

@@ -47,7 +47,7 @@ from . import _native
 __all__ = ["certify", "simulate", "lsq", "Report", "LegResult", "LeastSquaresFit",
            "certify_arm", "simulate_arm", "ArmReport", "design", "DesignPlan", "accuracy",
            "import_arm", "export_arm", "register_arm", "error_scale", "error_scale_arm", "predict",
-           "predict_arm",
+           "predict_arm", "accuracy_arm",
            "PARAMETER_NAMES", "__version__"]
 
 __version__: str = _native.version()
@@ -431,6 +431,37 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
     return json.loads(_native.accuracy(os.fspath(robot), os.fspath(workspace), opt(before),
                                        opt(uncertainty), float(tolerance), int(max_boxes),
                                        float(pose_seconds), int(max_set_boxes)))
+
+
+def accuracy_arm(robot: PathLike, *, joints: Optional[PathLike] = None,
+                 before: Optional[PathLike] = None, uncertainty: Optional[PathLike] = None,
+                 tolerance: float = 0.04, max_boxes: int = 20_000,
+                 max_set_boxes: int = 300) -> Dict[str, Any]:
+    r"""Bracket how far an arm's tool point can be from where the controller computes it (from
+    ``robot``'s values), over every configuration of ``joints`` (a ``joints.toml``: ``q1 = [lo,
+    hi]``, … degrees; default ±170° per joint), every geometry of ``robot``'s certified set (its
+    boxes for a file without one) and every joint error within ``uncertainty``'s ``joint_deg`` —
+    as ``arm accuracy`` does. ``before``: the uncalibrated robot file, bracketed over its boxes,
+    and the improvement as a proved factor. Returns the JSON of ``arm accuracy --json`` as a
+    dict: ``position`` and ``before`` (each ``upper``, ``lower``, ``ratio``, ``over``, ``worst``
+    with ``joints_deg`` and ``theta``), ``improvement``. ``tolerance`` stops a bracket at
+    ``upper <= (1 + tolerance) lower``; ``max_boxes`` and ``max_set_boxes`` bound the joint boxes
+    over a box and over a certified set.
+
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp()
+    >>> _ = simulate_arm(d, configs=12, seed=3)
+    >>> cell = os.path.join(d, "cell.toml")
+    >>> _ = open(cell, "w").write("".join(f"q{k} = [-2, 2]\n" for k in range(1, 7)))
+    >>> r = accuracy_arm(os.path.join(d, "robot.toml"), joints=cell, max_boxes=300)
+    >>> 0 < r["position"]["lower"] <= r["position"]["upper"]
+    True
+    """
+    def opt(p: Optional[PathLike]) -> Optional[str]:
+        return None if p is None else os.fspath(p)
+    return json.loads(_native.arm_accuracy(os.fspath(robot), opt(joints), opt(before),
+                                           opt(uncertainty), float(tolerance), int(max_boxes),
+                                           int(max_set_boxes)))
 
 
 class ArmReport:
