@@ -12,7 +12,8 @@ use calib_arm::pose::{certify_pose, require_pose_inputs, PoseReading, PoseUncert
 use calib_arm::report_page::ArmCertificate;
 use calib_arm::simulate::Uncertainty;
 use calib_core::Status;
-use calib_pipeline::error_scale::{check_margin, report as scale_report};
+use calib_pipeline::cli::{ErrorScaleArgs, ErrorScaleMode, OutlierArgs};
+use calib_pipeline::error_scale::report as scale_report;
 use calib_pipeline::html::{command_line, now, Input};
 use calib_pipeline::verdict::{self, ConfigurationNames};
 use calib_pipeline::{read_text, write_atomically};
@@ -40,12 +41,8 @@ pub struct Args {
     /// reached is reported).
     #[arg(long, value_name = "SECONDS")]
     max_seconds: Option<f64>,
-    /// Tolerate up to Q bad configurations: the boxes then contain every parameter vector that
-    /// fits all but at most Q configurations, and the configurations proved to be outliers are
-    /// listed. Costs about C(configurations, Q) certifications. `auto`: the smallest Q that is not
-    /// proved empty (tries Q = 0, 1, 2, … in turn; every Q below it is proved too few).
-    #[arg(long, value_name = "Q|auto", default_value = "0")]
-    max_outliers: OutlierBudget,
+    #[command(flatten)]
+    outliers: OutlierArgs,
     /// Also fit by least squares and show where the fit stands against the certified box.
     #[arg(long)]
     lsq: bool,
@@ -80,29 +77,8 @@ pub struct Args {
     /// `centre` (0.448 mm, 1.96 mm), and than least squares within the priors (0.374 mm).
     #[arg(long, value_name = "lsq|centre", default_value = "lsq", value_parser = parse_choice)]
     calibrated_point: PointChoice,
-    /// `auto`: first find how much error the data need — the smallest factor by which the
-    /// uncertainty file's bounds (--scale-bounds) must be multiplied for the data to be
-    /// consistent, as a proved bracket (s_lo proved inconsistent, s_hi certified consistent;
-    /// within 2% where the kernel decides, else the ratio reached and the first-order minimax
-    /// estimate are printed) — then certify at s_hi × --scale-margin. A few certifications of
-    /// this size.
-    #[arg(long, value_name = "auto", value_enum)]
-    error_scale: Option<ErrorScaleMode>,
-    /// With --error-scale: which bounds to scale: `all`, `pos` (the tracker's), `joint_deg`
-    /// (the encoders') or, with --orientation-columns, `orient_deg` (the orientations').
-    #[arg(long, value_name = "WHICH", value_enum, default_value = "all")]
-    scale_bounds: ScaleBounds,
-    /// With --error-scale: certify at s_hi times this factor (>= 1: a margin over the smallest
-    /// consistent bounds).
-    #[arg(long, value_name = "F", default_value_t = 1.0)]
-    scale_margin: f64,
-}
-
-/// `--error-scale`'s modes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-enum ErrorScaleMode {
-    /// Find the smallest consistent factor.
-    Auto,
+    #[command(flatten)]
+    scale: ErrorScaleArgs<ScaleBounds>,
 }
 
 /// Finds the smallest consistent scale of `u`'s bounds (and, for 6-DoF data `pose`, of their
@@ -115,8 +91,8 @@ fn error_scale(
     u: &Uncertainty,
     pose: Option<&(Vec<PoseReading>, PoseUncertainty)>,
 ) -> Result<(serde_json::Value, PoseUncertainty, Vec<String>), Box<dyn std::error::Error>> {
-    check_margin(a.scale_margin)?;
-    let which = a.scale_bounds;
+    let margin = a.scale.margin()?;
+    let which = a.scale.scale_bounds;
     let started = std::time::Instant::now();
     let bar = spinner("finding the smallest consistent error bounds");
     let on_trial = |s: f64| bar.set_message(format!("certifying with the error bounds × {s:.4}"));
@@ -134,7 +110,7 @@ fn error_scale(
     let found = found?;
     let seconds = started.elapsed().as_secs_f64();
     let describe = |s: f64| which.describe_pose(&bounds, s);
-    let done = scale_report(&found, which.name(), seconds, a.scale_margin, &describe)?;
+    let done = scale_report(&found, which.name(), seconds, margin, &describe)?;
     done.words.iter().for_each(|w| println!("{w}"));
     Ok((
         done.json,
@@ -167,7 +143,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     if pose.is_some() {
         require_pose_inputs(&arm, &a.files.robot, &pose_u, &a.uncertainty)?;
     }
-    let (scale_json, u, pose, scale_words) = match a.error_scale {
+    let (scale_json, u, pose, scale_words) = match a.scale.error_scale {
         Some(ErrorScaleMode::Auto) => {
             let (json, scaled, words) = error_scale(&a, &arm, &data.readings, &u, pose.as_ref())?;
             let pose = pose.map(|(readings, _)| (readings, scaled));
@@ -180,7 +156,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         tolerance: a.tolerance,
         max_boxes: a.max_boxes,
         max_seconds: a.max_seconds,
-        max_outliers: a.max_outliers,
+        max_outliers: a.outliers.max_outliers,
         lsq: a.lsq || a.report.is_some(),
     };
     // Option errors before any work.
@@ -212,7 +188,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         lines: &data.lines,
     };
     print_identifiability(&run);
-    if a.max_outliers == OutlierBudget::Auto {
+    if a.outliers.max_outliers == OutlierBudget::Auto {
         println!("{}", verdict::auto_outliers(q, run.outcome.status));
     }
     print_outcome(&run, &names, q);
@@ -339,7 +315,7 @@ fn run_settings(a: &Args, q: usize) -> Vec<(String, String)> {
     } else {
         "the paper's fixed point x1 with certified inner bounds (no --hull)".to_string()
     };
-    let outliers = match a.max_outliers {
+    let outliers = match a.outliers.max_outliers {
         OutlierBudget::Fixed(q) => q.to_string(),
         OutlierBudget::Auto => format!("auto: {q}, the smallest number not proved empty"),
     };

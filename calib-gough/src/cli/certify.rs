@@ -19,7 +19,8 @@ use calib_gough::report_page::{self, Certificate, Input, LegEntry};
 use calib_gough::verdict::{self, ConfigurationNames};
 use calib_gough::workspace::read_workspace;
 use calib_gough::PARAMETER_NAMES;
-use calib_pipeline::error_scale::{check_margin, report as scale_report};
+use calib_pipeline::cli::{ErrorScaleArgs, ErrorScaleMode, OutlierArgs};
+use calib_pipeline::error_scale::report as scale_report;
 use calib_pipeline::OutlierBudget;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -48,13 +49,8 @@ pub struct Args {
     /// ratio reached is reported).
     #[arg(long, value_name = "SECONDS")]
     max_seconds: Option<f64>,
-    /// Tolerate up to Q bad configurations per leg: the boxes then contain every parameter vector
-    /// that fits all but at most Q configurations, and the configurations proved to be outliers
-    /// are listed. Costs about C(configurations, Q) certifications per leg. `auto`: per leg, the
-    /// smallest Q that is not proved empty (tries Q = 0, 1, 2, … in turn; every Q below it is
-    /// proved too few).
-    #[arg(long, value_name = "Q|auto", default_value = "0")]
-    max_outliers: OutlierBudget,
+    #[command(flatten)]
+    outliers: OutlierArgs,
     /// Also run the paper's 128-box bisection sweep and report its hull x2.
     #[arg(long)]
     sweep: bool,
@@ -102,22 +98,8 @@ pub struct Args {
     /// projections (ax, ay), (bx, by) and (az, l).
     #[arg(long, value_name = "DIR")]
     plots: Option<PathBuf>,
-    /// `auto`: first find how much error the data need — the smallest factor by which the
-    /// uncertainty file's bounds (--scale-bounds) must be multiplied for every leg's data to be
-    /// consistent, as a proved bracket (s_lo proved inconsistent, s_hi certified consistent;
-    /// within 2% where the kernel decides, the ratio reached is printed and in the JSON's
-    /// `error_scale`) — then certify at s_hi × --scale-margin. Starts from each leg's first-order
-    /// minimax fit; a few fast certifications per leg.
-    #[arg(long, value_name = "auto", value_parser = ["auto"])]
-    error_scale: Option<String>,
-    /// With --error-scale: which bounds to scale: `all`, `pos` (the platform positions'), `len`
-    /// (the leg readings') or `orientation` (axis and angle, or q).
-    #[arg(long, value_name = "WHICH", value_enum, default_value = "all")]
-    scale_bounds: ScaleBounds,
-    /// With --error-scale: certify at s_hi times this factor (>= 1: a margin over the smallest
-    /// consistent bounds).
-    #[arg(long, value_name = "F", default_value_t = 1.0)]
-    scale_margin: f64,
+    #[command(flatten)]
+    scale: ErrorScaleArgs<ScaleBounds>,
 }
 
 /// With --error-scale auto: finds the smallest consistent factor of `u`'s bounds for the `legs`,
@@ -129,8 +111,8 @@ fn error_scale(
     configs: &[calib_gough::measurement::Configuration],
     u: &Uncertainty,
 ) -> Result<(serde_json::Value, Uncertainty, Vec<String>), Box<dyn std::error::Error>> {
-    check_margin(a.scale_margin)?;
-    let which = a.scale_bounds;
+    let margin = a.scale.margin()?;
+    let which = a.scale.scale_bounds;
     let started = Instant::now();
     let bar = indicatif::ProgressBar::new_spinner();
     bar.enable_steady_tick(std::time::Duration::from_millis(120));
@@ -141,7 +123,7 @@ fn error_scale(
     let found = found?;
     let seconds = started.elapsed().as_secs_f64();
     let describe = |s: f64| which.describe(u, s);
-    let done = scale_report(&found, which.name(), seconds, a.scale_margin, &describe)?;
+    let done = scale_report(&found, which.name(), seconds, margin, &describe)?;
     done.words.iter().for_each(|w| println!("{w}"));
     Ok((done.json, which.scale(u, done.certify_at), done.words))
 }
@@ -163,12 +145,12 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         tolerance: a.tolerance,
         max_boxes: a.max_boxes,
         max_seconds: a.max_seconds,
-        max_outliers: a.max_outliers,
+        max_outliers: a.outliers.max_outliers,
     };
     // Option errors before any work (certify_legs checks them again).
     let (legs, _) = options.validate(robot.len(), data.configs.len())?;
-    let (scale_json, u, scale_words) = match a.error_scale {
-        Some(_) => {
+    let (scale_json, u, scale_words) = match a.scale.error_scale {
+        Some(ErrorScaleMode::Auto) => {
             let (json, scaled, words) = error_scale(&a, &robot, &legs, &data.configs, &u)?;
             println!();
             (Some(json), scaled, words)
@@ -199,7 +181,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let mut any_empty = false;
     for (r, found) in results.iter().zip(&findings) {
         any_empty |= r.status == Status::Empty;
-        print_leg(r, &names, a.max_outliers);
+        print_leg(r, &names, a.outliers.max_outliers);
         for s in found {
             println!("identifiability: {s}");
         }
@@ -464,7 +446,7 @@ fn settings(a: &Args) -> Vec<(String, String)> {
         ("outer box".into(), mode),
         (
             "outliers tolerated per leg".into(),
-            match a.max_outliers {
+            match a.outliers.max_outliers {
                 OutlierBudget::Fixed(q) => q.to_string(),
                 OutlierBudget::Auto => "auto: per leg, the smallest number not proved empty".into(),
             },
