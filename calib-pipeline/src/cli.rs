@@ -2,7 +2,6 @@
 //! `gough` and `arm` flatten into their subcommands (`#[command(flatten)]`). A flag added here
 //! appears, with the same name, default, parsing and help, in every command that takes the group.
 
-use crate::error_scale::check_margin;
 use crate::OutlierBudget;
 
 /// `--error-scale`'s modes.
@@ -39,19 +38,9 @@ where
     pub scale_bounds: B,
     /// With --error-scale: certify at s_hi times this factor (>= 1: a margin over the smallest
     /// consistent bounds).
+    // Checked by `crate::error_scale::check_margin` when --error-scale is given.
     #[arg(long, value_name = "F", default_value_t = 1.0)]
     pub scale_margin: f64,
-}
-
-impl<B> ErrorScaleArgs<B>
-where
-    B: clap::ValueEnum + Clone + Send + Sync + 'static,
-{
-    /// `--scale-margin`, checked (a factor >= 1).
-    pub fn margin(&self) -> Result<f64, String> {
-        check_margin(self.scale_margin)?;
-        Ok(self.scale_margin)
-    }
 }
 
 /// `--max-outliers`: how many bad configurations a certification tolerates.

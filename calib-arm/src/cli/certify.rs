@@ -13,7 +13,7 @@ use calib_arm::report_page::ArmCertificate;
 use calib_arm::simulate::Uncertainty;
 use calib_core::Status;
 use calib_pipeline::cli::{ErrorScaleArgs, ErrorScaleMode, OutlierArgs};
-use calib_pipeline::error_scale::report as scale_report;
+use calib_pipeline::error_scale::{check_margin, report as scale_report};
 use calib_pipeline::html::{command_line, now, Input};
 use calib_pipeline::verdict::{self, ConfigurationNames};
 use calib_pipeline::{read_text, write_atomically};
@@ -91,7 +91,8 @@ fn error_scale(
     u: &Uncertainty,
     pose: Option<&(Vec<PoseReading>, PoseUncertainty)>,
 ) -> Result<(serde_json::Value, PoseUncertainty, Vec<String>), Box<dyn std::error::Error>> {
-    let margin = a.scale.margin()?;
+    let margin = a.scale.scale_margin;
+    check_margin(margin)?;
     let which = a.scale.scale_bounds;
     let started = std::time::Instant::now();
     let bar = spinner("finding the smallest consistent error bounds");

@@ -20,7 +20,7 @@ use calib_gough::verdict::{self, ConfigurationNames};
 use calib_gough::workspace::read_workspace;
 use calib_gough::PARAMETER_NAMES;
 use calib_pipeline::cli::{ErrorScaleArgs, ErrorScaleMode, OutlierArgs};
-use calib_pipeline::error_scale::report as scale_report;
+use calib_pipeline::error_scale::{check_margin, report as scale_report};
 use calib_pipeline::OutlierBudget;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -111,7 +111,8 @@ fn error_scale(
     configs: &[calib_gough::measurement::Configuration],
     u: &Uncertainty,
 ) -> Result<(serde_json::Value, Uncertainty, Vec<String>), Box<dyn std::error::Error>> {
-    let margin = a.scale.margin()?;
+    let margin = a.scale.scale_margin;
+    check_margin(margin)?;
     let which = a.scale.scale_bounds;
     let started = Instant::now();
     let bar = indicatif::ProgressBar::new_spinner();
