@@ -197,6 +197,28 @@ pub fn parse_robot(file: &Path, text: &str) -> Result<Arm, DataError> {
     parse_robot_file(file, text).map(|(arm, _)| arm)
 }
 
+/// The half-widths of `r` (one for all, or one each), checked: finite and >= 0.
+fn radii<const N: usize>(
+    file: &Path,
+    text: &str,
+    r: &Spanned<Radius<N>>,
+    field: &str,
+) -> Result<[f64; N], DataError> {
+    let line = Some(line_at(text, r.span().start));
+    let each = r.get_ref().each();
+    for v in each {
+        if finite_number(file, line, field, v)? < 0.0 {
+            return Err(DataError::new(
+                file,
+                line,
+                Some(field),
+                format!("{v}: expected half-widths >= 0 (0 fixes a parameter)"),
+            ));
+        }
+    }
+    Ok(each)
+}
+
 /// [`parse_robot`], also returning the parsed tables (for the optional ones: the certified set,
 /// the least-squares mark).
 fn parse_robot_file(file: &Path, text: &str) -> Result<(Arm, RobotFile), DataError> {
@@ -216,26 +238,6 @@ fn parse_robot_file(file: &Path, text: &str) -> Result<(Arm, RobotFile), DataErr
         }
         Ok(x)
     };
-    fn radii<const N: usize>(
-        file: &Path,
-        text: &str,
-        r: &Spanned<Radius<N>>,
-        field: &str,
-    ) -> Result<[f64; N], DataError> {
-        let line = Some(line_at(text, r.span().start));
-        let each = r.get_ref().each();
-        for v in each {
-            if finite_number(file, line, field, v)? < 0.0 {
-                return Err(DataError::new(
-                    file,
-                    line,
-                    Some(field),
-                    format!("{v}: expected half-widths >= 0 (0 fixes a parameter)"),
-                ));
-            }
-        }
-        Ok(each)
-    }
     let n = parsed.joint.len();
     if !JOINTS.contains(&n) {
         return Err(DataError::new(

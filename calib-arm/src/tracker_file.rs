@@ -209,21 +209,7 @@ pub fn parse_tracker_measurements(
             "no configurations; expected one row per measured configuration",
         ));
     }
-    let (first, last) = columns.rows.map_or((1, None), |r| {
-        (r.first, r.last.map(|l| l.min(table.rows.len())))
-    });
-    let end = last.unwrap_or(table.rows.len());
-    if first > end {
-        return Err(DataError::new(
-            file,
-            None,
-            Some("rows"),
-            format!(
-                "no configurations in rows {first}..{end}; the file has {} data rows",
-                table.rows.len()
-            ),
-        ));
-    }
+    let (first, end) = chosen_rows(file, columns.rows, table.rows.len())?;
     let mut out = Measurements {
         readings: Vec::with_capacity(end + 1 - first),
         lines: Vec::with_capacity(end + 1 - first),
@@ -241,21 +227,7 @@ pub fn parse_tracker_measurements(
         let mut joints_deg = Vec::with_capacity(joints);
         for (v, name) in row[..joints].iter().zip(&columns.joints) {
             largest_joint = largest_joint.max(v.abs());
-            let deg = match columns.joint_unit {
-                JointUnit::Deg => Interval::point(*v),
-                JointUnit::Rad => {
-                    if v.abs() > MAX_RADIANS {
-                        return Err(bad(
-                            name,
-                            format!(
-                                "{v} read as radians is more than a turn: it looks like degrees \
-                                 (use --joint-unit deg)"
-                            ),
-                        ));
-                    }
-                    rad_to_deg(Interval::point(*v))
-                }
-            };
+            let deg = joint_deg(*v, columns.joint_unit).map_err(|e| bad(name, e))?;
             joints_deg.push(out.slack.keep_joint(deg));
         }
         let mut point = [0.0; 3];
@@ -265,21 +237,7 @@ pub fn parse_tracker_measurements(
             .zip(&columns.point)
         {
             largest_coordinate = largest_coordinate.max(v.abs());
-            let mm = match columns.length_unit {
-                LengthUnit::Mm => Interval::point(*v),
-                LengthUnit::M => {
-                    if v.abs() > MAX_METRES {
-                        return Err(bad(
-                            name,
-                            format!(
-                                "{v} read as metres is more than {MAX_METRES} m: it looks like \
-                                 millimetres (use --length-unit mm)"
-                            ),
-                        ));
-                    }
-                    Interval::point(*v) * Interval::point(1000.0)
-                }
-            };
+            let mm = coordinate_mm(*v, columns.length_unit).map_err(|e| bad(name, e))?;
             *p = out.slack.keep_point(mm);
         }
         if let (Some((names, convention)), Some(orientations)) =
@@ -287,35 +245,90 @@ pub fn parse_tracker_measurements(
         {
             let mut angles = [0.0; 3];
             for ((e, v), name) in angles.iter_mut().zip(&row[joints + 3..]).zip(names) {
-                *e = match convention {
-                    OrientationConvention::EulerXyzDeg => {
-                        if v.abs() > 360.0 {
-                            return Err(bad(
-                                name,
-                                format!("{v}: an Euler angle in degrees within ±360 expected"),
-                            ));
-                        }
-                        *v
-                    }
-                    OrientationConvention::EulerXyzRad => {
-                        if v.abs() > MAX_RADIANS {
-                            return Err(bad(
-                                name,
-                                format!(
-                                    "{v} read as radians is more than a turn: it looks like \
-                                     degrees (use --orientation-convention euler-xyz-deg)"
-                                ),
-                            ));
-                        }
-                        out.slack.keep_orientation(rad_to_deg(Interval::point(*v)))
-                    }
-                };
+                *e = orientation_deg(*v, *convention, &mut out.slack).map_err(|e| bad(name, e))?;
             }
             orientations.push(angles);
         }
         out.readings.push(Reading { joints_deg, point });
         out.lines.push(line);
     }
+    unit_notes(file, columns, largest_joint, largest_coordinate, &mut out);
+    Ok(out)
+}
+
+/// The data rows `--rows` chooses, 1-based and inclusive, within the file's `rows`.
+fn chosen_rows(
+    file: &Path,
+    chosen: Option<RowRange>,
+    rows: usize,
+) -> Result<(usize, usize), DataError> {
+    let (first, last) = chosen.map_or((1, None), |r| (r.first, r.last.map(|l| l.min(rows))));
+    let end = last.unwrap_or(rows);
+    if first > end {
+        return Err(DataError::new(
+            file,
+            None,
+            Some("rows"),
+            format!("no configurations in rows {first}..{end}; the file has {rows} data rows"),
+        ));
+    }
+    Ok((first, end))
+}
+
+/// A joint reading `v` in `unit`, in degrees; the error's message when it looks like another unit.
+fn joint_deg(v: f64, unit: JointUnit) -> Result<Interval, String> {
+    match unit {
+        JointUnit::Deg => Ok(Interval::point(v)),
+        JointUnit::Rad if v.abs() > MAX_RADIANS => Err(format!(
+            "{v} read as radians is more than a turn: it looks like degrees \
+             (use --joint-unit deg)"
+        )),
+        JointUnit::Rad => Ok(rad_to_deg(Interval::point(v))),
+    }
+}
+
+/// A coordinate `v` in `unit`, in mm; the error's message when it looks like another unit.
+fn coordinate_mm(v: f64, unit: LengthUnit) -> Result<Interval, String> {
+    match unit {
+        LengthUnit::Mm => Ok(Interval::point(v)),
+        LengthUnit::M if v.abs() > MAX_METRES => Err(format!(
+            "{v} read as metres is more than {MAX_METRES} m: it looks like \
+             millimetres (use --length-unit mm)"
+        )),
+        LengthUnit::M => Ok(Interval::point(v) * Interval::point(1000.0)),
+    }
+}
+
+/// An Euler angle `v` written in `convention`, in degrees (a conversion's rounding kept in
+/// `slack`); the error's message when it is out of range.
+fn orientation_deg(
+    v: f64,
+    convention: OrientationConvention,
+    slack: &mut Slack,
+) -> Result<f64, String> {
+    match convention {
+        OrientationConvention::EulerXyzDeg if v.abs() > 360.0 => Err(format!(
+            "{v}: an Euler angle in degrees within ±360 expected"
+        )),
+        OrientationConvention::EulerXyzDeg => Ok(v),
+        OrientationConvention::EulerXyzRad if v.abs() > MAX_RADIANS => Err(format!(
+            "{v} read as radians is more than a turn: it looks like \
+             degrees (use --orientation-convention euler-xyz-deg)"
+        )),
+        OrientationConvention::EulerXyzRad => {
+            Ok(slack.keep_orientation(rad_to_deg(Interval::point(v))))
+        }
+    }
+}
+
+/// The notes when every value is small enough to be in another unit than the one given.
+fn unit_notes(
+    file: &Path,
+    columns: &MeasurementColumns,
+    largest_joint: f64,
+    largest_coordinate: f64,
+    out: &mut Measurements,
+) {
     if columns.length_unit == LengthUnit::Mm
         && largest_coordinate < MIN_MILLIMETRES
         && out.readings.len() > 3
@@ -336,7 +349,6 @@ pub fn parse_tracker_measurements(
             file.display()
         ));
     }
-    Ok(out)
 }
 
 /// The largest rounding error of the unit conversions (0 when nothing was converted).

@@ -122,6 +122,13 @@ impl Certificate<'_> {
                  are wrong for it."
             }
         );
+        self.findings(h);
+        self.leg_table(h);
+    }
+
+    /// The summary's list: the widest parameter, empty legs and outliers, boxes reaching x0,
+    /// refuted least-squares solutions, the time.
+    fn findings(&self, h: &mut String) {
         h.push_str("<ul>\n");
         if let Some((leg, j, w)) = self.widest() {
             let inner = leg
@@ -207,6 +214,10 @@ impl Certificate<'_> {
             );
         }
         let _ = writeln!(h, "<li>Computed in {:.2} s.</li>\n</ul>", self.seconds);
+    }
+
+    /// The summary's table: one row per leg.
+    fn leg_table(&self, h: &mut String) {
         h.push_str("<table>\n<tr><th>leg</th><th>verdict</th><th>widest parameter (outer)</th><th>largest outer/inner width ratio</th><th>boxes contracted</th><th>seconds</th></tr>\n");
         for leg in &self.legs {
             let r = leg.result;

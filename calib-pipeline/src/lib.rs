@@ -10,6 +10,7 @@
 
 pub mod accuracy;
 pub mod calibrated;
+pub mod cli;
 pub mod design;
 mod error;
 pub mod error_scale;

@@ -126,53 +126,8 @@ impl StoredSet {
         fill_x: &[Interval; NX],
         fill_m: &[Interval; NM],
     ) -> Result<Restored<NX, NM>, (String, String)> {
-        let interval = |field: String, [lo, hi]: [f64; 2]| -> Result<Interval, (String, String)> {
-            if lo.is_finite() && hi.is_finite() && lo <= hi {
-                Ok(Interval::new(lo, hi))
-            } else {
-                Err((
-                    field,
-                    format!("expected [lo, hi] with finite lo <= hi, found [{lo}, {hi}]"),
-                ))
-            }
-        };
-        let row =
-            |field: &str, k: usize, r: &[[f64; 2]], n: usize| -> Result<(), (String, String)> {
-                if r.len() == n {
-                    Ok(())
-                } else {
-                    Err((
-                        format!("{field}[{}]", k + 1),
-                        format!("expected {n} intervals, found {}", r.len()),
-                    ))
-                }
-            };
-        let mut measurements = Vec::with_capacity(self.measurements.len());
-        for (k, r) in self.measurements.iter().enumerate() {
-            row("measurements", k, r, quantities.len())?;
-            let mut m = *fill_m;
-            for (&i, &v) in quantities.iter().zip(r) {
-                m[i] = interval(format!("measurements[{}]", k + 1), v)?;
-            }
-            measurements.push(m);
-        }
-        if self.dropped.is_empty() {
-            return Err((
-                "dropped".into(),
-                "expected at least one subset (`[[]]`)".into(),
-            ));
-        }
-        for (s, d) in self.dropped.iter().enumerate() {
-            if d.windows(2).any(|w| w[0] >= w[1]) || d.iter().any(|&k| k >= measurements.len()) {
-                return Err((
-                    format!("dropped[{}]", s + 1),
-                    format!(
-                        "expected sorted configuration indices below {}",
-                        measurements.len()
-                    ),
-                ));
-            }
-        }
+        let measurements = placed("measurements", &self.measurements, quantities, fill_m)?;
+        self.check_dropped(measurements.len())?;
         if self.subsets.len() != self.boxes.len() {
             return Err((
                 "subsets".into(),
@@ -183,15 +138,7 @@ impl StoredSet {
                 ),
             ));
         }
-        let mut boxes = Vec::with_capacity(self.boxes.len());
-        for (k, r) in self.boxes.iter().enumerate() {
-            row("boxes", k, r, params.len())?;
-            let mut b = *fill_x;
-            for (&j, &v) in params.iter().zip(r) {
-                b[j] = interval(format!("boxes[{}]", k + 1), v)?;
-            }
-            boxes.push(b);
-        }
+        let boxes = placed("boxes", &self.boxes, params, fill_x)?;
         if let Some(bad) = self.subsets.iter().position(|&s| s >= self.dropped.len()) {
             return Err((
                 format!("subsets[{}]", bad + 1),
@@ -222,6 +169,57 @@ impl StoredSet {
             points,
         })
     }
+
+    /// At least one subset, each a sorted list of configuration indices below `configurations`.
+    fn check_dropped(&self, configurations: usize) -> Result<(), (String, String)> {
+        if self.dropped.is_empty() {
+            return Err((
+                "dropped".into(),
+                "expected at least one subset (`[[]]`)".into(),
+            ));
+        }
+        for (s, d) in self.dropped.iter().enumerate() {
+            if d.windows(2).any(|w| w[0] >= w[1]) || d.iter().any(|&k| k >= configurations) {
+                return Err((
+                    format!("dropped[{}]", s + 1),
+                    format!("expected sorted configuration indices below {configurations}"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The rows of `field`, each of `positions.len()` intervals placed at those positions of `fill`;
+/// errors name the row.
+fn placed<const N: usize>(
+    field: &str,
+    rows: &[Vec<[f64; 2]>],
+    positions: &[usize],
+    fill: &[Interval; N],
+) -> Result<Vec<[Interval; N]>, (String, String)> {
+    let mut out = Vec::with_capacity(rows.len());
+    for (k, r) in rows.iter().enumerate() {
+        let name = format!("{field}[{}]", k + 1);
+        if r.len() != positions.len() {
+            return Err((
+                name,
+                format!("expected {} intervals, found {}", positions.len(), r.len()),
+            ));
+        }
+        let mut b = *fill;
+        for (&i, &[lo, hi]) in positions.iter().zip(r) {
+            if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+                return Err((
+                    name,
+                    format!("expected [lo, hi] with finite lo <= hi, found [{lo}, {hi}]"),
+                ));
+            }
+            b[i] = Interval::new(lo, hi);
+        }
+        out.push(b);
+    }
+    Ok(out)
 }
 
 /// A [`StoredSet`] read back in the model's dimensions, ready for [`CertifiedSet::new`].

@@ -12,12 +12,13 @@ use calib_arm::pose::{certify_pose, require_pose_inputs, PoseReading, PoseUncert
 use calib_arm::report_page::ArmCertificate;
 use calib_arm::simulate::Uncertainty;
 use calib_core::Status;
+use calib_pipeline::cli::{ErrorScaleArgs, ErrorScaleMode, OutlierArgs};
 use calib_pipeline::error_scale::{check_margin, report as scale_report};
 use calib_pipeline::html::{command_line, now, Input};
 use calib_pipeline::verdict::{self, ConfigurationNames};
 use calib_pipeline::{read_text, write_atomically};
 use calib_pipeline::{Depth, OutlierBudget};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -40,12 +41,8 @@ pub struct Args {
     /// reached is reported).
     #[arg(long, value_name = "SECONDS")]
     max_seconds: Option<f64>,
-    /// Tolerate up to Q bad configurations: the boxes then contain every parameter vector that
-    /// fits all but at most Q configurations, and the configurations proved to be outliers are
-    /// listed. Costs about C(configurations, Q) certifications. `auto`: the smallest Q that is not
-    /// proved empty (tries Q = 0, 1, 2, … in turn; every Q below it is proved too few).
-    #[arg(long, value_name = "Q|auto", default_value = "0")]
-    max_outliers: OutlierBudget,
+    #[command(flatten)]
+    outliers: OutlierArgs,
     /// Also fit by least squares and show where the fit stands against the certified box.
     #[arg(long)]
     lsq: bool,
@@ -80,29 +77,8 @@ pub struct Args {
     /// `centre` (0.448 mm, 1.96 mm), and than least squares within the priors (0.374 mm).
     #[arg(long, value_name = "lsq|centre", default_value = "lsq", value_parser = parse_choice)]
     calibrated_point: PointChoice,
-    /// `auto`: first find how much error the data need — the smallest factor by which the
-    /// uncertainty file's bounds (--scale-bounds) must be multiplied for the data to be
-    /// consistent, as a proved bracket (s_lo proved inconsistent, s_hi certified consistent;
-    /// within 2% where the kernel decides, else the ratio reached and the first-order minimax
-    /// estimate are printed) — then certify at s_hi × --scale-margin. A few certifications of
-    /// this size.
-    #[arg(long, value_name = "auto", value_enum)]
-    error_scale: Option<ErrorScaleMode>,
-    /// With --error-scale: which bounds to scale: `all`, `pos` (the tracker's), `joint_deg`
-    /// (the encoders') or, with --orientation-columns, `orient_deg` (the orientations').
-    #[arg(long, value_name = "WHICH", value_enum, default_value = "all")]
-    scale_bounds: ScaleBounds,
-    /// With --error-scale: certify at s_hi times this factor (>= 1: a margin over the smallest
-    /// consistent bounds).
-    #[arg(long, value_name = "F", default_value_t = 1.0)]
-    scale_margin: f64,
-}
-
-/// `--error-scale`'s modes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-enum ErrorScaleMode {
-    /// Find the smallest consistent factor.
-    Auto,
+    #[command(flatten)]
+    scale: ErrorScaleArgs<ScaleBounds>,
 }
 
 /// Finds the smallest consistent scale of `u`'s bounds (and, for 6-DoF data `pose`, of their
@@ -115,8 +91,9 @@ fn error_scale(
     u: &Uncertainty,
     pose: Option<&(Vec<PoseReading>, PoseUncertainty)>,
 ) -> Result<(serde_json::Value, PoseUncertainty, Vec<String>), Box<dyn std::error::Error>> {
-    check_margin(a.scale_margin)?;
-    let which = a.scale_bounds;
+    let margin = a.scale.scale_margin;
+    check_margin(margin)?;
+    let which = a.scale.scale_bounds;
     let started = std::time::Instant::now();
     let bar = spinner("finding the smallest consistent error bounds");
     let on_trial = |s: f64| bar.set_message(format!("certifying with the error bounds × {s:.4}"));
@@ -134,7 +111,7 @@ fn error_scale(
     let found = found?;
     let seconds = started.elapsed().as_secs_f64();
     let describe = |s: f64| which.describe_pose(&bounds, s);
-    let done = scale_report(&found, which.name(), seconds, a.scale_margin, &describe)?;
+    let done = scale_report(&found, which.name(), seconds, margin, &describe)?;
     done.words.iter().for_each(|w| println!("{w}"));
     Ok((
         done.json,
@@ -152,53 +129,22 @@ fn parse_choice(s: &str) -> Result<PointChoice, String> {
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
-    // Each file is read once: what is hashed for the certificate is what is parsed.
-    let texts = [&a.files.robot, &a.files.measurements, &a.uncertainty].map(|p| read_text(p));
-    let [robot_text, data_text, u_text] = texts;
-    let (robot_text, data_text, u_text) = (robot_text?, data_text?, u_text?);
-    let arm = parse_robot(&a.files.robot, &robot_text)?;
-    let data = a
-        .files
-        .columns
-        .parse(&a.files.measurements, &data_text, arm.joints.len())?;
-    let pose_u = parse_pose_uncertainty(&a.uncertainty, &u_text)?;
-    let u = data.slack.widen(&pose_u.position);
-    let pose = data.pose_readings(&pose_u);
-    if pose.is_some() {
-        require_pose_inputs(&arm, &a.files.robot, &pose_u, &a.uncertainty)?;
-    }
-    let (scale_json, u, pose, scale_words) = match a.error_scale {
+    let mut input = Files::read(&a)?;
+    let pose = input.pose.take();
+    let (arm, data) = (&input.arm, &input.data);
+    let (scale_json, u, pose, scale_words) = match a.scale.error_scale {
         Some(ErrorScaleMode::Auto) => {
-            let (json, scaled, words) = error_scale(&a, &arm, &data.readings, &u, pose.as_ref())?;
+            let (json, scaled, words) =
+                error_scale(&a, arm, &data.readings, &input.u, pose.as_ref())?;
             let pose = pose.map(|(readings, _)| (readings, scaled));
             (Some(json), scaled.position, pose, words)
         }
-        None => (None, u, pose, Vec::new()),
+        None => (None, input.u, pose, Vec::new()),
     };
-    let request = CertifyRequest {
-        depth: if a.hull { Depth::Hull } else { Depth::Fast },
-        tolerance: a.tolerance,
-        max_boxes: a.max_boxes,
-        max_seconds: a.max_seconds,
-        max_outliers: a.max_outliers,
-        lsq: a.lsq || a.report.is_some(),
-    };
+    let request = a.request();
     // Option errors before any work.
     request.settings(data.readings.len())?;
-    let bar = spinner(&format!(
-        "certifying {} parameters on {} configurations",
-        arm.free().iter().filter(|f| **f).count()
-            + pose.as_ref().map_or(0, |_| {
-                arm.tool_rotation
-                    .map_or(0, |t| t.radius.iter().filter(|r| **r > 0.0).count())
-            }),
-        data.readings.len()
-    ));
-    let (q, run) = match &pose {
-        Some((readings, bounds)) => certify_pose(&arm, readings, bounds, &request),
-        None => certify_request(&arm, &data.readings, &u, &request),
-    }?;
-    bar.finish_and_clear();
+    let (q, run) = certify_with_spinner(arm, &data.readings, &u, pose.as_ref(), &request)?;
     if let Some((_, bounds)) = &pose {
         println!(
             "6-DoF: six equations per configuration (position and orientation), orientations \
@@ -212,7 +158,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         lines: &data.lines,
     };
     print_identifiability(&run);
-    if a.max_outliers == OutlierBudget::Auto {
+    if a.outliers.max_outliers == OutlierBudget::Auto {
         println!("{}", verdict::auto_outliers(q, run.outcome.status));
     }
     print_outcome(&run, &names, q);
@@ -221,74 +167,14 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         extra.insert("error_scale".into(), scale);
     }
     if let Some(path) = &a.write_calibrated {
-        let joints: Vec<Vec<f64>> = data.readings.iter().map(|r| r.joints_deg.clone()).collect();
-        let calibrated = calibrated_arm(&arm, &run, &joints, a.calibrated_point)?;
-        let (six, set) = if pose.is_some() {
-            (
-                "\n#   (positions and orientations: the tool frame's rotation is calibrated too)",
-                "\n#   (positions' equations over the 6-DoF certification's boxes)",
-            )
-        } else {
-            ("", "")
-        };
-        let spare = if calibrated.point.margin > 0.0 {
-            format!(
-                " with at least {:.0}% of every error bound to spare",
-                100.0 * calibrated.point.margin
-            )
-        } else {
-            String::new()
-        };
-        let chosen = match (a.calibrated_point, calibrated.point.prior_weight) {
-            (PointChoice::Centre, _) => "towards the centre of the tool points it predicts".into(),
-            (PointChoice::LeastSquares, Some(w)) => format!(
-                "towards the least-squares fit within the set, the prior box weighted {w} by \
-                 {}-fold cross-validation",
-                calib_core::CROSS_VALIDATION_FOLDS
-            ),
-            (PointChoice::LeastSquares, None) => "towards the least-squares fit".to_string(),
-        };
-        let comment = format!(
-            "# calibrated by certicalib {} from {} and {}:\n\
-             # the parameters: a vector proved consistent with every measurement{spare}{six},\n\
-             # chosen {};\n\
-             # radius: a box around it that contains the certified outer box;\n\
-             # [certified_set]: the certified set `arm accuracy` and `arm predict` work over{set}\n",
-            calib_pipeline::html::VERSION,
-            a.files.robot.display(),
-            a.files.measurements.display(),
-            chosen
-        );
-        write_atomically(path, &calibrated_toml(&calibrated, &comment))
-            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-        println!(
-            "calibrated robot written to {}: its parameters fit every measurement{spare}, chosen \
-             {chosen}",
-            path.display()
-        );
-        let point = &calibrated.point;
-        extra.insert(
-            "calibrated".into(),
-            serde_json::json!({
-                "file": path.display().to_string(),
-                "rule": match a.calibrated_point {
-                    PointChoice::Centre => "centre",
-                    PointChoice::LeastSquares => "lsq",
-                },
-                "prior_weight": point.prior_weight,
-                "margin": point.margin,
-                "reached": point.reached,
-            }),
-        );
+        let calibrated = write_calibrated(&a, path, &input, &run, pose.is_some())?;
+        extra.insert("calibrated".into(), calibrated);
     }
     if let Some(path) = &a.json {
         write_json(path, &run, &names, q, extra)?;
         println!("wrote {}", path.display());
     }
     if let Some(path) = &a.report {
-        let input = |role: &str, file: &PathBuf, text: &str| {
-            Input::new(role, &file.display().to_string(), text.as_bytes())
-        };
         let page = ArmCertificate {
             title: format!(
                 "{}-axis arm, {} configurations{}",
@@ -302,11 +188,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             ),
             command: command_line(),
             date: now(),
-            inputs: vec![
-                input("robot geometry", &a.files.robot, &robot_text),
-                input("measurements", &a.files.measurements, &data_text),
-                input("error bounds", &a.uncertainty, &u_text),
-            ],
+            inputs: input.hashed(&a),
             uncertainty: u,
             settings: run_settings(&a, q),
             run: &run,
@@ -324,6 +206,172 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     })
 }
 
+impl Args {
+    /// The certification's request.
+    fn request(&self) -> CertifyRequest {
+        CertifyRequest {
+            depth: if self.hull { Depth::Hull } else { Depth::Fast },
+            tolerance: self.tolerance,
+            max_boxes: self.max_boxes,
+            max_seconds: self.max_seconds,
+            max_outliers: self.outliers.max_outliers,
+            lsq: self.lsq || self.report.is_some(),
+        }
+    }
+}
+
+/// The input files, each read once: what is hashed for the certificate is what is parsed.
+struct Files {
+    robot_text: String,
+    data_text: String,
+    u_text: String,
+    arm: calib_arm::Arm,
+    data: calib_arm::files::Measurements,
+    /// The positions' error bounds, widened by the file's slack.
+    u: Uncertainty,
+    /// With orientation columns: the 6-DoF readings and their error bounds (taken by `run`).
+    pose: Option<(Vec<PoseReading>, PoseUncertainty)>,
+}
+
+impl Files {
+    /// Reads and checks --robot, --measurements and --uncertainty.
+    fn read(a: &Args) -> Result<Files, Box<dyn std::error::Error>> {
+        let texts = [&a.files.robot, &a.files.measurements, &a.uncertainty].map(|p| read_text(p));
+        let [robot_text, data_text, u_text] = texts;
+        let (robot_text, data_text, u_text) = (robot_text?, data_text?, u_text?);
+        let arm = parse_robot(&a.files.robot, &robot_text)?;
+        let data = a
+            .files
+            .columns
+            .parse(&a.files.measurements, &data_text, arm.joints.len())?;
+        let pose_u = parse_pose_uncertainty(&a.uncertainty, &u_text)?;
+        let u = data.slack.widen(&pose_u.position);
+        let pose = data.pose_readings(&pose_u);
+        if pose.is_some() {
+            require_pose_inputs(&arm, &a.files.robot, &pose_u, &a.uncertainty)?;
+        }
+        Ok(Files {
+            robot_text,
+            data_text,
+            u_text,
+            arm,
+            data,
+            u,
+            pose,
+        })
+    }
+
+    /// The input files with their SHA-256, for the certificate.
+    fn hashed(&self, a: &Args) -> Vec<Input> {
+        let input = |role: &str, file: &PathBuf, text: &str| {
+            Input::new(role, &file.display().to_string(), text.as_bytes())
+        };
+        vec![
+            input("robot geometry", &a.files.robot, &self.robot_text),
+            input("measurements", &a.files.measurements, &self.data_text),
+            input("error bounds", &a.uncertainty, &self.u_text),
+        ]
+    }
+}
+
+/// Certifies with a spinner: positions only, or positions and orientations (`pose`); the
+/// outliers tolerated and the run.
+fn certify_with_spinner(
+    arm: &calib_arm::Arm,
+    readings: &[calib_arm::simulate::Reading],
+    u: &Uncertainty,
+    pose: Option<&(Vec<PoseReading>, PoseUncertainty)>,
+    request: &CertifyRequest,
+) -> Result<(usize, calib_arm::certification::ArmRun), Box<dyn std::error::Error>> {
+    let bar = spinner(&format!(
+        "certifying {} parameters on {} configurations",
+        arm.free().iter().filter(|f| **f).count()
+            + pose.map_or(0, |_| {
+                arm.tool_rotation
+                    .map_or(0, |t| t.radius.iter().filter(|r| **r > 0.0).count())
+            }),
+        readings.len()
+    ));
+    let certified = match pose {
+        Some((readings, bounds)) => certify_pose(arm, readings, bounds, request),
+        None => certify_request(arm, readings, u, request),
+    }?;
+    bar.finish_and_clear();
+    Ok(certified)
+}
+
+/// --write-calibrated: the calibrated robot file, with a comment saying where it comes from; its
+/// JSON entry (`calibrated`).
+fn write_calibrated(
+    a: &Args,
+    path: &Path,
+    input: &Files,
+    run: &calib_arm::certification::ArmRun,
+    six_dof: bool,
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    let joints: Vec<Vec<f64>> = input
+        .data
+        .readings
+        .iter()
+        .map(|r| r.joints_deg.clone())
+        .collect();
+    let calibrated = calibrated_arm(&input.arm, run, &joints, a.calibrated_point)?;
+    let (six, set) = if six_dof {
+        (
+            "\n#   (positions and orientations: the tool frame's rotation is calibrated too)",
+            "\n#   (positions' equations over the 6-DoF certification's boxes)",
+        )
+    } else {
+        ("", "")
+    };
+    let spare = if calibrated.point.margin > 0.0 {
+        format!(
+            " with at least {:.0}% of every error bound to spare",
+            100.0 * calibrated.point.margin
+        )
+    } else {
+        String::new()
+    };
+    let chosen = match (a.calibrated_point, calibrated.point.prior_weight) {
+        (PointChoice::Centre, _) => "towards the centre of the tool points it predicts".into(),
+        (PointChoice::LeastSquares, Some(w)) => format!(
+            "towards the least-squares fit within the set, the prior box weighted {w} by \
+             {}-fold cross-validation",
+            calib_core::CROSS_VALIDATION_FOLDS
+        ),
+        (PointChoice::LeastSquares, None) => "towards the least-squares fit".to_string(),
+    };
+    let comment = format!(
+        "# calibrated by certicalib {} from {} and {}:\n\
+         # the parameters: a vector proved consistent with every measurement{spare}{six},\n\
+         # chosen {};\n\
+         # radius: a box around it that contains the certified outer box;\n\
+         # [certified_set]: the certified set `arm accuracy` and `arm predict` work over{set}\n",
+        calib_pipeline::html::VERSION,
+        a.files.robot.display(),
+        a.files.measurements.display(),
+        chosen
+    );
+    write_atomically(path, &calibrated_toml(&calibrated, &comment))
+        .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    println!(
+        "calibrated robot written to {}: its parameters fit every measurement{spare}, chosen \
+         {chosen}",
+        path.display()
+    );
+    let point = &calibrated.point;
+    Ok(serde_json::json!({
+        "file": path.display().to_string(),
+        "rule": match a.calibrated_point {
+            PointChoice::Centre => "centre",
+            PointChoice::LeastSquares => "lsq",
+        },
+        "prior_weight": point.prior_weight,
+        "margin": point.margin,
+        "reached": point.reached,
+    }))
+}
+
 /// The settings of the run, in words, for the certificate (`q`: the outliers tolerated).
 fn run_settings(a: &Args, q: usize) -> Vec<(String, String)> {
     let mode = if a.hull {
@@ -339,7 +387,7 @@ fn run_settings(a: &Args, q: usize) -> Vec<(String, String)> {
     } else {
         "the paper's fixed point x1 with certified inner bounds (no --hull)".to_string()
     };
-    let outliers = match a.max_outliers {
+    let outliers = match a.outliers.max_outliers {
         OutlierBudget::Fixed(q) => q.to_string(),
         OutlierBudget::Auto => format!("auto: {q}, the smallest number not proved empty"),
     };

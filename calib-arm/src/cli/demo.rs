@@ -1,11 +1,13 @@
 //! `arm demo`: the main job on the embedded default.
 
 use super::output::{print_identifiability, print_outcome, spinner, write_certificate, write_json};
-use calib_arm::builtin_arm;
+use calib_arm::certification::ArmRun;
 use calib_arm::certification::{arm_settings, certify_arm, RunOptions};
 use calib_arm::report_page::ArmCertificate;
+use calib_arm::simulate::Simulation;
 use calib_arm::simulate::{simulate, Uncertainty};
 use calib_arm::write::{measurements_csv, robot_toml, uncertainty_toml, write_data_set};
+use calib_arm::{builtin_arm, Arm};
 use calib_pipeline::html::{command_line, now, Input};
 use calib_pipeline::verdict::ConfigurationNames;
 use calib_pipeline::Depth;
@@ -69,17 +71,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     };
     print_identifiability(&run);
     print_outcome(&run, &names, 0);
-    let free = arm.free();
-    if let Some(outer) = &run.outcome.outer {
-        let inside = (0..outer.len())
-            .filter(|&j| free[j])
-            .filter(|&j| outer[j].contains(sim.truth[j]))
-            .count();
-        println!(
-            "truth (known in a simulation): inside the outer box in {inside} of {} free parameters",
-            free.iter().filter(|f| **f).count()
-        );
-    }
+    print_truth(&arm, &sim, &run);
     if let Some(dir) = &a.out {
         let path = dir.join("report.json");
         write_json(&path, &run, &names, 0, serde_json::Map::new())?;
@@ -92,53 +84,79 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         .chain(a.report.clone())
         .collect();
     if !pages.is_empty() {
-        let joints = arm.joints.len();
-        let generated = |what: &str| format!("{what} (built-in arm, simulated, seed {})", a.seed);
-        let page = ArmCertificate {
-            title: format!(
-                "built-in {joints}-axis arm, {} simulated configurations",
-                a.configs
-            ),
-            command: command_line(),
-            date: now(),
-            inputs: vec![
-                Input::new(
-                    "robot geometry",
-                    &generated("robot.toml"),
-                    robot_toml(&arm).as_bytes(),
-                ),
-                Input::new(
-                    "measurements",
-                    &generated("measurements.csv"),
-                    measurements_csv(&sim.readings, joints).as_bytes(),
-                ),
-                Input::new(
-                    "error bounds",
-                    &generated("uncertainty.toml"),
-                    uncertainty_toml(&sim.uncertainty).as_bytes(),
-                ),
-            ],
-            uncertainty: sim.uncertainty,
-            settings: vec![(
-                "outer box".into(),
-                if a.hull {
-                    format!(
-                        "tight hull: outer width <= 1.1 x inner width, at most {} s",
-                        a.max_seconds
-                    )
-                } else {
-                    "the paper's fixed point x1 with certified inner bounds (no --hull)".into()
-                },
-            )],
-            run: &run,
-            names,
-            tolerated: 0,
-            truth: Some(&sim.truth),
-            error_scale: Vec::new(),
-        };
+        let page = certificate(&a, &arm, &sim, &run, names);
         for path in &pages {
             write_certificate(path, &page)?;
         }
     }
     Ok(0)
+}
+
+/// Whether the simulated truth lies in the outer box, in words.
+fn print_truth(arm: &Arm, sim: &Simulation, run: &ArmRun) {
+    let free = arm.free();
+    if let Some(outer) = &run.outcome.outer {
+        let inside = (0..outer.len())
+            .filter(|&j| free[j])
+            .filter(|&j| outer[j].contains(sim.truth[j]))
+            .count();
+        println!(
+            "truth (known in a simulation): inside the outer box in {inside} of {} free parameters",
+            free.iter().filter(|f| **f).count()
+        );
+    }
+}
+
+/// The certificate of the run, its inputs the files `--out` writes.
+fn certificate<'a>(
+    a: &Args,
+    arm: &Arm,
+    sim: &'a Simulation,
+    run: &'a ArmRun,
+    names: ConfigurationNames<'a>,
+) -> ArmCertificate<'a> {
+    let joints = arm.joints.len();
+    let generated = |what: &str| format!("{what} (built-in arm, simulated, seed {})", a.seed);
+    ArmCertificate {
+        title: format!(
+            "built-in {joints}-axis arm, {} simulated configurations",
+            a.configs
+        ),
+        command: command_line(),
+        date: now(),
+        inputs: vec![
+            Input::new(
+                "robot geometry",
+                &generated("robot.toml"),
+                robot_toml(arm).as_bytes(),
+            ),
+            Input::new(
+                "measurements",
+                &generated("measurements.csv"),
+                measurements_csv(&sim.readings, joints).as_bytes(),
+            ),
+            Input::new(
+                "error bounds",
+                &generated("uncertainty.toml"),
+                uncertainty_toml(&sim.uncertainty).as_bytes(),
+            ),
+        ],
+        uncertainty: sim.uncertainty,
+        settings: vec![(
+            "outer box".into(),
+            if a.hull {
+                format!(
+                    "tight hull: outer width <= 1.1 x inner width, at most {} s",
+                    a.max_seconds
+                )
+            } else {
+                "the paper's fixed point x1 with certified inner bounds (no --hull)".into()
+            },
+        )],
+        run,
+        names,
+        tolerated: 0,
+        truth: Some(&sim.truth),
+        error_scale: Vec::new(),
+    }
 }

@@ -3,9 +3,10 @@
 use calib_arm::files::{read_calibrated, read_uncertainty};
 use calib_arm::predict::{
     predict, predictions_csv, predictions_json, refuting, residuals, OrientationResiduals,
+    PointPrediction,
 };
 use calib_pipeline::{parse_number_table, read_text, write_atomically};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -43,33 +44,8 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     }
     let (arm, set) = read_calibrated(&a.robot)?;
     let u = read_uncertainty(&a.uncertainty)?;
-    let n = arm.joints.len();
-    let mut slack = calib_arm::files::Slack::default();
-    let mut orientation_errors = None;
-    let (joints, points, lines, source) = match (&a.measurements, &a.joints) {
-        (Some(path), _) => {
-            let m = a.columns.read(path, n)?;
-            slack = m.slack;
-            if let Some(measured) = &m.orientations {
-                orientation_errors = Some(OrientationResiduals::of(
-                    &arm,
-                    &a.robot,
-                    &m.readings,
-                    measured,
-                )?);
-            }
-            let joints = m.readings.iter().map(|r| r.joints_deg.clone()).collect();
-            let points: Vec<[f64; 3]> = m.readings.iter().map(|r| r.point).collect();
-            (joints, Some(points), Some(m.lines), path)
-        }
-        (None, Some(path)) => {
-            let header: Vec<String> = (1..=n).map(|i| format!("q{i}")).collect();
-            let table = parse_number_table(path, &read_text(path)?, &header)?;
-            (table.rows, None, Some(table.lines), path)
-        }
-        (None, None) => return Err("--joints or --measurements: which configurations".into()),
-    };
-    let u = slack.widen(&u);
+    let c = Configurations::read(&a, &arm)?;
+    let u = c.slack.widen(&u);
     if set.is_none() {
         println!(
             "note: {} has no certified set: the predictions are taken over its boxes (a \
@@ -77,9 +53,91 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             a.robot.display()
         );
     }
-    let bar = super::output::spinner(&format!("predicting {} configurations", joints.len()));
-    let predictions = predict(&arm, set.as_ref(), &joints, &u, points.as_deref());
+    let bar = super::output::spinner(&format!("predicting {} configurations", c.joints.len()));
+    let predictions = predict(&arm, set.as_ref(), &c.joints, &u, c.points.as_deref());
     bar.finish_and_clear();
+    print_summary(&c, &predictions);
+    let bad = refuting(&predictions);
+    if c.points.is_some() {
+        print_refuting(&c, &predictions, &bad);
+    }
+    if let Some(path) = &a.out {
+        write_atomically(path, &predictions_csv(&predictions))
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        println!("predictions written to {}", path.display());
+    }
+    if let Some(path) = &a.json {
+        let mut json = predictions_json(&predictions, set.is_some(), c.lines.as_deref());
+        if let Some(o) = &c.orientation_errors {
+            json["orientation_residuals"] = o.json();
+        }
+        write_atomically(path, &format!("{json:#}\n"))
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        println!("JSON written to {}", path.display());
+    }
+    Ok(if bad.is_empty() { 0 } else { 2 })
+}
+
+/// The configurations to predict at: --measurements' (with their points) or --joints'.
+struct Configurations<'a> {
+    joints: Vec<Vec<f64>>,
+    /// The measured points (--measurements).
+    points: Option<Vec<[f64; 3]>>,
+    /// The 1-based file line of each configuration.
+    lines: Option<Vec<usize>>,
+    /// The file read.
+    source: &'a Path,
+    slack: calib_arm::files::Slack,
+    /// With orientation columns: the measured orientations' residuals.
+    orientation_errors: Option<OrientationResiduals>,
+}
+
+impl<'a> Configurations<'a> {
+    fn read(
+        a: &'a Args,
+        arm: &calib_arm::Arm,
+    ) -> Result<Configurations<'a>, Box<dyn std::error::Error>> {
+        let n = arm.joints.len();
+        match (&a.measurements, &a.joints) {
+            (Some(path), _) => {
+                let m = a.columns.read(path, n)?;
+                let orientation_errors = match &m.orientations {
+                    Some(measured) => Some(OrientationResiduals::of(
+                        arm,
+                        &a.robot,
+                        &m.readings,
+                        measured,
+                    )?),
+                    None => None,
+                };
+                Ok(Configurations {
+                    joints: m.readings.iter().map(|r| r.joints_deg.clone()).collect(),
+                    points: Some(m.readings.iter().map(|r| r.point).collect()),
+                    lines: Some(m.lines),
+                    source: path,
+                    slack: m.slack,
+                    orientation_errors,
+                })
+            }
+            (None, Some(path)) => {
+                let header: Vec<String> = (1..=n).map(|i| format!("q{i}")).collect();
+                let table = parse_number_table(path, &read_text(path)?, &header)?;
+                Ok(Configurations {
+                    joints: table.rows,
+                    points: None,
+                    lines: Some(table.lines),
+                    source: path,
+                    slack: calib_arm::files::Slack::default(),
+                    orientation_errors: None,
+                })
+            }
+            (None, None) => Err("--joints or --measurements: which configurations".into()),
+        }
+    }
+}
+
+/// The widest certified range and the residuals of the robot file's values.
+fn print_summary(c: &Configurations<'_>, predictions: &[PointPrediction]) {
     let widest = predictions
         .iter()
         .flat_map(|p| p.range.iter().map(|v| v.wid()))
@@ -88,16 +146,15 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         "{} configurations of {} predicted: every certified range is at most {widest:.4} mm \
          wide (over every parameter vector the data allow, at exactly the joint readings)",
         predictions.len(),
-        source.display()
+        c.source.display()
     );
-    let bad = refuting(&predictions);
-    if let Some((rms, max)) = residuals(&predictions) {
+    if let Some((rms, max)) = residuals(predictions) {
         println!(
             "the robot file's values predict the measured points with residuals rms {rms:.4} mm, \
              max {max:.4} mm (every coordinate)"
         );
     }
-    if let Some(o) = &orientation_errors {
+    if let Some(o) = &c.orientation_errors {
         println!(
             "the robot file's values predict the measured orientations with residuals rms \
              {:.4}°, max {:.4}° (the angle between the measured and the predicted frame; from \
@@ -105,62 +162,50 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             o.rms_deg, o.max_deg
         );
     }
-    if points.is_some() {
-        if bad.is_empty() {
-            println!(
-                "every measured point lies within its prediction widened by the error bounds: \
-                 the data are consistent with the calibration"
-            );
-        } else {
-            println!(
-                "{} of {} measured points lie outside their prediction widened by the error \
-                 bounds: the model or the error bounds are wrong there:",
-                bad.len(),
-                predictions.len()
-            );
-            for &k in bad.iter().take(20) {
-                let p = &predictions[k];
-                let line = lines
-                    .as_ref()
-                    .and_then(|l| l.get(k))
-                    .copied()
-                    .unwrap_or(k + 2);
-                let m = p.measured.unwrap_or([f64::NAN; 3]);
-                let w = &p.with_errors;
-                println!(
-                    "  row {} ({} line {line}): measured ({:.3}, {:.3}, {:.3}) mm, predicted \
-                     x [{:.3}, {:.3}], y [{:.3}, {:.3}], z [{:.3}, {:.3}]",
-                    k + 1,
-                    source.display(),
-                    m[0],
-                    m[1],
-                    m[2],
-                    w[0].inf(),
-                    w[0].sup(),
-                    w[1].inf(),
-                    w[1].sup(),
-                    w[2].inf(),
-                    w[2].sup()
-                );
-            }
-            if bad.len() > 20 {
-                println!("  … and {} more (see --out or --json)", bad.len() - 20);
-            }
-        }
+}
+
+/// Whether the measured points lie within their predictions; the first 20 that do not.
+fn print_refuting(c: &Configurations<'_>, predictions: &[PointPrediction], bad: &[usize]) {
+    if bad.is_empty() {
+        println!(
+            "every measured point lies within its prediction widened by the error bounds: \
+             the data are consistent with the calibration"
+        );
+        return;
     }
-    if let Some(path) = &a.out {
-        write_atomically(path, &predictions_csv(&predictions))
-            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-        println!("predictions written to {}", path.display());
+    println!(
+        "{} of {} measured points lie outside their prediction widened by the error \
+         bounds: the model or the error bounds are wrong there:",
+        bad.len(),
+        predictions.len()
+    );
+    for &k in bad.iter().take(20) {
+        let p = &predictions[k];
+        let line = c
+            .lines
+            .as_ref()
+            .and_then(|l| l.get(k))
+            .copied()
+            .unwrap_or(k + 2);
+        let m = p.measured.unwrap_or([f64::NAN; 3]);
+        let w = &p.with_errors;
+        println!(
+            "  row {} ({} line {line}): measured ({:.3}, {:.3}, {:.3}) mm, predicted \
+             x [{:.3}, {:.3}], y [{:.3}, {:.3}], z [{:.3}, {:.3}]",
+            k + 1,
+            c.source.display(),
+            m[0],
+            m[1],
+            m[2],
+            w[0].inf(),
+            w[0].sup(),
+            w[1].inf(),
+            w[1].sup(),
+            w[2].inf(),
+            w[2].sup()
+        );
     }
-    if let Some(path) = &a.json {
-        let mut json = predictions_json(&predictions, set.is_some(), lines.as_deref());
-        if let Some(o) = &orientation_errors {
-            json["orientation_residuals"] = o.json();
-        }
-        write_atomically(path, &format!("{json:#}\n"))
-            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-        println!("JSON written to {}", path.display());
+    if bad.len() > 20 {
+        println!("  … and {} more (see --out or --json)", bad.len() - 20);
     }
-    Ok(if bad.is_empty() { 0 } else { 2 })
 }

@@ -5,6 +5,7 @@ use calib_arm::files::read_robot;
 use calib_arm::register::{
     register_tool_rotation, register_with, Registration, RegistrationPriors, ToolPoint,
 };
+use calib_arm::robot::ToolRotation;
 use calib_pipeline::write_atomically;
 use std::path::PathBuf;
 
@@ -63,7 +64,6 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     if let Some(radius) = a.tool_radius {
         r.arm.tool_radius = [radius; 3];
     }
-    let tool_radius = r.arm.tool_radius[0];
     let rotation = match &data.orientations {
         Some(o) => {
             let (t, rms, max) =
@@ -77,10 +77,59 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     if let Some(w) = inseparable_warning(&r, &a) {
         println!("{w}");
     }
+    print_registration(&a, &r, data.readings.len(), priors, rotation);
+    write_registered(&a, &r)?;
+    Ok(0)
+}
+
+/// The warning when the rows cannot tell the tool point from the base (`None` when they can):
+/// why, and what was done about it.
+fn inseparable_warning(r: &Registration, a: &Args) -> Option<String> {
+    let why = r.separability.reason()?;
+    let robot = a.files.robot.display();
+    let done = if !r.tool_kept {
+        "The tool point is fitted as asked (--tool fit), but these rows do not determine it: \
+         the base's position takes up any move of it"
+            .to_string()
+    } else {
+        let radius = match a.tool_radius {
+            Some(radius) if radius > 0.0 => format!(
+                "written with the prior ± {radius} mm asked (--tool-radius {radius}), though a \
+                 calibration on these rows cannot tell it from the base either"
+            ),
+            _ => "fixed (--tool-radius 0)".to_string(),
+        };
+        format!(
+            "The tool point is kept from {robot} and {radius}; the base is fitted alone, its \
+             position taking up any error of that tool point (right at these orientations, not \
+             at others)"
+        )
+    };
+    Some(format!(
+        "warning: {why}. {done}. To find the tool point, register on configurations with \
+         several flange orientations (turned by degrees about two axes or more){}.",
+        if r.tool_kept {
+            "; --tool fit fits it anyway"
+        } else {
+            ""
+        }
+    ))
+}
+
+/// The registration in words: base, tool point (and tool frame), residuals.
+fn print_registration(
+    a: &Args,
+    r: &Registration,
+    configurations: usize,
+    priors: RegistrationPriors,
+    rotation: Option<(ToolRotation, f64, f64)>,
+) {
+    let (base_mm, base_deg) = (priors.base_mm, priors.base_deg);
+    let tool_radius = r.arm.tool_radius[0];
     let b = r.arm.base;
     println!(
         "registered on {} configurations of {}:",
-        data.readings.len(),
+        configurations,
         a.files.measurements.display()
     );
     println!(
@@ -126,6 +175,10 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             b[4]
         );
     }
+}
+
+/// --out: the robot file with the base and tool found.
+fn write_registered(a: &Args, r: &Registration) -> Result<(), Box<dyn std::error::Error>> {
     let found = match (r.tool_kept, r.separability.inseparable()) {
         (false, _) => "base and tool found",
         (true, false) => "base found, tool point kept",
@@ -141,39 +194,5 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     write_atomically(&a.out, &text)
         .map_err(|e| format!("{}: cannot write: {e}", a.out.display()))?;
     println!("wrote {}", a.out.display());
-    Ok(0)
-}
-
-/// The warning when the rows cannot tell the tool point from the base (`None` when they can):
-/// why, and what was done about it.
-fn inseparable_warning(r: &Registration, a: &Args) -> Option<String> {
-    let why = r.separability.reason()?;
-    let robot = a.files.robot.display();
-    let done = if !r.tool_kept {
-        "The tool point is fitted as asked (--tool fit), but these rows do not determine it: \
-         the base's position takes up any move of it"
-            .to_string()
-    } else {
-        let radius = match a.tool_radius {
-            Some(radius) if radius > 0.0 => format!(
-                "written with the prior ± {radius} mm asked (--tool-radius {radius}), though a \
-                 calibration on these rows cannot tell it from the base either"
-            ),
-            _ => "fixed (--tool-radius 0)".to_string(),
-        };
-        format!(
-            "The tool point is kept from {robot} and {radius}; the base is fitted alone, its \
-             position taking up any error of that tool point (right at these orientations, not \
-             at others)"
-        )
-    };
-    Some(format!(
-        "warning: {why}. {done}. To find the tool point, register on configurations with \
-         several flange orientations (turned by degrees about two axes or more){}.",
-        if r.tool_kept {
-            "; --tool fit fits it anyway"
-        } else {
-            ""
-        }
-    ))
+    Ok(())
 }

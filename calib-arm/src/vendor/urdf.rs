@@ -50,42 +50,80 @@ pub fn parse(
     }
     let tip = match tip {
         Some(t) => t.to_string(),
-        None => {
-            // Follow the only child joint from the base while there is one.
-            let mut link = base.to_string();
-            loop {
-                let children: Vec<&urdf_rs::Joint> = robot
-                    .joints
-                    .iter()
-                    .filter(|j| j.parent.link == link)
-                    .collect();
-                match children.as_slice() {
-                    [] => break link,
-                    [j] => link = j.child.link.clone(),
-                    _ => {
-                        return Err(err(
-                            Some("tip link"),
-                            format!("the chain branches at `{link}`: name the tip link"),
-                        ))
-                    }
-                }
-            }
-        }
+        None => only_tip(&robot, base).map_err(|m| err(Some("tip link"), m))?,
     };
+    let joints = chain(&robot, base, &tip).map_err(|m| err(Some("tip link"), m))?;
+    let (origins, pending) = moving_origins(file, &joints)?;
+    let off = pending
+        .translation
+        .vector
+        .norm()
+        .max(pending.rotation.angle());
+    if off > TIP_TOLERANCE {
+        return Err(err(
+            Some("tip link"),
+            format!(
+                "`{tip}` is offset from the last moving joint's frame; name that joint's child \
+                 link as the tip (the tool point is expressed in it)"
+            ),
+        ));
+    }
+    if origins.is_empty() {
+        return Err(err(
+            None,
+            format!("no moving joint between `{base}` and `{tip}`"),
+        ));
+    }
+    Ok(origins)
+}
+
+/// The end of the chain below `base` (following the only child joint while there is one); the
+/// error's message when it branches.
+fn only_tip(robot: &urdf_rs::Robot, base: &str) -> Result<String, String> {
+    let mut link = base.to_string();
+    loop {
+        let children: Vec<&urdf_rs::Joint> = robot
+            .joints
+            .iter()
+            .filter(|j| j.parent.link == link)
+            .collect();
+        match children.as_slice() {
+            [] => return Ok(link),
+            [j] => link = j.child.link.clone(),
+            _ => return Err(format!("the chain branches at `{link}`: name the tip link")),
+        }
+    }
+}
+
+/// The joints from `base` down to `tip`; the error's message when `tip` is not below `base`.
+fn chain<'r>(
+    robot: &'r urdf_rs::Robot,
+    base: &str,
+    tip: &str,
+) -> Result<Vec<&'r urdf_rs::Joint>, String> {
     // From the tip up to the base.
     let mut joints = Vec::new();
-    let mut link = tip.clone();
+    let mut link = tip.to_string();
     while link != base {
-        let j = parent_joint(&link).ok_or_else(|| {
-            err(
-                Some("tip link"),
-                format!("`{tip}` is not below `{base}` (or no link `{tip}`)"),
-            )
-        })?;
+        let j = robot
+            .joints
+            .iter()
+            .find(|j| j.child.link == link)
+            .ok_or_else(|| format!("`{tip}` is not below `{base}` (or no link `{tip}`)"))?;
         joints.push(j);
         link = j.parent.link.clone();
     }
     joints.reverse();
+    Ok(joints)
+}
+
+/// The moving joints' origins (mm), each with its axis turned onto `z`, fixed joints folded into
+/// the next; and what is left after the last moving joint (the tip's offset).
+fn moving_origins(
+    file: &Path,
+    joints: &[&urdf_rs::Joint],
+) -> Result<(Vec<Frame>, Frame), DataError> {
+    let err = |field: Option<&str>, m: String| DataError::new(file, None, field, m);
     let mut origins = Vec::new();
     let mut pending = Frame::identity();
     for j in joints {
@@ -126,27 +164,7 @@ pub fn parse(
             }
         }
     }
-    let off = pending
-        .translation
-        .vector
-        .norm()
-        .max(pending.rotation.angle());
-    if off > TIP_TOLERANCE {
-        return Err(err(
-            Some("tip link"),
-            format!(
-                "`{tip}` is offset from the last moving joint's frame; name that joint's child \
-                 link as the tip (the tool point is expressed in it)"
-            ),
-        ));
-    }
-    if origins.is_empty() {
-        return Err(err(
-            None,
-            format!("no moving joint between `{base}` and `{tip}`"),
-        ));
-    }
-    Ok(origins)
+    Ok((origins, pending))
 }
 
 /// A URDF of the chain `origins` (mm) named `name`, with the tool point `tool` (mm, in the last

@@ -15,10 +15,11 @@ use calib_gough::lsq::fit_legs;
 use calib_gough::measurement::Uncertainty;
 use calib_gough::plot;
 use calib_gough::report::{ratios, table, write_atomically};
-use calib_gough::report_page::{self, Certificate, Input, LegEntry};
+use calib_gough::report_page::{self, Certificate, LegEntry};
 use calib_gough::verdict::{self, ConfigurationNames};
 use calib_gough::workspace::read_workspace;
 use calib_gough::PARAMETER_NAMES;
+use calib_pipeline::cli::{ErrorScaleArgs, ErrorScaleMode, OutlierArgs};
 use calib_pipeline::error_scale::{check_margin, report as scale_report};
 use calib_pipeline::OutlierBudget;
 use std::path::{Path, PathBuf};
@@ -48,13 +49,8 @@ pub struct Args {
     /// ratio reached is reported).
     #[arg(long, value_name = "SECONDS")]
     max_seconds: Option<f64>,
-    /// Tolerate up to Q bad configurations per leg: the boxes then contain every parameter vector
-    /// that fits all but at most Q configurations, and the configurations proved to be outliers
-    /// are listed. Costs about C(configurations, Q) certifications per leg. `auto`: per leg, the
-    /// smallest Q that is not proved empty (tries Q = 0, 1, 2, … in turn; every Q below it is
-    /// proved too few).
-    #[arg(long, value_name = "Q|auto", default_value = "0")]
-    max_outliers: OutlierBudget,
+    #[command(flatten)]
+    outliers: OutlierArgs,
     /// Also run the paper's 128-box bisection sweep and report its hull x2.
     #[arg(long)]
     sweep: bool,
@@ -102,22 +98,8 @@ pub struct Args {
     /// projections (ax, ay), (bx, by) and (az, l).
     #[arg(long, value_name = "DIR")]
     plots: Option<PathBuf>,
-    /// `auto`: first find how much error the data need — the smallest factor by which the
-    /// uncertainty file's bounds (--scale-bounds) must be multiplied for every leg's data to be
-    /// consistent, as a proved bracket (s_lo proved inconsistent, s_hi certified consistent;
-    /// within 2% where the kernel decides, the ratio reached is printed and in the JSON's
-    /// `error_scale`) — then certify at s_hi × --scale-margin. Starts from each leg's first-order
-    /// minimax fit; a few fast certifications per leg.
-    #[arg(long, value_name = "auto", value_parser = ["auto"])]
-    error_scale: Option<String>,
-    /// With --error-scale: which bounds to scale: `all`, `pos` (the platform positions'), `len`
-    /// (the leg readings') or `orientation` (axis and angle, or q).
-    #[arg(long, value_name = "WHICH", value_enum, default_value = "all")]
-    scale_bounds: ScaleBounds,
-    /// With --error-scale: certify at s_hi times this factor (>= 1: a margin over the smallest
-    /// consistent bounds).
-    #[arg(long, value_name = "F", default_value_t = 1.0)]
-    scale_margin: f64,
+    #[command(flatten)]
+    scale: ErrorScaleArgs<ScaleBounds>,
 }
 
 /// With --error-scale auto: finds the smallest consistent factor of `u`'s bounds for the `legs`,
@@ -129,8 +111,9 @@ fn error_scale(
     configs: &[calib_gough::measurement::Configuration],
     u: &Uncertainty,
 ) -> Result<(serde_json::Value, Uncertainty, Vec<String>), Box<dyn std::error::Error>> {
-    check_margin(a.scale_margin)?;
-    let which = a.scale_bounds;
+    let margin = a.scale.scale_margin;
+    check_margin(margin)?;
+    let which = a.scale.scale_bounds;
     let started = Instant::now();
     let bar = indicatif::ProgressBar::new_spinner();
     bar.enable_steady_tick(std::time::Duration::from_millis(120));
@@ -141,52 +124,28 @@ fn error_scale(
     let found = found?;
     let seconds = started.elapsed().as_secs_f64();
     let describe = |s: f64| which.describe(u, s);
-    let done = scale_report(&found, which.name(), seconds, a.scale_margin, &describe)?;
+    let done = scale_report(&found, which.name(), seconds, margin, &describe)?;
     done.words.iter().for_each(|w| println!("{w}"));
     Ok((done.json, which.scale(u, done.certify_at), done.words))
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
-    // Each file is read once: what is hashed for the certificate is what is parsed.
-    let texts = [&a.files.robot, &a.files.measurements, &a.uncertainty].map(|p| read_text(p));
-    let [robot_text, data_text, u_text] = texts;
-    let (robot_text, data_text, u_text) = (robot_text?, data_text?, u_text?);
-    let robot = parse_robot(&a.files.robot, &robot_text)?;
-    let data = parse_measurements(&a.files.measurements, &data_text, robot.len())?;
-    let u = parse_uncertainty(&a.uncertainty, &u_text)?;
-    check_uncertainty(&a.uncertainty, &u, data.rodrigues)?;
-    let options = CertifyOptions {
-        legs: a.legs.clone(),
-        fast: a.fast,
-        sweep: a.sweep,
-        pave: a.pave,
-        tolerance: a.tolerance,
-        max_boxes: a.max_boxes,
-        max_seconds: a.max_seconds,
-        max_outliers: a.max_outliers,
-    };
+    let input = Files::read(&a)?;
+    let (robot, data) = (&input.robot, &input.data);
+    let options = a.options();
     // Option errors before any work (certify_legs checks them again).
     let (legs, _) = options.validate(robot.len(), data.configs.len())?;
-    let (scale_json, u, scale_words) = match a.error_scale {
-        Some(_) => {
-            let (json, scaled, words) = error_scale(&a, &robot, &legs, &data.configs, &u)?;
+    let (scale_json, u, scale_words) = match a.scale.error_scale {
+        Some(ErrorScaleMode::Auto) => {
+            let (json, scaled, words) = error_scale(&a, robot, &legs, &data.configs, &input.u)?;
             println!();
             (Some(json), scaled, words)
         }
-        None => (None, u, Vec::new()),
+        None => (None, input.u, Vec::new()),
     };
     let workspace = a.workspace.as_deref().map(read_workspace).transpose()?;
     let pose_seconds = super::accuracy::checked_pose_seconds(a.pose_seconds)?;
-    let start = Instant::now();
-    // Progress on a terminal only (indicatif draws nothing when stderr is not a terminal).
-    let bar = indicatif::ProgressBar::new(legs.len() as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("certifying legs {bar:30} {pos}/{len} [{elapsed}]")
-            .expect("static template"),
-    );
-    let results = certify_legs(&robot, &data.configs, &u, &options, &|| bar.inc(1))?;
-    bar.finish_and_clear();
-    let total = start.elapsed().as_secs_f64();
+    let (results, total) = certify_with_progress(robot, &data.configs, &u, &options, legs.len())?;
     let file = file_name(&a.files.measurements);
     let names = ConfigurationNames {
         file: &file,
@@ -196,10 +155,110 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         .iter()
         .map(|r| identifiability(&robot[r.leg], r.leg, &data.configs, &u))
         .collect();
-    let mut any_empty = false;
-    for (r, found) in results.iter().zip(&findings) {
-        any_empty |= r.status == Status::Empty;
-        print_leg(r, &names, a.max_outliers);
+    print_results(&a, &results, &findings, &names, total);
+    if let Some(dir) = &a.plots {
+        write_plots(dir, &results)?;
+    }
+    let calibrated = if a.write_calibrated.is_some() || workspace.is_some() {
+        Some(calibrated_robot(
+            robot,
+            &results,
+            &data.configs,
+            &u,
+            workspace.as_ref(),
+        )?)
+    } else {
+        None
+    };
+    if let (Some(path), Some(cal)) = (&a.write_calibrated, &calibrated) {
+        write_calibrated(&a, path, cal)?;
+    }
+    let accuracy = match (&workspace, &calibrated) {
+        (Some(w), Some(cal)) => Some(certify_accuracy(&a, robot, w, cal, &u, pose_seconds)),
+        _ => None,
+    };
+    if let Some(path) = &a.report {
+        let run = Run {
+            results: &results,
+            findings: &findings,
+            u: &u,
+            scale_words: &scale_words,
+            seconds: total,
+            accuracy: accuracy.as_ref(),
+        };
+        write_certificate(&a, path, &input, &run, names)?;
+    }
+    if let Some(path) = &a.json {
+        write_json(path, &results, total, scale_json)?;
+    }
+    Ok(if results.iter().any(|r| r.status == Status::Empty) {
+        2
+    } else {
+        0
+    })
+}
+
+/// The input files, each read once: what is hashed for the certificate is what is parsed.
+struct Files {
+    robot_text: String,
+    data_text: String,
+    u_text: String,
+    robot: Vec<calib_gough::files::LegSpec>,
+    data: calib_gough::files::Measurements,
+    u: Uncertainty,
+}
+
+impl Files {
+    /// Reads and checks --robot, --measurements and --uncertainty.
+    fn read(a: &Args) -> Result<Files, Box<dyn std::error::Error>> {
+        let texts = [&a.files.robot, &a.files.measurements, &a.uncertainty].map(|p| read_text(p));
+        let [robot_text, data_text, u_text] = texts;
+        let (robot_text, data_text, u_text) = (robot_text?, data_text?, u_text?);
+        let robot = parse_robot(&a.files.robot, &robot_text)?;
+        let data = parse_measurements(&a.files.measurements, &data_text, robot.len())?;
+        let u = parse_uncertainty(&a.uncertainty, &u_text)?;
+        check_uncertainty(&a.uncertainty, &u, data.rodrigues)?;
+        Ok(Files {
+            robot_text,
+            data_text,
+            u_text,
+            robot,
+            data,
+            u,
+        })
+    }
+}
+
+/// Certifies the chosen legs with a progress bar (on a terminal only: indicatif draws nothing
+/// when stderr is not a terminal); the results and the seconds they took.
+fn certify_with_progress(
+    robot: &[calib_gough::files::LegSpec],
+    configs: &[calib_gough::measurement::Configuration],
+    u: &Uncertainty,
+    options: &CertifyOptions,
+    legs: usize,
+) -> Result<(Vec<LegResult>, f64), Box<dyn std::error::Error>> {
+    let start = Instant::now();
+    let bar = indicatif::ProgressBar::new(legs as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("certifying legs {bar:30} {pos}/{len} [{elapsed}]")
+            .expect("static template"),
+    );
+    let results = certify_legs(robot, configs, u, options, &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    Ok((results, start.elapsed().as_secs_f64()))
+}
+
+/// Prints every leg's result and identifiability findings, then the total time.
+fn print_results(
+    a: &Args,
+    results: &[LegResult],
+    findings: &[Vec<String>],
+    names: &ConfigurationNames<'_>,
+    total: f64,
+) {
+    for (r, found) in results.iter().zip(findings) {
+        print_leg(r, names, a.outliers.max_outliers);
         for s in found {
             println!("identifiability: {s}");
         }
@@ -216,148 +275,172 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         );
     }
     println!("total: {} legs in {total:.3} s", results.len());
-    if let Some(dir) = &a.plots {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
-        for r in &results {
-            let title = format!("leg {}: {}", r.leg + 1, verdict::short_verdict(r.status));
-            let svg = plot::nested_boxes(
-                &plot::leg_layers(r),
-                None,
-                &plot::LEG_PROJECTIONS,
-                &PARAMETER_NAMES,
-                &title,
-            )?;
-            let path = dir.join(format!("leg{}.svg", r.leg + 1));
-            write_atomically(&path, &svg)
-                .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-        }
-        println!("plots written to {}", dir.display());
-    }
-    let calibrated = if a.write_calibrated.is_some() || workspace.is_some() {
-        Some(calibrated_robot(
-            &robot,
-            &results,
-            &data.configs,
-            &u,
-            workspace.as_ref(),
-        )?)
-    } else {
-        None
-    };
-    if let (Some(path), Some(cal)) = (&a.write_calibrated, &calibrated) {
-        let comment = format!(
-            "calibrated by certicalib {} from {} and {}:\n\
-             a, b, l: per leg, a geometry proved consistent with every measurement ({}),\n\
-             chosen towards the centre of the leg lengths it predicts over the workspace;\n\
-             radius: a box around it that contains the certified outer box;\n\
-             [leg.certified_set]: the certified set `gough accuracy` and `gough predict` work over",
-            calib_pipeline::html::VERSION,
-            a.files.robot.display(),
-            a.files.measurements.display(),
-            margin_words(cal),
-        );
-        write_atomically(path, &robot_toml(&cal.legs, &cal.sets, &comment))
+}
+
+/// --plots: one SVG per leg into `dir`.
+fn write_plots(dir: &Path, results: &[LegResult]) -> Result<(), Box<dyn std::error::Error>> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
+    for r in results {
+        let title = format!("leg {}: {}", r.leg + 1, verdict::short_verdict(r.status));
+        let svg = plot::nested_boxes(
+            &plot::leg_layers(r),
+            None,
+            &plot::LEG_PROJECTIONS,
+            &PARAMETER_NAMES,
+            &title,
+        )?;
+        let path = dir.join(format!("leg{}.svg", r.leg + 1));
+        write_atomically(&path, &svg)
             .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-        println!(
-            "calibrated robot written to {}: each certified leg's geometry fits every \
-             measurement ({})",
-            path.display(),
-            margin_words(cal)
-        );
     }
-    let accuracy = match (&workspace, &calibrated) {
-        (Some(w), Some(cal)) => {
-            let report = super::accuracy::with_spinner(pose_seconds, true, || {
-                accuracy_report(
-                    &AccuracyProblem::over_sets(&cal.legs, &cal.sets, w),
-                    Some(&AccuracyProblem::new(&robot, w)),
-                    Some(u.len),
-                    &AccuracySettings {
-                        pose_seconds,
-                        max_set_boxes: a.max_set_boxes,
-                        map_cells: a.map_cells,
-                        ..AccuracySettings::default()
-                    },
-                    a.report.is_some(),
-                )
-            });
-            println!();
-            super::accuracy::print_report(&report, "the calibrated robot", &a.workspace_name());
-            Some(report)
-        }
-        _ => None,
+    println!("plots written to {}", dir.display());
+    Ok(())
+}
+
+/// --write-calibrated: the calibrated robot file, with a comment saying where it comes from.
+fn write_calibrated(
+    a: &Args,
+    path: &Path,
+    cal: &CalibratedRobot,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let comment = format!(
+        "calibrated by certicalib {} from {} and {}:\n\
+         a, b, l: per leg, a geometry proved consistent with every measurement ({}),\n\
+         chosen towards the centre of the leg lengths it predicts over the workspace;\n\
+         radius: a box around it that contains the certified outer box;\n\
+         [leg.certified_set]: the certified set `gough accuracy` and `gough predict` work over",
+        calib_pipeline::html::VERSION,
+        a.files.robot.display(),
+        a.files.measurements.display(),
+        margin_words(cal),
+    );
+    write_atomically(path, &robot_toml(&cal.legs, &cal.sets, &comment))
+        .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    println!(
+        "calibrated robot written to {}: each certified leg's geometry fits every \
+         measurement ({})",
+        path.display(),
+        margin_words(cal)
+    );
+    Ok(())
+}
+
+/// --workspace: the accuracy of the calibrated robot (over its certified sets) against the
+/// uncalibrated one, printed.
+fn certify_accuracy(
+    a: &Args,
+    robot: &[calib_gough::files::LegSpec],
+    w: &calib_gough::workspace::Workspace,
+    cal: &CalibratedRobot,
+    u: &Uncertainty,
+    pose_seconds: f64,
+) -> AccuracyReport {
+    let report = super::accuracy::with_spinner(pose_seconds, true, || {
+        accuracy_report(
+            &AccuracyProblem::over_sets(&cal.legs, &cal.sets, w),
+            Some(&AccuracyProblem::new(robot, w)),
+            Some(u.len),
+            &AccuracySettings {
+                pose_seconds,
+                max_set_boxes: a.max_set_boxes,
+                map_cells: a.map_cells,
+                ..AccuracySettings::default()
+            },
+            a.report.is_some(),
+        )
+    });
+    println!();
+    super::accuracy::print_report(&report, "the calibrated robot", &a.workspace_name());
+    report
+}
+
+/// What the certificate shows of the run.
+struct Run<'a> {
+    results: &'a [LegResult],
+    findings: &'a [Vec<String>],
+    /// The error bounds certified with (scaled by --error-scale).
+    u: &'a Uncertainty,
+    scale_words: &'a [String],
+    seconds: f64,
+    accuracy: Option<&'a AccuracyReport>,
+}
+
+/// --report: the calibration certificate.
+fn write_certificate(
+    a: &Args,
+    path: &Path,
+    input: &Files,
+    run: &Run<'_>,
+    names: ConfigurationNames<'_>,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let (robot, data) = (&input.robot, &input.data);
+    let fits: Vec<[f64; 7]> = fit_legs(robot, &data.configs).iter().map(|f| f.x).collect();
+    let file = |role: &str, path: &Path, text: &str| {
+        report_page::Input::new(role, &path.display().to_string(), text.as_bytes())
     };
-    if let Some(path) = &a.report {
-        let fits: Vec<[f64; 7]> = fit_legs(&robot, &data.configs)
-            .iter()
-            .map(|f| f.x)
-            .collect();
-        let inputs = vec![
-            Input::new(
-                "robot geometry",
-                &a.files.robot.display().to_string(),
-                robot_text.as_bytes(),
-            ),
-            Input::new(
-                "measurements",
-                &a.files.measurements.display().to_string(),
-                data_text.as_bytes(),
-            ),
-            Input::new(
-                "error bounds",
-                &a.uncertainty.display().to_string(),
-                u_text.as_bytes(),
-            ),
-        ];
-        let page = Certificate {
-            title: format!(
-                "{}-leg parallel robot, {} configurations",
-                robot.len(),
-                data.configs.len()
-            ),
-            command: report_page::command_line(),
-            date: report_page::now(),
-            inputs,
-            configurations: data.configs.len(),
-            error_bounds: report_page::error_bounds(&u, data.rodrigues)
-                .into_iter()
-                .chain(
-                    (!scale_words.is_empty())
-                        .then(|| ("found by --error-scale auto".into(), scale_words.join(" "))),
+    let inputs = vec![
+        file("robot geometry", &a.files.robot, &input.robot_text),
+        file("measurements", &a.files.measurements, &input.data_text),
+        file("error bounds", &a.uncertainty, &input.u_text),
+    ];
+    let page = Certificate {
+        title: format!(
+            "{}-leg parallel robot, {} configurations",
+            robot.len(),
+            data.configs.len()
+        ),
+        command: report_page::command_line(),
+        date: report_page::now(),
+        inputs,
+        configurations: data.configs.len(),
+        error_bounds: report_page::error_bounds(run.u, data.rodrigues)
+            .into_iter()
+            .chain((!run.scale_words.is_empty()).then(|| {
+                (
+                    "found by --error-scale auto".into(),
+                    run.scale_words.join(" "),
                 )
-                .collect(),
-            settings: settings(&a),
-            seconds: total,
-            legs: results
-                .iter()
-                .zip(&findings)
-                .map(|(r, found)| LegEntry {
-                    result: r,
-                    nominal: robot[r.leg].nominal.params(),
-                    least_squares: std::slice::from_ref(&fits[r.leg]),
-                    identifiability: found,
-                })
-                .collect(),
-            names,
-            sections: accuracy.iter().map(AccuracyReport::section).collect(),
-        }
-        .to_html()?;
-        write_atomically(path, &page)
-            .map_err(|e| format!("{}: cannot write the certificate: {e}", path.display()))?;
-        println!("certificate written to {}", path.display());
+            }))
+            .collect(),
+        settings: settings(a),
+        seconds: run.seconds,
+        legs: run
+            .results
+            .iter()
+            .zip(run.findings)
+            .map(|(r, found)| LegEntry {
+                result: r,
+                nominal: robot[r.leg].nominal.params(),
+                least_squares: std::slice::from_ref(&fits[r.leg]),
+                identifiability: found,
+            })
+            .collect(),
+        names,
+        sections: run.accuracy.iter().map(|r| r.section()).collect(),
     }
-    if let Some(path) = &a.json {
-        let mut value = serde_json::to_value(report(&results, total))?;
-        if let Some(scale) = scale_json {
-            value["error_scale"] = scale;
-        }
-        let text = serde_json::to_string_pretty(&value)?;
-        write_atomically(path, &text)
-            .map_err(|e| format!("{}: cannot write the report: {e}", path.display()))?;
-        println!("report written to {}", path.display());
+    .to_html()?;
+    write_atomically(path, &page)
+        .map_err(|e| format!("{}: cannot write the certificate: {e}", path.display()))?;
+    println!("certificate written to {}", path.display());
+    Ok(())
+}
+
+/// --json: the report, with --error-scale's bracket under `error_scale`.
+fn write_json(
+    path: &Path,
+    results: &[LegResult],
+    total: f64,
+    scale_json: Option<serde_json::Value>,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let mut value = serde_json::to_value(report(results, total))?;
+    if let Some(scale) = scale_json {
+        value["error_scale"] = scale;
     }
-    Ok(if any_empty { 2 } else { 0 })
+    let text = serde_json::to_string_pretty(&value)?;
+    write_atomically(path, &text)
+        .map_err(|e| format!("{}: cannot write the report: {e}", path.display()))?;
+    println!("report written to {}", path.display());
+    Ok(())
 }
 
 /// The margins the calibrated legs keep, in words: "every error bound with 5% to spare".
@@ -379,6 +462,20 @@ fn margin_words(cal: &CalibratedRobot) -> String {
 }
 
 impl Args {
+    /// The certification's options.
+    fn options(&self) -> CertifyOptions {
+        CertifyOptions {
+            legs: self.legs.clone(),
+            fast: self.fast,
+            sweep: self.sweep,
+            pave: self.pave,
+            tolerance: self.tolerance,
+            max_boxes: self.max_boxes,
+            max_seconds: self.max_seconds,
+            max_outliers: self.outliers.max_outliers,
+        }
+    }
+
     fn workspace_name(&self) -> String {
         self.workspace
             .as_ref()
@@ -464,7 +561,7 @@ fn settings(a: &Args) -> Vec<(String, String)> {
         ("outer box".into(), mode),
         (
             "outliers tolerated per leg".into(),
-            match a.max_outliers {
+            match a.outliers.max_outliers {
                 OutlierBudget::Fixed(q) => q.to_string(),
                 OutlierBudget::Auto => "auto: per leg, the smallest number not proved empty".into(),
             },

@@ -107,119 +107,28 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let settings = Settings::default();
     println!("Reproducing Daney, Papegay & Neumaier (ICRA 2004), Section V: leg 1 (Table I),");
     println!("{CONFIGS} simulated configurations, initial box x0 = nominal ± 0.1 cm.\n");
-
-    // Exact measurements: the certified box shrinks around the truth.
-    let t0 = Instant::now();
-    let exact = simulate(
-        &truth,
-        CONFIGS,
-        a.seed,
-        Uncertainty::uniform(1e-9),
-        0.0,
-        0.1,
-    );
-    let boxes = leg_boxes(&exact.measured, &exact.uncertainty, 0);
-    let x0 = exact.nominal[0].params().map(|v| Interval::mid_rad(v, 0.1));
-    let r = certify(&calib_gough::GoughLeg, &x0, &boxes, &settings);
-    let worst = r.outer.iter().map(|v| v.rad()).fold(0.0, f64::max);
-    let inside = (0..7).all(|j| r.outer[j].contains(truth[0].params()[j]));
     // Findings are printed and kept for the certificate's comparison section.
-    let mut notes = Vec::new();
-    let mut say = |line: String| {
-        println!("{line}");
-        notes.push(line);
-    };
-    say(format!(
-        "exact data (error bounds 1e-9): {:?} after {} iterations, largest radius {worst:.1e}, truth inside: {inside} ({:.2} s)",
-        r.status, r.iterations, t0.elapsed().as_secs_f64()
-    ));
+    let mut notes = Notes::default();
+    notes.say(exact_data_check(&truth, a.seed, &settings));
     println!();
-
-    // Noisy measurements with the paper's error bounds.
     let u = Uncertainty::PAPER;
     let sim = simulate(&truth, CONFIGS, a.seed, u, 1.0, 0.1);
-    let boxes = leg_boxes(&sim.measured, &u, 0);
-    let x0 = sim.nominal[0].params().map(|v| Interval::mid_rad(v, 0.1));
-    let t1 = Instant::now();
-    let c = certify(&calib_gough::GoughLeg, &x0, &boxes, &settings);
-    let t_certify = t1.elapsed().as_secs_f64();
-    let t2 = Instant::now();
-    let s = sweep(&calib_gough::GoughLeg, &x0, &boxes, &settings);
-    let t_sweep = t2.elapsed().as_secs_f64();
-    let t4 = Instant::now();
-    let h = hull(&calib_gough::GoughLeg, &x0, &boxes, &settings);
-    let t_hull = t4.elapsed().as_secs_f64();
-
-    // xs: hull of least-squares solutions on measurements drawn inside M ∩ [true - e, true + e].
-    let t3 = Instant::now();
-    let bar = ProgressBar::new(a.samples as u64);
-    bar.set_style(ProgressStyle::with_template(
-        "least squares {bar:40} {pos}/{len} [{elapsed_precise}]",
-    )?);
-    let fits: Vec<[f64; 7]> = (0..a.samples)
-        .into_par_iter()
-        .map(|i| {
-            let mut rng =
-                StdRng::seed_from_u64(a.seed ^ (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
-            let m: Vec<[f64; 8]> = sim
-                .measured
-                .iter()
-                .zip(&sim.poses)
-                .zip(&sim.exact_lengths)
-                .map(|((c, pose), lengths)| {
-                    let Orientation::AxisAngle { axis, angle_deg } = c.orientation else {
-                        unreachable!()
-                    };
-                    let p: [f64; 3] =
-                        core::array::from_fn(|k| draw(&mut rng, c.p[k], pose.p[k], u.pos));
-                    let axis: [f64; 3] =
-                        core::array::from_fn(|k| draw(&mut rng, axis[k], pose.axis[k], u.axis));
-                    [
-                        p[0],
-                        p[1],
-                        p[2],
-                        axis[0],
-                        axis[1],
-                        axis[2],
-                        draw(&mut rng, angle_deg, pose.angle_deg, u.angle_deg),
-                        draw(&mut rng, c.lengths[0], lengths[0], u.len),
-                    ]
-                })
-                .collect();
-            let fit = fit_leg(
-                &sim.nominal[0].params(),
-                calib_gough::LegModel::AxisAngle,
-                &m,
-            );
-            bar.inc(1);
-            fit.x
-        })
-        .collect();
-    bar.finish_and_clear();
-    let t_mc = t3.elapsed().as_secs_f64();
-    let xs: Option<[Interval; 7]> = fits.first().map(|f0| {
-        core::array::from_fn(|j| {
-            let (lo, hi) = fits
-                .iter()
-                .fold((f0[j], f0[j]), |(lo, hi), f| (lo.min(f[j]), hi.max(f[j])));
-            Interval::new(lo, hi)
-        })
-    });
-
-    let x1 = (c.status != Status::Empty).then_some(c.outer);
+    let e = Experiment::run(&sim, &u, &settings);
+    let LeastSquares {
+        fits,
+        seconds: t_mc,
+    } = least_squares_fits(&a, &sim, &u)?;
+    let xs = hull_of(&fits);
+    let x1 = (e.certified.status != Status::Empty).then_some(e.certified.outer);
     println!(
         "certified (this run): {:?}, {} iterations",
-        c.status, c.iterations
+        e.certified.status, e.certified.iterations
     );
-    let mut leg = LegResult::from_hull(0, x0, h);
-    leg.x1 = x1;
-    leg.x2 = Some(s.hull);
-    leg.boxes += s.boxes_contracted;
-    leg.seconds = t_hull + t_sweep;
+    let leg = e.leg(x1);
     let ours = [
-        ("x0", Some(x0)),
+        ("x0", Some(e.x0)),
         ("x1", x1),
-        ("x2", s.hull),
+        ("x2", e.swept.hull),
         ("xs", xs),
         ("outer", leg.outer),
         ("inner", leg.inner),
@@ -230,59 +139,251 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
          solutions;\nouter the tight certified hull (every consistent parameter vector lies in it), \
          inner the hull of\nparameter vectors proved consistent: the true range lies between them."
     );
-    if let Some(ratio) = c.overestimation() {
-        say(format!(
+    compare_widths(&mut notes, &e, &leg, x1);
+    for (name, certified) in [("x1", x1), ("outer", leg.outer)] {
+        notes.say(standing_of_fits(name, &e.x0, certified.as_ref(), &fits));
+    }
+    println!();
+    notes.say(sweep_words(&e.swept));
+    notes.say(format!(
+        "timing: certify {:.3} s, sweep {:.3} s, hull {:.3} s, {} least-squares fits {t_mc:.3} s ({} threads)",
+        e.t_certify,
+        e.t_sweep,
+        e.t_hull,
+        a.samples,
+        rayon::current_num_threads()
+    ));
+    if let Some(dir) = &a.out {
+        let run = Run {
+            args: &a,
+            sim: &sim,
+            leg: &leg,
+            fits: &fits,
+            xs,
+            ours: &ours,
+            volumes: &e.swept.volumes,
+        };
+        write_outputs(dir, &run, notes.0, started.elapsed().as_secs_f64())?;
+    }
+    Ok(0)
+}
+
+/// The findings of the run: printed as they come, kept for the certificate.
+#[derive(Default)]
+struct Notes(Vec<String>);
+
+impl Notes {
+    /// Prints `line` and keeps it.
+    fn say(&mut self, line: String) {
+        println!("{line}");
+        self.0.push(line);
+    }
+}
+
+/// Exact measurements: the certified box shrinks around the truth. The finding in words.
+fn exact_data_check(truth: &[calib_gough::Leg], seed: u64, settings: &Settings) -> String {
+    let t0 = Instant::now();
+    let exact = simulate(truth, CONFIGS, seed, Uncertainty::uniform(1e-9), 0.0, 0.1);
+    let boxes = leg_boxes(&exact.measured, &exact.uncertainty, 0);
+    let x0 = exact.nominal[0].params().map(|v| Interval::mid_rad(v, 0.1));
+    let r = certify(&calib_gough::GoughLeg, &x0, &boxes, settings);
+    let worst = r.outer.iter().map(|v| v.rad()).fold(0.0, f64::max);
+    let inside = (0..7).all(|j| r.outer[j].contains(truth[0].params()[j]));
+    format!(
+        "exact data (error bounds 1e-9): {:?} after {} iterations, largest radius {worst:.1e}, truth inside: {inside} ({:.2} s)",
+        r.status, r.iterations, t0.elapsed().as_secs_f64()
+    )
+}
+
+/// The paper's three computations on the noisy data (with the paper's error bounds) and the
+/// tight hull, with their times.
+struct Experiment {
+    x0: [Interval; 7],
+    certified: calib_core::Certification<7>,
+    swept: calib_core::SweepResult<7>,
+    hull: calib_core::Hull<7>,
+    t_certify: f64,
+    t_sweep: f64,
+    t_hull: f64,
+}
+
+impl Experiment {
+    /// x1 (certify), x2 (sweep) and the tight hull of leg 1 of `sim`.
+    fn run(sim: &Simulation, u: &Uncertainty, settings: &Settings) -> Experiment {
+        let boxes = leg_boxes(&sim.measured, u, 0);
+        let x0 = sim.nominal[0].params().map(|v| Interval::mid_rad(v, 0.1));
+        let t1 = Instant::now();
+        let certified = certify(&calib_gough::GoughLeg, &x0, &boxes, settings);
+        let t_certify = t1.elapsed().as_secs_f64();
+        let t2 = Instant::now();
+        let swept = sweep(&calib_gough::GoughLeg, &x0, &boxes, settings);
+        let t_sweep = t2.elapsed().as_secs_f64();
+        let t4 = Instant::now();
+        let hull = hull(&calib_gough::GoughLeg, &x0, &boxes, settings);
+        let t_hull = t4.elapsed().as_secs_f64();
+        Experiment {
+            x0,
+            certified,
+            swept,
+            hull,
+            t_certify,
+            t_sweep,
+            t_hull,
+        }
+    }
+
+    /// Leg 1's result: the tight hull, with x1 and the sweep's x2.
+    fn leg(&self, x1: Option<[Interval; 7]>) -> LegResult {
+        let mut leg = LegResult::from_hull(0, self.x0, self.hull.clone());
+        leg.x1 = x1;
+        leg.x2 = Some(self.swept.hull);
+        leg.boxes += self.swept.boxes_contracted;
+        leg.seconds = self.t_hull + self.t_sweep;
+        leg
+    }
+}
+
+/// xs's samples and the seconds they took.
+struct LeastSquares {
+    fits: Vec<[f64; 7]>,
+    seconds: f64,
+}
+
+/// xs's samples: least-squares solutions on measurements drawn inside M ∩ [true - e, true + e].
+fn least_squares_fits(
+    a: &Args,
+    sim: &Simulation,
+    u: &Uncertainty,
+) -> Result<LeastSquares, Box<dyn std::error::Error>> {
+    let t3 = Instant::now();
+    let bar = ProgressBar::new(a.samples as u64);
+    bar.set_style(ProgressStyle::with_template(
+        "least squares {bar:40} {pos}/{len} [{elapsed_precise}]",
+    )?);
+    let fits: Vec<[f64; 7]> = (0..a.samples)
+        .into_par_iter()
+        .map(|i| {
+            let mut rng =
+                StdRng::seed_from_u64(a.seed ^ (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+            let fit = fit_leg(
+                &sim.nominal[0].params(),
+                calib_gough::LegModel::AxisAngle,
+                &drawn_measurements(&mut rng, sim, u),
+            );
+            bar.inc(1);
+            fit.x
+        })
+        .collect();
+    bar.finish_and_clear();
+    Ok(LeastSquares {
+        fits,
+        seconds: t3.elapsed().as_secs_f64(),
+    })
+}
+
+/// Leg 1's measurements drawn uniformly inside the measured boxes and around the truth.
+fn drawn_measurements(rng: &mut StdRng, sim: &Simulation, u: &Uncertainty) -> Vec<[f64; 8]> {
+    sim.measured
+        .iter()
+        .zip(&sim.poses)
+        .zip(&sim.exact_lengths)
+        .map(|((c, pose), lengths)| {
+            let Orientation::AxisAngle { axis, angle_deg } = c.orientation else {
+                unreachable!()
+            };
+            let p: [f64; 3] = core::array::from_fn(|k| draw(rng, c.p[k], pose.p[k], u.pos));
+            let axis: [f64; 3] = core::array::from_fn(|k| draw(rng, axis[k], pose.axis[k], u.axis));
+            [
+                p[0],
+                p[1],
+                p[2],
+                axis[0],
+                axis[1],
+                axis[2],
+                draw(rng, angle_deg, pose.angle_deg, u.angle_deg),
+                draw(rng, c.lengths[0], lengths[0], u.len),
+            ]
+        })
+        .collect()
+}
+
+/// xs: the hull of the least-squares solutions (none without samples).
+fn hull_of(fits: &[[f64; 7]]) -> Option<[Interval; 7]> {
+    fits.first().map(|f0| {
+        core::array::from_fn(|j| {
+            let (lo, hi) = fits
+                .iter()
+                .fold((f0[j], f0[j]), |(lo, hi), f| (lo.min(f[j]), hi.max(f[j])));
+            Interval::new(lo, hi)
+        })
+    })
+}
+
+/// The width ratios: x1 and the tight hull against their inner bounds, x1 against the hull.
+fn compare_widths(notes: &mut Notes, e: &Experiment, leg: &LegResult, x1: Option<[Interval; 7]>) {
+    if let Some(ratio) = e.certified.overestimation() {
+        notes.say(format!(
             "x1/inner width (x1's own inner bounds):   {}",
             ratios(&ratio)
         ));
     }
-    if let Some(ratio) = verdict::width_ratios(&leg) {
-        say(format!(
+    if let Some(ratio) = verdict::width_ratios(leg) {
+        notes.say(format!(
             "outer/inner width (tight hull, {} boxes): {}",
-            leg.boxes - s.boxes_contracted,
+            leg.boxes - e.swept.boxes_contracted,
             ratios(&ratio)
         ));
     }
     if let (Some(x1), Some(outer)) = (x1, leg.outer) {
         let shrink: [f64; 7] = core::array::from_fn(|j| x1[j].wid() / outer[j].wid());
-        say(format!(
+        notes.say(format!(
             "x1 width / outer width:                   {}",
             ratios(&shrink)
         ));
     }
-    for (name, certified) in [("x1", x1), ("outer", leg.outer)] {
-        // Only fits inside x0 can be refuted: the certificate says nothing beyond x0.
-        let (mut refuted, mut beyond) = (0, 0);
-        let mut params = [false; 7];
-        for f in &fits {
-            match verdict::standing(&x0, certified.as_ref(), f) {
-                Standing::Inside => {}
-                Standing::Refuted(p) => {
-                    refuted += 1;
-                    p.iter().for_each(|&j| params[j] = true);
-                }
-                Standing::BeyondX0(_) => beyond += 1,
+}
+
+/// Where the least-squares solutions stand against the certified box `name`, in words.
+fn standing_of_fits(
+    name: &str,
+    x0: &[Interval; 7],
+    certified: Option<&[Interval; 7]>,
+    fits: &[[f64; 7]],
+) -> String {
+    // Only fits inside x0 can be refuted: the certificate says nothing beyond x0.
+    let (mut refuted, mut beyond) = (0, 0);
+    let mut params = [false; 7];
+    for f in fits {
+        match verdict::standing(x0, certified, f) {
+            Standing::Inside => {}
+            Standing::Refuted(p) => {
+                refuted += 1;
+                p.iter().for_each(|&j| params[j] = true);
             }
+            Standing::BeyondX0(_) => beyond += 1,
         }
-        let sticking: Vec<&str> = (0..7)
-            .filter(|&j| params[j])
-            .map(|j| PARAMETER_NAMES[j])
-            .collect();
-        say(format!(
-            "{name}: of {} least-squares solutions, {} lie inside it, {refuted} in x0 but outside \
-             it{} (proved not to fit the measurements within their error bounds), {beyond} \
-             outside x0 (where nothing is certified)",
-            fits.len(),
-            fits.len() - refuted - beyond,
-            if sticking.is_empty() {
-                String::new()
-            } else {
-                format!(", in {}", sticking.join(", "))
-            }
-        ));
     }
-    println!();
-    say(format!(
+    let sticking: Vec<&str> = (0..7)
+        .filter(|&j| params[j])
+        .map(|j| PARAMETER_NAMES[j])
+        .collect();
+    format!(
+        "{name}: of {} least-squares solutions, {} lie inside it, {refuted} in x0 but outside \
+         it{} (proved not to fit the measurements within their error bounds), {beyond} \
+         outside x0 (where nothing is certified)",
+        fits.len(),
+        fits.len() - refuted - beyond,
+        if sticking.is_empty() {
+            String::new()
+        } else {
+            format!(", in {}", sticking.join(", "))
+        }
+    )
+}
+
+/// The sweep's boxes and volumes, in words.
+fn sweep_words(s: &calib_core::SweepResult<7>) -> String {
+    format!(
         "sweep: {} boxes kept of {} contracted; total volume per step: {}",
         s.boxes.len(),
         s.boxes_contracted,
@@ -291,44 +392,48 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             .map(|v| format!("{v:.2e}"))
             .collect::<Vec<_>>()
             .join(" ")
-    ));
-    say(format!(
-        "timing: certify {t_certify:.3} s, sweep {t_sweep:.3} s, hull {t_hull:.3} s, {} least-squares fits {t_mc:.3} s ({} threads)",
-        a.samples,
-        rayon::current_num_threads()
-    ));
-    if let Some(dir) = &a.out {
-        let figures = paper_figures(&fits, &leg, xs, &s.volumes)?;
-        std::fs::create_dir_all(dir)
-            .map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
-        for (name, f) in &figures {
-            let path = dir.join(name);
-            write_atomically(&path, &f.svg)
-                .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-        }
-        let comparison = Section {
-            heading: "The paper's experiment (Section V, Tables II–IV, Figs. 3–5)".into(),
-            paragraphs: notes,
-            tables: paper_tables(&ours),
-            figures: figures.into_iter().map(|(_, f)| f).collect(),
-        };
-        let page = certificate(
-            &a,
-            &sim,
-            &leg,
-            &fits,
-            comparison,
-            started.elapsed().as_secs_f64(),
-        )?;
-        let path = dir.join("report.html");
-        write_atomically(&path, &page)
+    )
+}
+
+/// What `--out` writes from.
+struct Run<'a> {
+    args: &'a Args,
+    sim: &'a Simulation,
+    leg: &'a LegResult,
+    fits: &'a [[f64; 7]],
+    xs: Option<[Interval; 7]>,
+    ours: &'a [(&'a str, Option<[Interval; 7]>); 6],
+    volumes: &'a [f64],
+}
+
+/// --out: the figures as SVG files and the certificate (report.html) with the comparison.
+fn write_outputs(
+    dir: &std::path::Path,
+    run: &Run<'_>,
+    notes: Vec<String>,
+    seconds: f64,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let figures = paper_figures(run.fits, run.leg, run.xs, run.volumes)?;
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
+    for (name, f) in &figures {
+        let path = dir.join(name);
+        write_atomically(&path, &f.svg)
             .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-        println!(
-            "figures and the certificate (report.html) written to {}",
-            dir.display()
-        );
     }
-    Ok(0)
+    let comparison = Section {
+        heading: "The paper's experiment (Section V, Tables II–IV, Figs. 3–5)".into(),
+        paragraphs: notes,
+        tables: paper_tables(run.ours),
+        figures: figures.into_iter().map(|(_, f)| f).collect(),
+    };
+    let page = certificate(run.args, run.sim, run.leg, run.fits, comparison, seconds)?;
+    let path = dir.join("report.html");
+    write_atomically(&path, &page).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    println!(
+        "figures and the certificate (report.html) written to {}",
+        dir.display()
+    );
+    Ok(())
 }
 
 /// The certificate of the run: the simulated data identified by the SHA-256 of the files
