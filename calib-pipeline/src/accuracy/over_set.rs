@@ -337,20 +337,7 @@ where
         }
         let mut lp = |slot: usize, w: &[Interval; NX]| lps.max_linear(slot, w, &self.nominal);
         if P::TERMS_BY_PROGRAMS {
-            // Each term by two programs over the set, where that is tighter.
-            let base = (2 * R + if R == 3 { COVER_DIRECTIONS } else { 0 }) << VERTEX_INPUTS;
-            let terms = TERM_SLOTS;
-            for (k, c) in per_axis.iter_mut().enumerate() {
-                let by_programs = c.terms.iter().enumerate().fold(c.fixed, |acc, (t, a)| {
-                    let slot = base + 2 * (k * terms + t.min(terms - 1));
-                    let up = lp(slot, a);
-                    let down = lp(slot + 1, &a.map(|v| -v));
-                    add_up(acc, up.max(down).max(0.0))
-                });
-                if by_programs < c.rest {
-                    c.rest = by_programs;
-                }
-            }
+            terms_by_programs(&mut per_axis, &mut lp);
         }
         best = best.min(bound(&per_axis, &mut lp));
         if best <= enough || R != 3 {
@@ -684,6 +671,30 @@ impl<const NX: usize> Slopes<NX> {
 /// At most this many inputs' linear terms go to the vertices of their cube (`2^n` linear
 /// programs per component and sign).
 const VERTEX_INPUTS: usize = 3;
+
+/// Each component's terms bounded apart, by two programs each over the set
+/// ([`Prediction::TERMS_BY_PROGRAMS`]): where that is below the parallelotope's bound, it
+/// replaces it (both are valid).
+fn terms_by_programs<const NX: usize>(
+    per_axis: &mut [Component<NX>],
+    lp: &mut dyn FnMut(usize, &[Interval; NX]) -> f64,
+) {
+    let base = (2 * per_axis.len() + if per_axis.len() == 3 { COVER_DIRECTIONS } else { 0 })
+        << VERTEX_INPUTS;
+    for (k, c) in per_axis.iter_mut().enumerate() {
+        let by_programs = c.terms.iter().enumerate().fold(c.fixed, |acc, (t, a)| {
+            let slot = base + 2 * (k * TERM_SLOTS + t.min(TERM_SLOTS - 1));
+            let (up, down) = (lp(slot, a), lp(slot + 1, &a.map(|v| -v)));
+            if up.is_nan() || down.is_nan() {
+                return f64::INFINITY;
+            }
+            add_up(acc, up.max(down).max(0.0))
+        });
+        if by_programs < c.rest {
+            c.rest = by_programs;
+        }
+    }
+}
 
 /// Slots per component for the terms bounded by programs ([`Prediction::TERMS_BY_PROGRAMS`]):
 /// the inputs' linear and second-order terms of up to seven inputs (any beyond share the last).
