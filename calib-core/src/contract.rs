@@ -449,12 +449,23 @@ fn push_relaxation_rows<M, const NX: usize, const NM: usize, const NR: usize>(
     } else {
         [unused; 2]
     };
+    // The centred forms only where the relaxation uses them (the others stay zero, unread).
+    let (centre, corners) = (frame.krawczyk(), frame.corners());
     for r in 0..NR {
-        let over = |v: Interval| centred_over_measurement(v, m, &m_mid, &e[r].dm);
+        let over = |used: bool, v: Interval| {
+            if used {
+                centred_over_measurement(v, m, &m_mid, &e[r].dm)
+            } else {
+                Interval::ZERO
+            }
+        };
         let eq = ScalarRow {
             a: e[r].dx,
-            at_centre: over(at_centre[r]),
-            at_corners: [over(at_corners[0][r]), over(at_corners[1][r])],
+            at_centre: over(centre, at_centre[r]),
+            at_corners: [
+                over(corners, at_corners[0][r]),
+                over(corners, at_corners[1][r]),
+            ],
         };
         frame.push_rows(poly, row, &eq);
     }
@@ -463,11 +474,17 @@ fn push_relaxation_rows<M, const NX: usize, const NM: usize, const NR: usize>(
         let combine = |v: &[Interval; NR]| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * v[r]);
         let b: [Interval; NM] =
             core::array::from_fn(|i| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dm[i]));
-        let over = |v: &[Interval; NR]| centred_over_measurement(combine(v), m, &m_mid, &b);
+        let over = |used: bool, v: &[Interval; NR]| {
+            if used {
+                centred_over_measurement(combine(v), m, &m_mid, &b)
+            } else {
+                Interval::ZERO
+            }
+        };
         let eq = ScalarRow {
             a: core::array::from_fn(|j| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dx[j])),
-            at_centre: over(&at_centre),
-            at_corners: [over(&at_corners[0]), over(&at_corners[1])],
+            at_centre: over(centre, &at_centre),
+            at_corners: [over(corners, &at_corners[0]), over(corners, &at_corners[1])],
         };
         frame.push_rows(poly, row, &eq);
     }

@@ -35,6 +35,76 @@ pub struct DenseSimplex {
     warm: Option<u64>,
     /// Pivots made by the last call (for profiling).
     pub last_pivots: usize,
+    /// The rows of `G` column by column, to price every row at once ([`Columns`]).
+    cols: Columns,
+}
+
+/// `G` stored column by column (`g[j * m + i] = G_ij`), so that the products `G_i·v` of every row
+/// come out of `n` passes of `out_i += G_ij v_j` over contiguous memory, which the compiler
+/// vectorises; row by row, each 7-term dot product ran alone. The terms are added in the same
+/// order as a row's dot product (`j = 0, 1, …`), so every product is bit-identical to it and the
+/// walks (pricing, ratio tests, ties) are unchanged. Rebuilt when the polyhedron changes (its
+/// generation and row count: rows are only ever appended after a reset).
+#[derive(Clone, Debug, Default)]
+struct Columns {
+    g: Vec<f64>,
+    key: Option<(u64, usize)>,
+    /// `G y` for the current vertex `y`.
+    activity: Vec<f64>,
+    /// `G d` for an edge direction `d`.
+    along: Vec<f64>,
+}
+
+impl Columns {
+    /// Makes `g` the columns of `p`'s rows.
+    fn load(&mut self, p: &Polyhedron) {
+        let (n, m) = (p.dim(), p.rows());
+        let key = Some((p.generation(), m));
+        if self.key == key && self.g.len() == n * m {
+            return;
+        }
+        self.g.clear();
+        self.g.resize(n * m, 0.0);
+        for i in 0..m {
+            for (j, &a) in p.row(i).iter().enumerate() {
+                self.g[j * m + i] = a;
+            }
+        }
+        self.activity.resize(m, 0.0);
+        self.along.resize(m, 0.0);
+        self.key = key;
+    }
+
+    /// `out_i = G_i·v` for every row, summed in the order `j = 0, 1, …` (the same value as
+    /// `row.iter().zip(v).map(|(a, v)| a * v).sum()`).
+    fn products(g: &[f64], v: &[f64], out: &mut [f64]) {
+        let m = out.len();
+        if m == 0 || v.is_empty() {
+            out.iter_mut().for_each(|o| *o = 0.0);
+            return;
+        }
+        let (first, rest) = g.split_at(m);
+        for (o, &a) in out.iter_mut().zip(first) {
+            // The first term alone, as in the sum (up to the sign of a zero sum, which no
+            // comparison sees).
+            *o = a * v[0];
+        }
+        for (col, &vj) in rest.chunks_exact(m).zip(&v[1..]) {
+            for (o, &a) in out.iter_mut().zip(col) {
+                *o += a * vj;
+            }
+        }
+    }
+
+    /// `activity = G y`.
+    fn activities(&mut self, y: &[f64]) {
+        Self::products(&self.g, y, &mut self.activity);
+    }
+
+    /// `along = G d`.
+    fn alongs(&mut self, d: &[f64]) {
+        Self::products(&self.g, d, &mut self.along);
+    }
 }
 
 /// LPs with more variables than this go to [`ScaledSimplex`]: the unscaled walk below is measured
@@ -115,6 +185,16 @@ fn violation(p: &Polyhedron, k: usize, y: &[f64]) -> f64 {
     }
 }
 
+/// [`violation`] with the rows' products `G_i·y` given in `activity`.
+#[inline(always)]
+fn violation_from(p: &Polyhedron, k: usize, activity: &[f64], y: &[f64]) -> f64 {
+    if k < p.rows() {
+        activity[k] - p.rhs(k)
+    } else {
+        violation(p, k, y)
+    }
+}
+
 /// `a_k · d`.
 #[inline(always)]
 fn along(p: &Polyhedron, k: usize, d: &[f64]) -> f64 {
@@ -170,11 +250,26 @@ impl DenseSimplex {
         primal: &mut [f64],
     ) -> LpStatus {
         let (n, m) = (p.dim(), p.rows());
+        self.cols.load(p);
         for j in 0..n {
             self.b.basis[j] = m + 2 * j + usize::from(c[j] > 0.0);
         }
         self.b.set_mask(m + 2 * n);
-        let mut since_refactor = REFACTOR_EVERY;
+        self.dual_loop(p, c, dual, primal, REFACTOR_EVERY)
+    }
+
+    /// The dual simplex's iterations from the dual feasible basis in `self.b` (`A_W⁻¹` already
+    /// computed unless `since_refactor` is [`REFACTOR_EVERY`]).
+    fn dual_loop(
+        &mut self,
+        p: &Polyhedron,
+        c: &[f64],
+        dual: &mut [f64],
+        primal: &mut [f64],
+        mut since_refactor: usize,
+    ) -> LpStatus {
+        let (n, m) = (p.dim(), p.rows());
+        self.cols.load(p);
         let mut degenerate = 0usize;
         let max_pivots = 10 * (n + m) + 50;
         let mut status = LpStatus::Failed;
@@ -188,12 +283,14 @@ impl DenseSimplex {
             self.b.vertex(&Plain(p));
             self.b.multipliers(c);
             self.b.lambda.iter_mut().for_each(|l| *l = l.max(0.0));
+            self.cols.activities(&self.b.y);
             // Most violated constraint outside the basis (Dantzig), or the first violated one once
             // degenerate pivots pile up (Bland's rule, which cannot cycle).
             let bland = degenerate > 2 * n;
-            let entering = self
-                .b
-                .most_violated(FEASIBILITY_TOL, bland, |k| violation(p, k, &self.b.y));
+            let activity = &self.cols.activity;
+            let entering = self.b.most_violated(FEASIBILITY_TOL, bland, |k| {
+                violation_from(p, k, activity, &self.b.y)
+            });
             let Some(k) = entering else {
                 status = LpStatus::Optimal;
                 break;
@@ -254,7 +351,12 @@ impl DenseSimplex {
             return None;
         }
         self.b.vertex(&Plain(p));
-        if (0..m + 2 * n).any(|k| !self.b.in_basis[k] && violation(p, k, &self.b.y) > WARM_TOL) {
+        self.cols.load(p);
+        self.cols.activities(&self.b.y);
+        let activity = &self.cols.activity;
+        if (0..m + 2 * n)
+            .any(|k| !self.b.in_basis[k] && violation_from(p, k, activity, &self.b.y) > WARM_TOL)
+        {
             return None;
         }
         let mut since_refactor = 0;
@@ -295,13 +397,23 @@ impl DenseSimplex {
             }
             let mut enter = None;
             let mut best = f64::INFINITY;
+            self.cols.alongs(&self.b.a_w[..n]);
+            self.cols.activities(&self.b.y);
             for k in 0..m + 2 * n {
                 if self.b.in_basis[k] {
                     continue;
                 }
-                let ad = along(p, k, &self.b.a_w[..n]);
+                let ad = if k < m {
+                    self.cols.along[k]
+                } else {
+                    along(p, k, &self.b.a_w[..n])
+                };
                 if ad > PIVOT_TOL {
-                    let slack = -violation_unscaled(p, k, &self.b.y);
+                    let slack = if k < m {
+                        -(self.cols.activity[k] - p.rhs(k))
+                    } else {
+                        -violation_unscaled(p, k, &self.b.y)
+                    };
                     let t = slack.max(0.0) / ad;
                     if t < best
                         || (bland && t <= best * (1.0 + 1e-12) && enter.is_some_and(|e| k < e))
