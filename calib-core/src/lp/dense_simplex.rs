@@ -329,7 +329,7 @@ impl DenseSimplex {
             return None;
         }
         self.b.multipliers(c);
-        if self.b.lambda.iter().any(|&l| !(l >= -DUAL_TOL)) {
+        if self.b.lambda.iter().any(|&l| l < -DUAL_TOL || l.is_nan()) {
             return None;
         }
         Some(self.dual_loop(p, c, dual, primal, 0))
