@@ -557,15 +557,25 @@ fn push_shifted_row<const NX: usize>(
     if !r.is_finite() {
         return;
     }
-    let mut rhs = Interval::point(r);
+    // The upper bound of `r + Σ a_j delta_j` in interval arithmetic, bound by bound: the sup of
+    // a sum is the rounded-up sum of the sups, and the sup of `[a, a] · delta` is `a sup(delta)`
+    // for `a >= 0`, `a inf(delta)` below, rounded up (the same roundings as `Interval`'s, so the
+    // same number, without the lower bounds nobody reads).
+    let mut rhs = r;
     for j in 0..NX {
         row[j] = coef(j);
         if !row[j].is_finite() {
             return;
         }
-        rhs += Interval::point(row[j]) * delta[j];
+        let a = row[j];
+        let term = if a >= 0.0 {
+            mul_up(a, delta[j].sup())
+        } else {
+            mul_up(a, delta[j].inf())
+        };
+        rhs = add_up(rhs, term);
     }
-    poly.push_row(row, rhs.sup());
+    poly.push_row(row, rhs);
 }
 
 /// Min and max of every `y_j` over the polyhedron, made rigorous; returns the new box in `x`.
