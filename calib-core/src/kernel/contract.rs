@@ -449,12 +449,23 @@ fn push_relaxation_rows<M, const NX: usize, const NM: usize, const NR: usize>(
     } else {
         [unused; 2]
     };
+    // The centred forms only where the relaxation uses them (the others stay zero, unread).
+    let (centre, corners) = (frame.krawczyk(), frame.corners());
     for r in 0..NR {
-        let over = |v: Interval| centred_over_measurement(v, m, &m_mid, &e[r].dm);
+        let over = |used: bool, v: Interval| {
+            if used {
+                centred_over_measurement(v, m, &m_mid, &e[r].dm)
+            } else {
+                Interval::ZERO
+            }
+        };
         let eq = ScalarRow {
             a: e[r].dx,
-            at_centre: over(at_centre[r]),
-            at_corners: [over(at_corners[0][r]), over(at_corners[1][r])],
+            at_centre: over(centre, at_centre[r]),
+            at_corners: [
+                over(corners, at_corners[0][r]),
+                over(corners, at_corners[1][r]),
+            ],
         };
         frame.push_rows(poly, row, &eq);
     }
@@ -463,11 +474,17 @@ fn push_relaxation_rows<M, const NX: usize, const NM: usize, const NR: usize>(
         let combine = |v: &[Interval; NR]| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * v[r]);
         let b: [Interval; NM] =
             core::array::from_fn(|i| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dm[i]));
-        let over = |v: &[Interval; NR]| centred_over_measurement(combine(v), m, &m_mid, &b);
+        let over = |used: bool, v: &[Interval; NR]| {
+            if used {
+                centred_over_measurement(combine(v), m, &m_mid, &b)
+            } else {
+                Interval::ZERO
+            }
+        };
         let eq = ScalarRow {
             a: core::array::from_fn(|j| (0..NR).fold(Interval::ZERO, |s, r| s + l[r] * e[r].dx[j])),
-            at_centre: over(&at_centre),
-            at_corners: [over(&at_corners[0]), over(&at_corners[1])],
+            at_centre: over(centre, &at_centre),
+            at_corners: [over(corners, &at_corners[0]), over(corners, &at_corners[1])],
         };
         frame.push_rows(poly, row, &eq);
     }
@@ -540,15 +557,25 @@ fn push_shifted_row<const NX: usize>(
     if !r.is_finite() {
         return;
     }
-    let mut rhs = Interval::point(r);
+    // The upper bound of `r + Σ a_j delta_j` in interval arithmetic, bound by bound: the sup of
+    // a sum is the rounded-up sum of the sups, and the sup of `[a, a] · delta` is `a sup(delta)`
+    // for `a >= 0`, `a inf(delta)` below, rounded up (the same roundings as `Interval`'s, so the
+    // same number, without the lower bounds nobody reads).
+    let mut rhs = r;
     for j in 0..NX {
         row[j] = coef(j);
         if !row[j].is_finite() {
             return;
         }
-        rhs += Interval::point(row[j]) * delta[j];
+        let a = row[j];
+        let term = if a >= 0.0 {
+            mul_up(a, delta[j].sup())
+        } else {
+            mul_up(a, delta[j].inf())
+        };
+        rhs = add_up(rhs, term);
     }
-    poly.push_row(row, rhs.sup());
+    poly.push_row(row, rhs);
 }
 
 /// Min and max of every `y_j` over the polyhedron, made rigorous; returns the new box in `x`.

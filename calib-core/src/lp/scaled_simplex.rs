@@ -764,7 +764,7 @@ impl ScaledSimplex {
 
 /// `2j` for the objective `+e_j` (times a positive factor), `2j + 1` for `-e_j`, `None` for any
 /// other objective.
-fn unit_objective_slot(c: &[f64]) -> Option<usize> {
+pub(super) fn unit_objective_slot(c: &[f64]) -> Option<usize> {
     let mut nonzero = c.iter().enumerate().filter(|(_, v)| **v != 0.0);
     let (j, v) = nonzero.next()?;
     nonzero
