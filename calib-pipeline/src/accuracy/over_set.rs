@@ -679,8 +679,7 @@ fn terms_by_programs<const NX: usize>(
     per_axis: &mut [Component<NX>],
     lp: &mut dyn FnMut(usize, &[Interval; NX]) -> f64,
 ) {
-    let base = (2 * per_axis.len() + if per_axis.len() == 3 { COVER_DIRECTIONS } else { 0 })
-        << VERTEX_INPUTS;
+    let base = first_term_slot(per_axis.len());
     for (k, c) in per_axis.iter_mut().enumerate() {
         let by_programs = c.terms.iter().enumerate().fold(c.fixed, |acc, (t, a)| {
             let slot = base + 2 * (k * TERM_SLOTS + t.min(TERM_SLOTS - 1));
@@ -694,6 +693,13 @@ fn terms_by_programs<const NX: usize>(
             c.rest = by_programs;
         }
     }
+}
+
+/// The first slot of the terms bounded by programs, after the frame's and the cover's (each with
+/// its vertices), for a prediction of `r` coordinates.
+fn first_term_slot(r: usize) -> usize {
+    let cover = if r == 3 { COVER_DIRECTIONS } else { 0 };
+    (2 * r + cover) << VERTEX_INPUTS
 }
 
 /// Slots per component for the terms bounded by programs ([`Prediction::TERMS_BY_PROGRAMS`]):
