@@ -173,8 +173,10 @@ impl CertifyRequest {
     /// The kernel settings for `configs` configurations (outliers are set per try); errors name
     /// the option as the command line spells it.
     pub fn settings(&self, configs: usize) -> Result<Settings, String> {
-        check_hull_options(self.tolerance, self.max_seconds)?;
-        self.max_outliers.check(configs)?;
+        check_hull_options(self.tolerance, self.max_seconds).map_err(|e| e.to_string())?;
+        self.max_outliers
+            .check(configs)
+            .map_err(|e| e.to_string())?;
         Ok(arm_settings()
             .with_hull_tolerance(self.tolerance)
             .with_hull_budget(self.max_boxes, self.max_seconds))

@@ -22,6 +22,7 @@ use crate::files::LegSpec;
 use crate::geometry::Leg;
 use crate::measurement::{leg_boxes, Configuration, Orientation, Uncertainty};
 use crate::workspace::Workspace;
+use crate::GoughError;
 use crate::LegModel;
 use calib_core::{calibrated_point, CalibratedPoint, CertifiedSet, Model, PointRule};
 use calib_pipeline::calibrated::radius_about;
@@ -102,7 +103,7 @@ pub fn calibrated_robot(
     configs: &[Configuration],
     u: &Uncertainty,
     workspace: Option<&Workspace>,
-) -> Result<CalibratedRobot, String> {
+) -> Result<CalibratedRobot, GoughError> {
     let fallback = measured_workspace(configs);
     let workspace = workspace.unwrap_or(&fallback);
     let mut out = CalibratedRobot {
@@ -112,19 +113,8 @@ pub fn calibrated_robot(
     };
     for r in results {
         let leg = r.leg + 1;
-        let outer = r.outer.ok_or_else(|| {
-            format!(
-                "leg {leg} was proved inconsistent with the data: there is no calibrated geometry \
-                 to write (re-measure its conflicting configurations, or tolerate outliers)"
-            )
-        })?;
-        let undecided = || {
-            format!(
-                "leg {leg}: no geometry was proved consistent with every measurement (the \
-                 certification is undecided), so none can be handed out as calibrated: allow \
-                 more boxes or seconds, tolerate outliers, or check the error bounds"
-            )
-        };
+        let outer = r.outer.ok_or(GoughError::LegInconsistent(leg))?;
+        let undecided = || GoughError::LegUndecided(leg);
         let witness = r.points.first().ok_or_else(undecided)?;
         let boxes = leg_boxes(configs, u, r.leg);
         let model = LegModel::of(configs);

@@ -4,6 +4,7 @@
 use crate::files::LegSpec;
 use crate::measurement::{leg_boxes, measured, Configuration, Uncertainty};
 use crate::report::{bounds, LegReport, Report};
+use crate::GoughError;
 use crate::{LegModel, PARAMETER_NAMES};
 use calib_core::{
     certify, hull, pave, sweep, Cover, EmptinessProof, Hull, Interval, Settings, Status,
@@ -53,13 +54,15 @@ impl Default for CertifyOptions {
 impl CertifyOptions {
     /// Checks the options against the data; returns the 0-based legs and the kernel settings.
     /// Errors name the option, as the command line spells it.
-    pub fn validate(&self, legs: usize, configs: usize) -> Result<(Vec<usize>, Settings), String> {
+    pub fn validate(
+        &self,
+        legs: usize,
+        configs: usize,
+    ) -> Result<(Vec<usize>, Settings), GoughError> {
         let chosen: Vec<usize> = match &self.legs {
             Some(list) => {
                 if let Some(l) = list.iter().find(|&&l| l == 0 || l > legs) {
-                    return Err(format!(
-                        "--legs: leg {l} does not exist (robot.toml has {legs} legs)"
-                    ));
+                    return Err(GoughError::NoSuchLeg { leg: *l, legs });
                 }
                 list.iter().map(|l| l - 1).collect()
             }
@@ -67,9 +70,7 @@ impl CertifyOptions {
         };
         if let Some(tol) = self.pave {
             if !(tol > 0.0 && tol < 1.0) {
-                return Err(format!(
-                    "--pave: expected a relative width in (0, 1), found {tol}"
-                ));
+                return Err(GoughError::Pave(tol));
             }
         }
         check_hull_options(self.tolerance, self.max_seconds)?;
@@ -316,7 +317,7 @@ pub fn certify_legs(
     u: &Uncertainty,
     options: &CertifyOptions,
     done: &(dyn Fn() + Sync),
-) -> Result<Vec<LegResult>, String> {
+) -> Result<Vec<LegResult>, GoughError> {
     let (legs, mut settings) = options.validate(robot.len(), configs.len())?;
     if options.max_outliers == OutlierBudget::Auto {
         // Every result `auto` keeps is consistent, or tolerates outliers: a conflict set (sought

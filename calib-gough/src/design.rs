@@ -15,6 +15,7 @@ use crate::geometry::{leg_reading, Leg, Pose};
 use crate::measurement::{leg_boxes, measured, Configuration, Orientation, Uncertainty};
 use crate::simulate::simulate_at;
 use crate::workspace::Workspace;
+use crate::GoughError;
 use crate::LegModel;
 use calib_core::Interval;
 use calib_pipeline::design::{
@@ -85,18 +86,14 @@ pub fn extension(
     data: crate::files::Measurements,
     u: &Uncertainty,
     uncertainty_file: Option<&std::path::Path>,
-) -> Result<Vec<Configuration>, String> {
+) -> Result<Vec<Configuration>, GoughError> {
     match (data.rodrigues, uncertainty_file) {
         (false, _) => Ok(data.configs),
         (true, Some(file)) => {
-            crate::files::check_uncertainty(file, u, true).map_err(|e| e.to_string())?;
+            crate::files::check_uncertainty(file, u, true)?;
             Ok(data.configs)
         }
-        (true, None) => Err(
-            "--extend: the measurements give Rodrigues vectors (q1,q2,q3); give \
-                            --uncertainty with their half-width q"
-                .into(),
-        ),
+        (true, None) => Err(GoughError::ExtendNeedsQ),
     }
 }
 
@@ -192,15 +189,15 @@ pub fn design(
     request: &DesignRequest,
     measured_already: &[Configuration],
     progress: &(dyn Fn() + Sync),
-) -> Result<Design, String> {
+) -> Result<Design, GoughError> {
     if request.configs == 0 {
-        return Err("--configs: expected at least 1 configuration".into());
+        return Err(GoughError::NoConfigurations);
     }
     if request.candidates < request.configs {
-        return Err(format!(
-            "--candidates {}: expected at least as many candidates as configurations ({})",
-            request.candidates, request.configs
-        ));
+        return Err(GoughError::TooFewCandidates {
+            candidates: request.candidates,
+            configs: request.configs,
+        });
     }
     let legs = nominal_legs(robot);
     let mut rng = StdRng::seed_from_u64(request.seed);
@@ -278,7 +275,7 @@ pub fn predict(
     poses: &[Pose],
     measured_already: &[Configuration],
     seed: u64,
-) -> Result<Vec<LegResult>, String> {
+) -> Result<Vec<LegResult>, GoughError> {
     let sim = simulate_at(truth, poses, seed, *u, 1.0, 0.0);
     let configs: Vec<Configuration> = measured_already
         .iter()
@@ -326,7 +323,7 @@ pub fn plan(
     request: &DesignRequest,
     measured_already: &[Configuration],
     progress: &(dyn Fn() + Sync),
-) -> Result<Plan, String> {
+) -> Result<Plan, GoughError> {
     let start = std::time::Instant::now();
     let d = design(robot, u, workspace, request, measured_already, progress)?;
     let design_seconds = start.elapsed().as_secs_f64();
@@ -342,15 +339,12 @@ pub fn plan(
         )?
         .iter()
         .map(|r| {
-            r.witness.map(|w| Leg::from_params(&w)).ok_or_else(|| {
-                format!(
-                    "--extend: leg {} of the measured data has no certified consistent \
-                         parameter vector ({:?}); certify the data (gough certify) and resolve \
-                         that leg first",
-                    r.leg + 1,
-                    r.status
-                )
-            })
+            r.witness
+                .map(|w| Leg::from_params(&w))
+                .ok_or(GoughError::ExtendLegUnresolved {
+                    leg: r.leg + 1,
+                    status: r.status,
+                })
         })
         .collect::<Result<_, _>>()?
     };

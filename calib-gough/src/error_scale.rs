@@ -88,7 +88,8 @@ impl ScaleBounds {
 pub const HULL_BOXES: usize = 2_000;
 
 /// Searches the smallest consistent factor of `which` bounds of `u` for the `legs` (0-based) of
-/// `robot` on `configs`; `on_trial` hears each factor before it is tried.
+/// `robot` on `configs`; `on_trial` hears each factor before it is tried. Each trial is a hull
+/// per leg, which cannot fail: the bracket itself is returned.
 pub fn search(
     robot: &[LegSpec],
     legs: &[usize],
@@ -96,7 +97,7 @@ pub fn search(
     u: &Uncertainty,
     which: ScaleBounds,
     on_trial: impl FnMut(f64),
-) -> Result<ErrorScale, String> {
+) -> ErrorScale {
     let boxes: Vec<_> = legs
         .iter()
         .map(|&leg| move |s: f64| leg_boxes(configs, &which.scale(u, s), leg))
@@ -120,10 +121,11 @@ pub fn search(
     search_from_estimate(
         &problems,
         |i, s| {
-            Ok::<Status, String>(
+            Ok::<Status, std::convert::Infallible>(
                 hull(&model, &problems[i].x0, &(problems[i].boxes)(s), &settings).status,
             )
         },
         on_trial,
     )
+    .unwrap_or_else(|never| match never {})
 }

@@ -13,6 +13,7 @@ pub mod accuracy;
 pub mod calibrated;
 pub mod certification;
 pub mod design;
+mod error;
 pub mod error_scale;
 pub mod files;
 pub mod geometry;
@@ -27,6 +28,7 @@ pub mod simulate;
 pub mod verdict;
 pub mod workspace;
 
+pub use error::GoughError;
 pub use geometry::{leg_reading, Leg, Pose};
 pub use measurement::{leg_boxes, leg_values, Configuration, Orientation, Uncertainty};
 pub use model::{

@@ -3,6 +3,7 @@
 use crate::geometry::{leg_reading, Leg, Pose};
 use crate::measurement::{Configuration, Orientation, Uncertainty};
 use crate::report::write_atomically;
+use crate::GoughError;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::fmt::Write as _;
@@ -155,11 +156,9 @@ pub fn write_data_set(
     seed: u64,
     noise_scale: f64,
     outliers: &[(usize, usize, f64)],
-) -> Result<Simulation, String> {
+) -> Result<Simulation, GoughError> {
     if configs < 7 {
-        return Err(format!(
-            "--configs {configs}: at least 7 configurations are needed"
-        ));
+        return Err(GoughError::TooFewConfigurations(configs));
     }
     let mut pose_rng = StdRng::seed_from_u64(seed.wrapping_add(0x5eed));
     let poses: Vec<Pose> = (0..configs).map(|_| random_pose(&mut pose_rng)).collect();
@@ -173,36 +172,37 @@ pub fn write_data_set_at(
     seed: u64,
     noise_scale: f64,
     outliers: &[(usize, usize, f64)],
-) -> Result<Simulation, String> {
+) -> Result<Simulation, GoughError> {
     let configs = poses.len();
     if configs < 7 {
-        return Err(format!(
-            "{configs} poses: at least 7 configurations are needed (one per unknown of a leg)"
-        ));
+        return Err(GoughError::TooFewPoses(configs));
     }
     if !(noise_scale.is_finite() && noise_scale >= 0.0) {
-        return Err("--noise-scale: expected a finite number >= 0".into());
+        return Err(GoughError::NoiseScale);
     }
     if let Some((c, l, d)) = outliers
         .iter()
         .find(|(c, l, d)| *c >= configs || *l >= 6 || !d.is_finite())
     {
-        return Err(format!(
-            "--outlier {}:{}:{d}: configuration must be 1..={configs}, leg 1..=6, delta finite",
-            c + 1,
-            l + 1
-        ));
+        return Err(GoughError::Outlier {
+            configuration: *c,
+            leg: *l,
+            delta: *d,
+            configs,
+        });
     }
     let u = Uncertainty::PAPER;
     let mut sim = simulate_at(&builtin_hexapod(), poses, seed, u, noise_scale, 0.1);
     for &(c, l, d) in outliers {
         sim.measured[c].lengths[l] += d;
     }
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
+    std::fs::create_dir_all(dir).map_err(|source| GoughError::CreateDir {
+        path: dir.to_path_buf(),
+        source,
+    })?;
     for (name, text) in data_set_files(&sim, seed, noise_scale, outliers) {
         let path = dir.join(name);
-        write_atomically(&path, &text)
-            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        write_atomically(&path, &text).map_err(|source| GoughError::Write { path, source })?;
     }
     Ok(sim)
 }

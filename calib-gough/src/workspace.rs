@@ -14,6 +14,7 @@
 
 use crate::files::{read_text, DataError};
 use crate::geometry::{leg_reading, Leg, Pose};
+use crate::GoughError;
 use calib_pipeline::{finite_number, line_at, toml_error};
 use rand::rngs::StdRng;
 use rand::Rng;
@@ -163,16 +164,13 @@ impl Workspace {
         legs: &[Leg],
         count: usize,
         extremes: bool,
-    ) -> Result<Vec<Pose>, String> {
+    ) -> Result<Vec<Pose>, GoughError> {
         (0..count)
             .map(|_| {
-                self.sample(rng, legs, extremes).ok_or_else(|| {
-                    format!(
-                        "no pose of {SAMPLE_TRIES} random tries in the workspace has every leg \
-                         reading within the stroke {:?} (nominal geometry): check `stroke`",
-                        self.stroke.unwrap_or_default()
-                    )
-                })
+                self.sample(rng, legs, extremes)
+                    .ok_or(GoughError::StrokeExcludesPoses(
+                        self.stroke.unwrap_or_default(),
+                    ))
             })
             .collect()
     }

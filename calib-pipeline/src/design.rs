@@ -52,15 +52,13 @@ pub enum Criterion {
 }
 
 impl std::str::FromStr for Criterion {
-    type Err = String;
+    type Err = crate::ParseError;
 
-    fn from_str(s: &str) -> Result<Self, String> {
+    fn from_str(s: &str) -> Result<Self, crate::ParseError> {
         match s {
             "certified" => Ok(Criterion::Certified),
             "d-optimal" => Ok(Criterion::DOptimal),
-            other => Err(format!(
-                "unknown criterion `{other}`; expected `certified` or `d-optimal`"
-            )),
+            other => Err(crate::ParseError::Criterion(other.to_string())),
         }
     }
 }

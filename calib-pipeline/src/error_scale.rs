@@ -17,6 +17,7 @@
 //! estimate's point: certified consistent against the widened boxes
 //! ([`calib_core::is_consistent_point`]), it is the sub-problem's witness without a certification.
 
+use crate::OptionError;
 use calib_core::{
     is_consistent_point, smallest_scale, Interval, ScaleEstimate, Status, VectorModel,
 };
@@ -218,12 +219,12 @@ pub struct ScaledProblem<'a, M, const NX: usize, const NM: usize> {
 /// every one is): the search of [`find_error_scale`] started from the largest first-order estimate,
 /// each trial first trying every estimate's point (see the module documentation), then
 /// `certify(i, s)` for the sub-problems it did not prove; `on_trial` hears each factor first.
-/// The first error of `certify` ends the search.
-pub fn search_from_estimate<M, const NX: usize, const NM: usize, const NR: usize>(
+/// The first error of `certify` ends the search and is returned.
+pub fn search_from_estimate<M, E, const NX: usize, const NM: usize, const NR: usize>(
     problems: &[ScaledProblem<'_, M, NX, NM>],
-    mut certify: impl FnMut(usize, f64) -> Result<Status, String>,
+    mut certify: impl FnMut(usize, f64) -> Result<Status, E>,
     mut on_trial: impl FnMut(f64),
-) -> Result<ErrorScale, String>
+) -> Result<ErrorScale, E>
 where
     M: VectorModel<NX, NM, NR>,
 {
@@ -290,12 +291,24 @@ pub fn to_json(
 }
 
 /// `--scale-margin`'s check: a finite factor of at least 1.
-pub fn check_margin(margin: f64) -> Result<(), String> {
+pub fn check_margin(margin: f64) -> Result<(), OptionError> {
     if margin.is_finite() && margin >= 1.0 {
         Ok(())
     } else {
-        Err(format!("--scale-margin {margin}: expected a factor >= 1"))
+        Err(OptionError::ScaleMargin(margin))
     }
+}
+
+/// A search that proved no factor consistent.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ScaleError {
+    /// No factor tried, up to `largest`, was proved consistent.
+    #[error("the data are not consistent with the model even with the error bounds × {largest}: a model error, or outliers (try --max-outliers auto)")]
+    NotConsistent {
+        /// The largest factor tried (0 when none was).
+        largest: f64,
+    },
 }
 
 /// What `--error-scale auto` reports once the search is done.
@@ -317,12 +330,11 @@ pub fn report(
     seconds: f64,
     margin: f64,
     describe: &dyn Fn(f64) -> String,
-) -> Result<ScaleReport, String> {
+) -> Result<ScaleReport, ScaleError> {
     let Some((words, certify_at)) = in_words(found, bounds, seconds, margin, describe) else {
-        return Err(format!(
-            "the data are not consistent with the model even with the error bounds × {}: a model error, or outliers (try --max-outliers auto)",
-            found.trials.iter().map(|t| t.scale).fold(0.0, f64::max)
-        ));
+        return Err(ScaleError::NotConsistent {
+            largest: found.trials.iter().map(|t| t.scale).fold(0.0, f64::max),
+        });
     };
     Ok(ScaleReport {
         json: to_json(found, bounds, Some(certify_at), seconds),

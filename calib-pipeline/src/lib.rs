@@ -25,7 +25,10 @@ pub mod stored_set;
 mod table;
 pub mod verdict;
 
-pub use error::{finite_number, line_at, read_text, toml_error, DataError, MAX_MAGNITUDE};
+pub use error::{
+    finite_number, line_at, read_text, toml_error, DataError, OptionError, ParseError,
+    PipelineError, MAX_MAGNITUDE,
+};
 pub use outcome::{certify_model, is_fixed, Depth, ModelCertification, Outcome};
 pub use outlier_budget::{smallest_consistent, OutlierBudget};
 #[doc(hidden)] // for the package's tests (tests/unit)

@@ -11,6 +11,8 @@
 use std::fmt;
 use std::str::FromStr;
 
+use crate::error::{OptionError, ParseError};
+
 /// The number of outliers to tolerate per sub-problem.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum OutlierBudget {
@@ -33,17 +35,17 @@ impl From<usize> for OutlierBudget {
 }
 
 impl FromStr for OutlierBudget {
-    type Err = String;
+    type Err = ParseError;
 
     /// `auto` or a non-negative integer (what `--max-outliers` accepts).
-    fn from_str(s: &str) -> Result<Self, String> {
+    fn from_str(s: &str) -> Result<Self, ParseError> {
         let s = s.trim();
         if s.eq_ignore_ascii_case("auto") {
             return Ok(OutlierBudget::Auto);
         }
-        s.parse().map(OutlierBudget::Fixed).map_err(|_| {
-            format!("expected a number of configurations (0, 1, 2, …) or `auto`, found `{s}`")
-        })
+        s.parse()
+            .map(OutlierBudget::Fixed)
+            .map_err(|_| ParseError::OutlierBudget(s.to_string()))
     }
 }
 
@@ -59,11 +61,12 @@ impl fmt::Display for OutlierBudget {
 impl OutlierBudget {
     /// Checks a fixed budget against the number of configurations (at least one must remain);
     /// the error names the option.
-    pub fn check(&self, configs: usize) -> Result<(), String> {
+    pub fn check(&self, configs: usize) -> Result<(), OptionError> {
         match *self {
-            OutlierBudget::Fixed(q) if q >= configs => Err(format!(
-                "--max-outliers {q}: must be smaller than the number of configurations ({configs})"
-            )),
+            OutlierBudget::Fixed(q) if q >= configs => Err(OptionError::MaxOutliers {
+                outliers: q,
+                configurations: configs,
+            }),
             _ => Ok(()),
         }
     }

@@ -3,6 +3,8 @@
 
 use std::path::Path;
 
+use crate::OptionError;
+
 /// Writes `text` to `path` atomically: to a temporary file beside it, then renamed (a reader sees
 /// the old file or the whole new one, never a part).
 pub fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
@@ -59,17 +61,13 @@ pub fn main_with(run: impl FnOnce() -> Result<i32, Box<dyn std::error::Error>>) 
 
 /// The checks every robot's `certify` makes of its hull options; errors name the option as the
 /// command line spells it.
-pub fn check_hull_options(tolerance: f64, max_seconds: Option<f64>) -> Result<(), String> {
+pub fn check_hull_options(tolerance: f64, max_seconds: Option<f64>) -> Result<(), OptionError> {
     if !(tolerance > 0.0 && tolerance.is_finite()) {
-        return Err(format!(
-            "--tolerance: expected a positive number, found {tolerance}"
-        ));
+        return Err(OptionError::Tolerance(tolerance));
     }
     if let Some(s) = max_seconds {
         if s.is_nan() || s <= 0.0 {
-            return Err(format!(
-                "--max-seconds: expected a positive number, found {s}"
-            ));
+            return Err(OptionError::MaxSeconds(s));
         }
     }
     Ok(())

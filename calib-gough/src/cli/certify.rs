@@ -121,7 +121,6 @@ fn error_scale(
         bar.set_message(format!("certifying with the error bounds × {s:.4}"))
     });
     bar.finish_and_clear();
-    let found = found?;
     let seconds = started.elapsed().as_secs_f64();
     let describe = |s: f64| which.describe(u, s);
     let done = scale_report(&found, which.name(), seconds, margin, &describe)?;

@@ -5,6 +5,7 @@ mod accuracy_move_paving;
 mod accuracy_pose_bound;
 mod accuracy_pose_error;
 mod design;
+mod error;
 mod error_scale;
 mod files;
 mod lsq;

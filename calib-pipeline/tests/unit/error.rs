@@ -9,6 +9,58 @@ fn errors_name_file_line_and_field() {
     assert_eq!(e.to_string(), "robot.toml, line 4, field `joint[2].d`: bad");
     let e = DataError::new(Path::new("a.csv"), None, None, "empty");
     assert_eq!(e.to_string(), "a.csv: empty");
+    let e = DataError::new(Path::new("u.toml"), None, Some("pos_mm"), "negative");
+    assert_eq!(e.to_string(), "u.toml, field `pos_mm`: negative");
+    let e = DataError::new(Path::new("m.csv"), Some(7), None, "short row");
+    assert_eq!(e.to_string(), "m.csv, line 7: short row");
+    // Through the crate's umbrella error, the same text.
+    assert_eq!(
+        PipelineError::from(e).to_string(),
+        "m.csv, line 7: short row"
+    );
+}
+
+/// The messages the CLIs print and Python raises, byte for byte (the typed errors replaced
+/// strings formatted at the call sites).
+#[test]
+fn option_and_parse_errors_keep_their_messages() {
+    let cases: [(PipelineError, &str); 7] = [
+        (
+            OptionError::Tolerance(-1.0).into(),
+            "--tolerance: expected a positive number, found -1",
+        ),
+        (
+            OptionError::MaxSeconds(f64::NAN).into(),
+            "--max-seconds: expected a positive number, found NaN",
+        ),
+        (
+            OptionError::MaxOutliers {
+                outliers: 3,
+                configurations: 3,
+            }
+            .into(),
+            "--max-outliers 3: must be smaller than the number of configurations (3)",
+        ),
+        (
+            OptionError::ScaleMargin(0.5).into(),
+            "--scale-margin 0.5: expected a factor >= 1",
+        ),
+        (
+            ParseError::OutlierBudget("-1".into()).into(),
+            "expected a number of configurations (0, 1, 2, …) or `auto`, found `-1`",
+        ),
+        (
+            ParseError::Criterion("a-optimal".into()).into(),
+            "unknown criterion `a-optimal`; expected `certified` or `d-optimal`",
+        ),
+        (
+            error_scale::ScaleError::NotConsistent { largest: 64.0 }.into(),
+            "the data are not consistent with the model even with the error bounds × 64: a model error, or outliers (try --max-outliers auto)",
+        ),
+    ];
+    for (e, text) in cases {
+        assert_eq!(e.to_string(), text);
+    }
 }
 
 #[test]

@@ -6,7 +6,7 @@ use calib_pipeline::*;
 fn parses_numbers_and_auto() {
     assert_eq!("2".parse(), Ok(OutlierBudget::Fixed(2)));
     assert_eq!(" AUTO ".parse(), Ok(OutlierBudget::Auto));
-    let e = "-1".parse::<OutlierBudget>().unwrap_err();
+    let e = "-1".parse::<OutlierBudget>().unwrap_err().to_string();
     assert!(e.contains("`-1`") && e.contains("auto"), "{e}");
     assert!("1.5".parse::<OutlierBudget>().is_err());
     for b in [OutlierBudget::Fixed(3), OutlierBudget::Auto] {
@@ -20,6 +20,7 @@ fn a_fixed_budget_must_leave_a_configuration() {
     assert!(OutlierBudget::Fixed(3)
         .check(3)
         .unwrap_err()
+        .to_string()
         .contains("--max-outliers 3"));
     assert!(OutlierBudget::Auto.check(1).is_ok());
 }

@@ -20,11 +20,13 @@ fn hull_options_are_checked_by_name() {
     for tol in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         assert!(check_hull_options(tol, None)
             .unwrap_err()
+            .to_string()
             .starts_with("--tolerance"));
     }
     for s in [0.0, -2.0, f64::NAN] {
         assert!(check_hull_options(0.05, Some(s))
             .unwrap_err()
+            .to_string()
             .starts_with("--max-seconds"));
     }
 }
