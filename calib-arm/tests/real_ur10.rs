@@ -13,6 +13,11 @@ fn arm(args: &[&str]) -> Output {
         .expect("the arm binary runs")
 }
 
+/// The JSON file at `path`.
+fn json_file(path: &str) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).expect("a JSON file")).expect("JSON")
+}
+
 fn text(o: &Output) -> String {
     format!(
         "{}\n{}",
@@ -123,9 +128,7 @@ fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
     // The inner bounds reach where the consistent set does: certified points found towards the
     // first-order extremes (towards the contraction's extremes alone they stopped at half the
     // outer width, outer/inner 2.0-2.5 on every parameter at x1).
-    let certified: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(p("certified.json")).expect("json"))
-            .expect("json");
+    let certified = json_file(&p("certified.json"));
     // The JSON says which vector the calibrated file holds and how it was chosen.
     let chosen = &certified["calibrated"];
     assert_eq!(chosen["rule"], "lsq", "{chosen}");
@@ -155,9 +158,7 @@ fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
         &tracker("61-160"),
     );
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    let check: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(p("check.json")).expect("json"))
-            .expect("json");
+    let check = json_file(&p("check.json"));
     assert_eq!(check["rows"].as_array().map(Vec::len), Some(100));
     assert_eq!(check["over"], "certified set");
     let rms = check["residuals"]["rms_mm"].as_f64().expect("rms");
@@ -182,9 +183,7 @@ fn from_the_tracker_file_and_ur_yaml_to_a_certified_ur_yaml() {
         ],
         &tracker("61-160"),
     );
-    let lsq: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(p("lsq_check.json")).expect("json"))
-            .expect("json");
+    let lsq = json_file(&p("lsq_check.json"));
     let lsq_rms = lsq["residuals"]["rms_mm"].as_f64().expect("rms");
     assert!(
         rms < lsq_rms,
@@ -241,9 +240,7 @@ fn just_below_the_smallest_consistent_bound_the_misfit_is_spread_over_the_series
     let out = text(&o);
     assert!(out.contains("second-order Farkas certificate"), "{out}");
     assert!(out.contains("too tight for the model") && out.contains("--error-scale auto"));
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(p("report.json")).expect("json"))
-            .expect("json");
+    let report = json_file(&p("report.json"));
     assert_eq!(report["status"], "empty");
     assert!(report["conflict"].is_null(), "{}", report["conflict"]);
     assert_eq!(report["spread"], true);
@@ -265,9 +262,7 @@ fn just_below_the_smallest_consistent_bound_the_misfit_is_spread_over_the_series
         &tracker("1-60"),
     );
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    let hull: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(p("hull.json")).expect("json"))
-            .expect("json");
+    let hull = json_file(&p("hull.json"));
     assert_eq!(
         (&hull["spread"], &hull["support"], &hull["conflict"]),
         (
@@ -483,8 +478,7 @@ fn the_tmac_orientations_register_the_tool_frame_and_go_where_they_are_used() {
         );
         assert!(matches!(o.status.code(), Some(0 | 2)), "{}", text(&o));
         assert!(text(&o).contains("measured orientations"), "{}", text(&o));
-        let v: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(p(json)).expect("json")).expect("json");
+        let v = json_file(&p(json));
         let r = &v["orientation_residuals"];
         assert_eq!(r["per_row_deg"].as_array().map(Vec::len), Some(20), "{r}");
         r["rms_deg"].as_f64().expect("rms")
