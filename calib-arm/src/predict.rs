@@ -2,24 +2,27 @@
 //! certified range of each coordinate of the tracked point over every parameter vector the
 //! calibration allows, and the same widened by the measurement error bounds.
 //!
-//! At joint readings `q`, the model's affine form over the set's outer box `X` (noise symbols
-//! `x_j = mid(X_j) + rad(X_j) ε_j` for the parameters and `η_i` for the joint readings,
-//! [`calib_core::LinearEnclosure`]) gives each coordinate as
-//! `p_r ∈ c + Σ_j (g_j / rad(X_j)) (x_j - mid(X_j)) + Σ_i h_i η_i ± e`: its largest and smallest
-//! values over the certified set are bounded by one linear program per piece
-//! ([`calib_core::SetQuery::max_linear`], safe bounds), the joint readings' terms by their
-//! magnitudes. The **range** takes the readings as exact; **with errors** the joint readings lie
-//! within `± joint_deg` and the tracked point within `± pos`: a measured point outside it is
-//! impossible unless the model or the error bounds are wrong there — the row refutes them.
+//! The predictions run on the accuracy engine ([`SetAccuracy::predict`](
+//! calib_pipeline::accuracy::SetAccuracy::predict), the tool point as its prediction
+//! [`crate::accuracy::over_set::ToolPoint`]): at joint readings `q`, the model's affine form over
+//! the set's outer box `X` gives each coordinate as `p_r ∈ c + Σ_j (g_j / rad(X_j)) (x_j -
+//! mid(X_j)) + Σ_i h_i η_i ± e`, its largest and smallest values over the certified set bounded
+//! by one linear program per piece (safe bounds), the joint readings' terms by their magnitudes;
+//! the engine also reports what certified geometries reach (`attained`). The **range** takes the
+//! readings as exact; **with errors** the joint readings lie within `± joint_deg` and the
+//! tracked point within `± pos`: a measured point outside it is impossible unless the model or
+//! the error bounds are wrong there — the row refutes them.
 //!
 //! An arm whose robot file has no certified set is predicted over its box (a superset).
 
+use crate::accuracy::over_set::{joint_box, tool_point_engine};
 use crate::certification::{padded_box, ArmSet, MAX_JOINTS, NM, NX};
 use crate::robot::Arm;
 use crate::simulate::Uncertainty;
 use crate::units::deg_to_rad;
 use crate::Arm7Point;
-use calib_core::{Interval, LinearEnclosure, SlotQueries, VectorModel};
+use calib_core::{Interval, VectorModel};
+use calib_pipeline::accuracy::Predicted;
 use rayon::prelude::*;
 
 /// The prediction at one configuration.
@@ -30,6 +33,10 @@ pub struct PointPrediction {
     /// Per coordinate, the tracked point at exactly these readings over every consistent
     /// parameter vector (mm, tracker frame).
     pub range: [Interval; 3],
+    /// Per coordinate, values that parameter vectors proved consistent with the measurements
+    /// give at exactly these readings: some at most its lower end, some at least its upper end
+    /// (`None` without a set): how tight `range` is.
+    pub attained: [Option<Interval>; 3],
     /// Per coordinate, what a measurement may show: joint readings within their error bound,
     /// the tracker's error added (mm).
     pub with_errors: [Interval; 3],
@@ -52,56 +59,13 @@ fn readings_box(joints_deg: &[f64], joint_deg: f64) -> [Interval; NM] {
     })
 }
 
-/// The linear programs of one worker: per coordinate and sign (and for the readings exact or
-/// within their errors), one slot, warm-started from the same slot's previous configuration
-/// (neighbouring rows ask nearly the same question).
-type Programs<'a> = SlotQueries<'a, NX, NM>;
-
-/// How many slots [`point_range`]'s two calls use.
-const SLOTS: usize = 12;
-
-/// The range of each coordinate of the tracked point over the set (or the box `x` without one)
-/// at the readings `m`; `first_slot` picks the programs' slots (`first_slot..first_slot + 6`).
-fn point_range(
-    programs: Option<&mut Programs>,
-    x: &[Interval; NX],
-    m: &[Interval; NM],
-    first_slot: usize,
-) -> [Interval; 3] {
-    let boxed = Arm7Point.residuals_interval(x, m);
-    let (Some(q), Some(forms)) = (programs, Arm7Point.linear_enclosures(x, m)) else {
-        return boxed;
-    };
-    let mid = x.map(|v| v.mid());
-    core::array::from_fn(|r| {
-        let f: &LinearEnclosure<NX, NM> = &forms[r];
-        // x_j - mid_j = rad_j ε_j: the coefficient of (x_j - mid_j) is g_j / rad_j, enclosed.
-        let slopes: [Interval; NX] = core::array::from_fn(|j| {
-            let rad = x[j].rad();
-            if f.gx[j] == 0.0 || rad == 0.0 {
-                Interval::ZERO
-            } else {
-                Interval::point(f.gx[j]) / Interval::point(rad)
-            }
-        });
-        let rest =
-            f.gm.iter()
-                .fold(Interval::point(f.e), |s, g| s + Interval::point(g.abs()))
-                .sup();
-        let up = q.max_linear(first_slot + 2 * r, &slopes, &mid);
-        let down = q.max_linear(first_slot + 2 * r + 1, &slopes.map(|s| -s), &mid);
-        let hi = (Interval::point(f.c) + Interval::point(up) + Interval::point(rest)).sup();
-        let lo = (Interval::point(f.c) - Interval::point(down) - Interval::point(rest)).inf();
-        let both = if lo.is_finite() && hi.is_finite() && lo <= hi {
-            Interval::new(lo, hi).intersection(boxed[r])
-        } else {
-            boxed[r]
-        };
-        if both.is_empty() {
-            boxed[r]
-        } else {
-            both
-        }
+/// The padded joint box of the readings `joints_deg` (radians, enclosed: a reading in degrees
+/// has no exact radian value).
+fn joints_box(joints_deg: &[f64]) -> [Interval; MAX_JOINTS] {
+    core::array::from_fn(|i| {
+        joints_deg
+            .get(i)
+            .map_or(Interval::ZERO, |q| joint_box(*q, *q))
     })
 }
 
@@ -119,6 +83,15 @@ pub fn predict(
         .and_then(|s| s.outer())
         .unwrap_or_else(|| padded_box(arm));
     let pos = Interval::new(-u.pos, u.pos);
+    // One engine over the rows' joint hull: its catalogue of certified geometries and its
+    // parallelotope serve every row.
+    let engine = set.and_then(|s| {
+        let domain = joints_deg
+            .iter()
+            .map(|q| joints_box(q))
+            .reduce(|a, b| core::array::from_fn(|i| a[i].hull(b[i])))?;
+        tool_point_engine(arm, s.clone(), domain, u.joint_deg).ok()
+    });
     let units = crate::params::names(arm.joints.len());
     let values: Vec<f64> = arm
         .nominal()
@@ -133,12 +106,19 @@ pub fn predict(
         .par_iter()
         .enumerate()
         .map_init(
-            || set.map(|s| Programs::new(s, SLOTS)),
+            || engine.as_ref().map(|e| (e, e.programs())),
             |programs, (k, q)| {
-                let range = point_range(programs.as_mut(), &x, &readings_box(q, 0.0), 0);
-                let with_errors =
-                    point_range(programs.as_mut(), &x, &readings_box(q, u.joint_deg), 6)
-                        .map(|v| v + pos);
+                // Over the arm's box (the only answer without a set), narrowed by the set's.
+                let boxed =
+                    |joint_deg: f64| Arm7Point.residuals_interval(&x, &readings_box(q, joint_deg));
+                let mut over_set = |errors: bool| {
+                    let (e, lps) = programs.as_mut()?;
+                    e.predict(&joints_box(q), errors, lps)
+                };
+                let exact = over_set(false);
+                let attained = exact.map_or([None; 3], |p| p.attained.map(|a| a.map(|a| a.range)));
+                let range = narrowed(boxed(0.0), exact);
+                let with_errors = narrowed(boxed(u.joint_deg), over_set(true)).map(|v| v + pos);
                 let point = measured.and_then(|m| m.get(k)).copied();
                 let radians: Vec<f64> = q.iter().map(|d| crate::units::to_rad(*d)).collect();
                 let calibrated =
@@ -146,6 +126,7 @@ pub fn predict(
                 PointPrediction {
                     joints_deg: q.clone(),
                     range,
+                    attained,
                     with_errors,
                     calibrated,
                     measured: point,
@@ -154,6 +135,21 @@ pub fn predict(
             },
         )
         .collect()
+}
+
+/// The box's enclosure `boxed`, narrowed by the set's (both hold every prediction).
+fn narrowed(boxed: [Interval; 3], over_set: Option<Predicted<NX, 3>>) -> [Interval; 3] {
+    let Some(p) = over_set else {
+        return boxed;
+    };
+    core::array::from_fn(|r| {
+        let both = p.outer[r].intersection(boxed[r]);
+        if both.is_empty() {
+            boxed[r]
+        } else {
+            both
+        }
+    })
 }
 
 /// The root mean square and the largest magnitude, over every coordinate of the rows with a
@@ -219,7 +215,8 @@ pub fn predictions_csv(predictions: &[PointPrediction]) -> String {
 }
 
 /// The predictions as JSON (schema version 1; mm, degrees): `over` (`"certified set"` or
-/// `"box"`), per row `joints_deg`, `range` and `with_errors` (per coordinate `[lo, hi]`),
+/// `"box"`), per row `joints_deg`, `range`, `attained` (`[lo, hi]` or `null`) and
+/// `with_errors` (per coordinate `[lo, hi]`),
 /// `measured`, `inside`; `refuting`: the rows (1-based, with their file lines) whose
 /// measurement lies outside its prediction; `calibrated` per row and `residuals` (`rms_mm`,
 /// `max_mm`): the robot file's values against the measurements.
@@ -237,6 +234,7 @@ pub fn predictions_json(
             "line": lines.and_then(|l| l.get(k)),
             "joints_deg": p.joints_deg,
             "range": pairs(&p.range),
+            "attained": p.attained.map(|v| v.map(|c| [c.inf(), c.sup()])),
             "with_errors": pairs(&p.with_errors),
             "calibrated": p.calibrated,
             "measured": p.measured,

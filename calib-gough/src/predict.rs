@@ -2,32 +2,29 @@
 //! certified range of the leg's reading over every geometry the calibration allows, and the
 //! same widened by the measurement error bounds.
 //!
-//! For leg `i` at pose `X`, with `θ̂` the file's geometry and `S_i` its certified set, the
-//! reading is exactly `L_i(X; θ) = L_i(X; θ̂) + G·(θ - θ̂) + r` with `G = ∇_θ L_i(X; θ̂)` and
-//! `0 <= r <=` the legs' curvature bound ([`crate::accuracy::LegCurvature`]). The **range** —
-//! the reading the leg would show at exactly `X`, for every consistent geometry — brackets
-//! `G·θ` over the set with refinement ([`calib_core::maximize_over_set`]: one linear program
-//! per piece, the pieces where the bound is attained split and contracted, lower bounds at
-//! certified geometries), the set getting finer as the predictions go. With the measurement error bounds, the
-//! pose is a box (position ± `pos`, the rotation's box from its axis ± `axis` and angle ±
-//! `angle_deg`; the error enclosed over it as in the accuracy certificate,
-//! [`crate::accuracy::AccuracyProblem::leg_error`]) and the range is widened by the reading's
-//! ± `len`: a **measured** reading outside
-//! that is impossible unless the model or the error bounds are wrong there — the row refutes
-//! them.
+//! Each leg's predictions run on the accuracy engine ([`SetAccuracy::predict`](
+//! calib_pipeline::accuracy::SetAccuracy::predict), the leg's length as its prediction
+//! [`crate::accuracy::over_set::LegLength`]): with `θ̂` the file's geometry, the reading is
+//! `L(X; θ̂) + ∇_θ L(X; θ̂)·(θ - θ̂) + r`, `0 <= r <=` the legs' curvature bound
+//! ([`crate::accuracy::LegCurvature`]), the gradient's term bracketed over the set with
+//! refinement ([`calib_core::maximize_over_set`]: the pieces where the bound is attained split
+//! and contracted, kept for the next predictions) and by one linear program per piece; the
+//! engine also reports what certified geometries reach (`attained`). The **range** is taken at
+//! exactly the pose; **with the measurement error bounds** over the pose's box (position ±
+//! `pos`, the rotation's box from its axis ± `axis` and angle ± `angle_deg`), narrowed by the
+//! leg's box enclosure ([`crate::accuracy::AccuracyProblem::leg_error`]) and widened by the
+//! reading's ± `len`: a **measured** reading outside that is impossible unless the model or
+//! the error bounds are wrong there — the row refutes them.
 //!
 //! A leg whose robot file has no certified set is predicted over its box (a superset).
 
-use crate::accuracy::{AccuracyProblem, LegCurvature, LegReading, PoseBox};
+use crate::accuracy::over_set::{leg_engine, LegLength};
+use crate::accuracy::{AccuracyProblem, LegReading, PoseBox};
 use crate::calibrated::measured_workspace;
 use crate::files::LegSpec;
 use crate::geometry::rodrigues_box;
 use crate::measurement::{measured, Configuration, Orientation, Uncertainty};
-use crate::LegModel;
-use calib_core::{
-    maximize_over_set, CertifiedSet, Interval, LinearFunction, Model, SetMaximumSettings,
-    SetObjective,
-};
+use calib_core::{CertifiedSet, Interval, Model};
 use rayon::prelude::*;
 
 /// One leg's prediction at one pose.
@@ -35,6 +32,10 @@ use rayon::prelude::*;
 pub struct LegPrediction {
     /// The reading at exactly the pose, over every consistent geometry (cm).
     pub range: Interval,
+    /// Readings that geometries proved consistent with the measurements give at exactly the
+    /// pose: some at most its lower end, some at least its upper end (`None` without a set):
+    /// how tight `range` is.
+    pub attained: Option<Interval>,
     /// The reading a measurement may show: over the pose's error box, widened by the reading's
     /// error bound (cm).
     pub with_errors: Interval,
@@ -70,61 +71,6 @@ fn pose_box(c: &Configuration, u: Option<&Uncertainty>) -> PoseBox {
     [p[0], p[1], p[2], q[0], q[1], q[2]]
 }
 
-/// Refinements of a leg's set per prediction and direction (the refined pieces are kept for the
-/// next predictions: a leg's set gets finer where its predictions reach) …
-const REFINEMENTS: usize = 16;
-/// … until it has this many pieces (each prediction solves a linear program per piece).
-const MAX_PIECES: usize = 96;
-
-/// The range of leg `i`'s reading at exactly the pose `x` over its set: `L(X; θ̂) + G·δ + r`
-/// with `G = ∇_θ L(X; θ̂)` (exact slopes at a point pose), `G·δ` bracketed over the set with
-/// refinement ([`maximize_over_set`] until the bracket is within 1% of the range or the
-/// refinements are spent) and `0 <= r <=` the curvature bound ([`crate::accuracy::LegCurvature`]).
-fn range_over_set(
-    set: &mut CertifiedSet<7, 8>,
-    nominal: &[f64; 7],
-    x: &[f64; 6],
-) -> Option<Interval> {
-    let at = LegReading.residual_interval(&nominal.map(Interval::point), &x.map(Interval::point));
-    let g = LegReading.jacobian_x(nominal, x);
-    let outer = set.outer()?;
-    let width = {
-        let mut q = set.query();
-        q.range(&g).wid()
-    };
-    let settings = SetMaximumSettings {
-        rel_tol: 0.0,
-        abs_tol: 0.005 * width,
-        max_refinements: if set.pieces().len() < MAX_PIECES {
-            REFINEMENTS
-        } else {
-            0
-        },
-        ..SetMaximumSettings::default()
-    };
-    let model = LegModel::of_set(set);
-    let up = maximize_over_set(&model, set, &LinearFunction(g), &settings).upper;
-    let down = maximize_over_set(&model, set, &LinearFunction(g.map(|v| -v)), &settings).upper;
-    let gn = LinearFunction(g).value(&nominal.map(Interval::point));
-    let spread: [Interval; 7] = core::array::from_fn(|j| {
-        outer[j].hull(Interval::point(nominal[j])) - Interval::point(nominal[j])
-    });
-    let inputs: [Interval; 13] = core::array::from_fn(|k| {
-        if k < 6 {
-            Interval::point(x[k])
-        } else {
-            Interval::point(nominal[k - 6])
-        }
-    });
-    let r = LegCurvature.residual_interval(&spread, &inputs).sup();
-    if !(up.is_finite() && down.is_finite() && r.is_finite() && r >= 0.0) {
-        return None;
-    }
-    let lo = (at + Interval::point(-down) - gn).inf();
-    let hi = (at + Interval::point(up) - gn + Interval::point(r)).sup();
-    (lo <= hi).then(|| Interval::new(lo, hi))
-}
-
 /// The predictions of `robot` (each leg over its certified set when `sets` has it) at the poses
 /// of `configs`; with `measured`, their readings are checked (see the module documentation).
 pub fn predict(
@@ -135,32 +81,47 @@ pub fn predict(
     measured_readings: bool,
 ) -> Vec<PosePrediction> {
     let problem = AccuracyProblem::over_sets(robot, sets, &measured_workspace(configs));
-    let legs = robot.len();
-    // Per leg (in parallel), its predictions at every pose: its set refined along the way.
-    let per_leg: Vec<Vec<LegPrediction>> = (0..legs)
+    let exact: Vec<PoseBox> = configs.iter().map(|c| pose_box(c, None)).collect();
+    let errors: Vec<PoseBox> = configs.iter().map(|c| pose_box(c, Some(u))).collect();
+    let domain = errors
+        .iter()
+        .copied()
+        .reduce(|a, b| core::array::from_fn(|k| a[k].hull(b[k])));
+    // Per leg (in parallel), its predictions at every pose, by one engine over the poses' hull.
+    let per_leg: Vec<Vec<LegPrediction>> = (0..robot.len())
         .into_par_iter()
         .map(|i| {
-            let nominal = robot[i].nominal.params();
-            let mut set = sets.get(i).cloned().flatten();
+            let nominal = robot[i].nominal.params().map(Interval::point);
+            let prediction = LegLength::new(&problem, i);
+            let engine = domain.and_then(|d| leg_engine(&problem, i, &d, &prediction));
+            let mut lps = engine.as_ref().map(|e| e.programs());
+            let boxed =
+                |x: &PoseBox| LegReading.residual_interval(&nominal, x) + problem.leg_error(i, x);
+            // Over the leg's box (the only answer without a set), narrowed by its set's.
+            let mut enclose = |x: &PoseBox| {
+                let boxed = boxed(x);
+                let over_set = engine
+                    .as_ref()
+                    .zip(lps.as_mut())
+                    .and_then(|(e, lps)| e.predict(x, false, lps));
+                let attained = over_set.and_then(|p| p.attained[0]).map(|a| a.range);
+                match over_set.map(|p| p.outer[0].intersection(boxed)) {
+                    Some(both) if !both.is_empty() => (both, attained),
+                    _ => (boxed, attained),
+                }
+            };
             configs
                 .iter()
-                .map(|c| {
-                    let exact = pose_box(c, None);
-                    let errors = pose_box(c, Some(u));
-                    let boxed = |x: &PoseBox| {
-                        LegReading.residual_interval(&nominal.map(Interval::point), x)
-                            + problem.leg_error(i, x)
-                    };
-                    let range = set
-                        .as_mut()
-                        .and_then(|s| range_over_set(s, &nominal, &exact.map(|v| v.mid())))
-                        .map_or_else(|| boxed(&exact), |r| r.intersection(boxed(&exact)));
-                    let with_errors = boxed(&errors) + measured(0.0, u.len);
+                .enumerate()
+                .map(|(k, c)| {
+                    let (range, attained) = enclose(&exact[k]);
+                    let with_errors = enclose(&errors[k]).0 + measured(0.0, u.len);
                     let reading = measured_readings
                         .then(|| c.lengths.get(i).copied())
                         .flatten();
                     LegPrediction {
                         range,
+                        attained,
                         with_errors,
                         measured: reading,
                         inside: reading.map(|r| with_errors.contains(r)),
@@ -275,6 +236,7 @@ pub fn predictions_json(
                     "leg": i + 1,
                     "over": crate::accuracy::over_words(over_set.get(i).copied().unwrap_or(false)),
                     "range": pair(l.range),
+                    "attained": l.attained.map(pair),
                     "with_errors": pair(l.with_errors),
                     "measured": l.measured,
                     "inside": l.inside,

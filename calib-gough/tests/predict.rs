@@ -50,6 +50,12 @@ fn held_out_readings_lie_in_their_certified_predictions() {
                 "pose {k} leg {i}: {t} not in {:?}",
                 l.range
             );
+            // What certified geometries reach lies inside the proved range.
+            let a = l.attained.expect("certified geometries");
+            assert!(
+                l.range.inf() <= a.inf() && a.sup() <= l.range.sup(),
+                "{a:?} {l:?}"
+            );
             // Consistent geometries at the range's ends, for a sample of poses.
             if k % 6 == 0 {
                 let set = sets[i].as_mut().expect("certified");

@@ -45,10 +45,51 @@ impl Prediction<NX, NM, NM, MAX_JOINTS, 3> for ToolPoint {
     }
 }
 
+/// The engine's problem for the tool point of the calibrated `arm` (its values, in the model's
+/// units: what the controller computes with) over its certified `set`, on the padded joint box
+/// `domain` (radians), every joint within `joint_deg` of its command.
+pub(crate) fn tool_point_engine(
+    arm: &Arm,
+    set: ArmSet,
+    domain: [Interval; MAX_JOINTS],
+    joint_deg: f64,
+) -> Result<ToolPointEngine, String> {
+    if !(joint_deg.is_finite() && joint_deg >= 0.0) {
+        return Err(format!(
+            "joint error {joint_deg}: expected a finite value >= 0"
+        ));
+    }
+    let joints = arm.joints.len();
+    let mut nominal = [0.0; NX];
+    let units = crate::params::names(joints);
+    for ((&p, v), (_, unit)) in padded_index(joints).iter().zip(arm.nominal()).zip(&units) {
+        nominal[p] = match unit {
+            crate::params::Unit::Deg => crate::units::to_rad(v),
+            crate::params::Unit::Mm => v,
+        };
+    }
+    let joint_rad = deg_to_rad(Interval::point(joint_deg)).sup();
+    let input_error = core::array::from_fn(|i| if i < joints { joint_rad } else { 0.0 });
+    SetAccuracy::new(&ToolPoint, set, nominal, domain, input_error)
+        .ok_or_else(|| "the certified set is empty".to_string())
+}
+
+/// The joints `[lo, hi]` (degrees) in radians, enclosed.
+pub(crate) fn joint_box(lo: f64, hi: f64) -> Interval {
+    let (l, h) = (
+        deg_to_rad(Interval::point(lo)),
+        deg_to_rad(Interval::point(hi)),
+    );
+    Interval::new(l.inf(), h.sup())
+}
+
+/// The engine's problem for the arm's tool point.
+pub(crate) type ToolPointEngine = SetAccuracy<'static, ToolPoint, NX, NM, NM, MAX_JOINTS, 3>;
+
 /// The tool-point accuracy problem over a certified set.
 pub struct SetToolAccuracy {
     joints: usize,
-    engine: SetAccuracy<'static, ToolPoint, NX, NM, NM, MAX_JOINTS, 3>,
+    engine: ToolPointEngine,
 }
 
 impl SetToolAccuracy {
@@ -62,31 +103,11 @@ impl SetToolAccuracy {
                 space.ranges_deg.len()
             ));
         }
-        if !(joint_deg.is_finite() && joint_deg >= 0.0) {
-            return Err(format!(
-                "joint error {joint_deg}: expected a finite value >= 0"
-            ));
-        }
-        let mut nominal = [0.0; NX];
-        let units = crate::params::names(joints);
-        for ((&p, v), (_, unit)) in padded_index(joints).iter().zip(arm.nominal()).zip(&units) {
-            nominal[p] = match unit {
-                crate::params::Unit::Deg => crate::units::to_rad(v),
-                crate::params::Unit::Mm => v,
-            };
-        }
         let mut domain = [Interval::ZERO; MAX_JOINTS];
         for (i, &[lo, hi]) in space.ranges_deg.iter().enumerate() {
-            let (l, h) = (
-                deg_to_rad(Interval::point(lo)),
-                deg_to_rad(Interval::point(hi)),
-            );
-            domain[i] = Interval::new(l.inf(), h.sup());
+            domain[i] = joint_box(lo, hi);
         }
-        let joint_rad = deg_to_rad(Interval::point(joint_deg)).sup();
-        let input_error = core::array::from_fn(|i| if i < joints { joint_rad } else { 0.0 });
-        let engine = SetAccuracy::new(&ToolPoint, set, nominal, domain, input_error)
-            .ok_or("the certified set is empty")?;
+        let engine = tool_point_engine(arm, set, domain, joint_deg)?;
         Ok(SetToolAccuracy { joints, engine })
     }
 

@@ -20,7 +20,7 @@ pub mod enclosure;
 pub mod model;
 #[doc(hidden)]
 pub mod move_paving;
-mod over_set;
+pub(crate) mod over_set;
 #[doc(hidden)]
 pub mod pose_bound;
 #[doc(hidden)]

@@ -8,7 +8,10 @@
 use super::enclosure::{AccuracyProblem, Instance, PoseBox, PoseVector};
 use super::model::{leg_reading, LegCurvature, LegReading};
 use crate::LegModel;
-use calib_core::{CertifiedSet, Interval, Jet, Model, Quadratic};
+use calib_core::{
+    maximize_over_set, CertifiedSet, Interval, Jet, LinearFunction, Model, Quadratic, SetMaximum,
+    SetMaximumSettings,
+};
 use calib_pipeline::accuracy::{bracket_over_set, BracketSettings, Prediction, SetAccuracy};
 
 /// One leg's length at a pose as a prediction, the pose `(p, q)` in the measurement slot; the
@@ -17,6 +20,12 @@ pub struct LegLength<'a> {
     problem: &'a AccuracyProblem,
     leg: usize,
 }
+
+/// Refinements of a leg's set per prediction and side (the refined pieces are kept for the next
+/// predictions: a leg's set gets finer where its predictions reach) …
+const REFINEMENTS: usize = 16;
+/// … until it has this many pieces.
+const MAX_PIECES: usize = 96;
 
 /// A second-order model in the pose's noise symbols, with derivatives in the leg's geometry.
 type PoseJet = Jet<Quadratic<6>, 7>;
@@ -51,6 +60,29 @@ impl Prediction<7, 8, 6, 6, 1> for LegLength<'_> {
         premise.then(|| [Interval::new(0.0, c.sup())])
     }
 
+    /// Refined where the bound is attained, until within 0.5% of the set's range of `g·θ` or
+    /// 16 refinements (none once the set has 96 pieces: each solves a program per piece).
+    fn max_over_set(&self, set: &mut CertifiedSet<7, 8>, g: &[f64; 7]) -> Option<SetMaximum<7>> {
+        let width = set.query().range(g).wid();
+        let settings = SetMaximumSettings {
+            rel_tol: 0.0,
+            abs_tol: 0.005 * width,
+            max_refinements: if set.pieces().len() < MAX_PIECES {
+                REFINEMENTS
+            } else {
+                0
+            },
+            ..SetMaximumSettings::default()
+        };
+        let model = LegModel::of_set(set);
+        Some(maximize_over_set(
+            &model,
+            set,
+            &LinearFunction(*g),
+            &settings,
+        ))
+    }
+
     fn narrow(&self, x: &PoseBox) -> Option<PoseBox> {
         if !self.problem.may_be_feasible(x) {
             return None;
@@ -63,6 +95,25 @@ impl Prediction<7, 8, 6, 6, 1> for LegLength<'_> {
     }
 }
 
+/// The engine's problem for leg `leg`'s length over its certified set on the poses of `domain`
+/// (within the problem's workspace): `None` if the leg has no set.
+pub(crate) fn leg_engine<'a>(
+    problem: &'a AccuracyProblem,
+    leg: usize,
+    domain: &PoseBox,
+    prediction: &'a LegLength<'a>,
+) -> Option<SetAccuracy<'a, LegLength<'a>, 7, 8, 6, 6, 1>> {
+    let set = problem.leg_set(leg)?.set().clone();
+    SetAccuracy::new(prediction, set, *problem.nominal(leg), *domain, [0.0; 6])
+}
+
+impl<'a> LegLength<'a> {
+    /// Leg `leg`'s length, in `problem`'s workspace.
+    pub(crate) fn new(problem: &'a AccuracyProblem, leg: usize) -> Self {
+        LegLength { problem, leg }
+    }
+}
+
 /// Brackets leg `leg`'s length error over its certified set on the poses of `domain` (within
 /// the problem's workspace): `None` if the leg has no set.
 pub(crate) fn bracket_leg_over_set(
@@ -71,10 +122,8 @@ pub(crate) fn bracket_leg_over_set(
     domain: &PoseBox,
     settings: &BracketSettings,
 ) -> Option<super::Bracket> {
-    let set = problem.leg_set(leg)?.set().clone();
-    let prediction = LegLength { problem, leg };
-    let nominal = *problem.nominal(leg);
-    let engine = SetAccuracy::new(&prediction, set, nominal, *domain, [0.0; 6])?;
+    let prediction = LegLength::new(problem, leg);
+    let engine = leg_engine(problem, leg, domain, &prediction)?;
     let b = bracket_over_set(&engine, settings);
     let worst = b.worst.map(|w| Instance {
         pose: w.inputs,

@@ -12,13 +12,17 @@
 //! over a box `U` of inputs: an upper bound proved over all of it ([`SetAccuracy`], the method
 //! in its documentation) and a lower bound attained by an explicit input and a geometry proved
 //! consistent with every measurement ([`Instance`]).
+//!
+//! The same terms, along each coordinate's axis at one input, give what the robot predicts there
+//! over the set ([`SetAccuracy::predict`], [`Predicted`]): the ranges new measurements are checked
+//! against.
 
 mod over_set;
 mod sphere;
 
 pub use over_set::{bracket_over_set, SetAccuracy};
 
-use calib_core::{CertifiedSet, Interval, Jet, Quadratic, VectorModel};
+use calib_core::{CertifiedSet, Interval, Jet, Quadratic, SetMaximum, VectorModel};
 
 /// What a robot supplies to the accuracy engine: its prediction `g(u; θ)` of `R` coordinates
 /// from `NX` parameters and `NU` inputs.
@@ -81,6 +85,20 @@ pub trait Prediction<
         None
     }
 
+    /// Brackets `max g·θ` over `set` (the robot's calibration model refining the pieces where it
+    /// is attained: [`calib_core::maximize_over_set`]; the refined pieces stay for the next
+    /// predictions), for predictions tighter than one linear program per piece
+    /// ([`SetAccuracy::predict`]; worth it where the set is small, e.g. a hexapod leg's seven
+    /// parameters). `None` (the default): the programs alone.
+    fn max_over_set(
+        &self,
+        set: &mut CertifiedSet<NX, NMS>,
+        g: &[f64; NX],
+    ) -> Option<SetMaximum<NX>> {
+        let _ = (set, g);
+        None
+    }
+
     /// The part of the input box `u` where the task's inputs may lie (`None`: none do), for a
     /// task that is not a box (a hexapod's workspace bounds the platform's tilt). By default the
     /// box itself.
@@ -116,6 +134,27 @@ pub struct Instance<const NX: usize, const NU: usize, const R: usize> {
     pub error: [f64; R],
     /// `‖g(u + e; θ*) - g(u; θ̂)‖`, enclosed and rounded down.
     pub value: f64,
+}
+
+/// What a robot predicts at one input over its certified set ([`SetAccuracy::predict`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Predicted<const NX: usize, const R: usize> {
+    /// Per coordinate, proved to hold the prediction of every geometry of the set.
+    pub outer: [Interval; R],
+    /// Per coordinate, what geometries proved consistent reach (`None` when they overlap too
+    /// little to say): how tight `outer` is.
+    pub attained: [Option<Attained<NX>>; R],
+}
+
+/// Values of one coordinate of a prediction that certified geometries reach.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Attained<const NX: usize> {
+    /// `lowest` gives at most its lower end, `highest` at least its upper end.
+    pub range: Interval,
+    /// A certified point of the set (consistent with every measurement the set keeps).
+    pub lowest: [f64; NX],
+    /// Another.
+    pub highest: [f64; NX],
 }
 
 /// A certified bracket of the largest prediction error.

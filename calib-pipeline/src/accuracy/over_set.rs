@@ -34,12 +34,13 @@
 //! search raises the lower bound), with exact inputs.
 
 use super::sphere::{add_up, cover_bound, farthest_corner, frame, norm, COVER_DIRECTIONS};
-use super::{slot, Bracket, BracketSettings, Instance, Prediction};
+use super::{slot, Attained, Bracket, BracketSettings, Instance, Predicted, Prediction};
 use calib_core::{
     maximize, CertifiedSet, Evaluation, Interval, Jet, MaximumSettings, Objective, Parallelotope,
     Quadratic, SlotQueries, VectorModel,
 };
 use std::cell::{Cell, RefCell};
+use std::sync::{Mutex, MutexGuard};
 use std::time::Instant;
 
 /// The prediction-error problem over a certified set (module documentation).
@@ -56,7 +57,7 @@ pub struct SetAccuracy<
     /// The set the bounds are proved over.
     set: CertifiedSet<NX, NMS>,
     /// A copy of it that collects the certified points of the lower bounds (pushes add points).
-    pushes: RefCell<CertifiedSet<NX, NMS>>,
+    pushes: Mutex<CertifiedSet<NX, NMS>>,
     /// `θ̂`.
     nominal: [f64; NX],
     /// The set's outer box, with `θ̂`.
@@ -70,7 +71,7 @@ pub struct SetAccuracy<
     /// Per input, the half-width of its own error, enclosed.
     input_error: [Interval; NU],
     /// Certified parameter vectors (the instances' geometries).
-    catalogue: RefCell<Vec<[f64; NX]>>,
+    catalogue: Mutex<Vec<[f64; NX]>>,
 }
 
 /// Input points spread over the box whose error directions the catalogue is pushed along, per
@@ -83,6 +84,12 @@ const HINT_INPUTS: usize = 24;
 /// The stack of the thread that evaluates the second-order columns (a 44-parameter arm's
 /// derivative models are ~21 KB each, and its evaluator holds a few hundred).
 const MODEL_STACK_BYTES: usize = 256 << 20;
+
+/// The value behind `m`, locked (a worker that panicked holding it left it whole: the catalogue
+/// and the set only ever grow by complete points).
+fn locked<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+}
 
 /// The point `k` of `count` spread over `domain` (a different golden-ratio fraction per input).
 fn spread<const NU: usize>(domain: &[Interval; NU], k: usize, count: usize) -> [f64; NU] {
@@ -126,7 +133,7 @@ where
         let parallelotope = Parallelotope::around_along(&set, &nominal, &hints);
         let out = SetAccuracy {
             prediction,
-            pushes: RefCell::new(set.clone()),
+            pushes: Mutex::new(set.clone()),
             set,
             nominal,
             hull,
@@ -134,7 +141,7 @@ where
             parallelotope,
             domain,
             input_error: input_error.map(Interval::point),
-            catalogue: RefCell::new(Vec::new()),
+            catalogue: Mutex::new(Vec::new()),
         };
         out.fill_catalogue();
         Some(out)
@@ -147,7 +154,7 @@ where
 
     /// The certified parameter vectors the lower bounds take (the set's points and their pushes).
     pub fn catalogue(&self) -> Vec<[f64; NX]> {
-        self.catalogue.borrow().clone()
+        locked(&self.catalogue).clone()
     }
 
     /// The catalogue: the set's points, pushed along `±∇_θ g_r` at inputs spread over the box.
@@ -162,7 +169,7 @@ where
             for e in rows {
                 for sign in [1.0, -1.0] {
                     self.prediction
-                        .push(&mut self.pushes.borrow_mut(), &e.dx.map(|v| sign * v));
+                        .push(&mut locked(&self.pushes), &e.dx.map(|v| sign * v));
                 }
             }
         }
@@ -171,7 +178,8 @@ where
 
     /// The catalogue: every certified point the set holds.
     fn refresh_catalogue(&self) {
-        *self.catalogue.borrow_mut() = self.pushes.borrow().points().iter().map(|p| p.x).collect();
+        let points = locked(&self.pushes).points().iter().map(|p| p.x).collect();
+        *locked(&self.catalogue) = points;
     }
 
     /// Pushes the set along the error's gradient at `u` (the direction of the catalogue's
@@ -186,10 +194,7 @@ where
             .evaluate_rows(&self.nominal, &slot(u, 0.0));
         let gradient: [f64; NX] =
             core::array::from_fn(|j| (0..R).map(|r| w[r] * rows[r].dx[j]).sum());
-        if self
-            .prediction
-            .push(&mut self.pushes.borrow_mut(), &gradient)
-        {
+        if self.prediction.push(&mut locked(&self.pushes), &gradient) {
             self.refresh_catalogue();
         }
     }
@@ -242,27 +247,35 @@ where
         (n > 0.0 && n.is_finite()).then(|| d.map(|v| v / n))
     }
 
-    /// An upper bound of the error over the input box `u` (module documentation): the
-    /// parallelotope's bound, and where that exceeds `enough`, the linear programs' (the smaller
-    /// of the two). `+∞` when an enclosure failed.
-    fn upper(&self, u: &[Interval; NU], enough: f64, lps: &mut SlotQueries<'_, NX, NMS>) -> f64 {
-        // The real robot's inputs lie within their own errors of the box.
-        let widened: [Interval; NU] = core::array::from_fn(|i| {
-            u[i] + Interval::new(-self.input_error[i].sup(), self.input_error[i].sup())
-        });
+    /// The inputs the real robot reaches from the box `u`: within their own errors of it when
+    /// `errors`, else `u`.
+    fn widened(&self, u: &[Interval; NU], errors: bool) -> [Interval; NU] {
+        core::array::from_fn(|i| {
+            let e = if errors {
+                self.input_error[i].sup()
+            } else {
+                0.0
+            };
+            u[i] + Interval::new(-e, e)
+        })
+    }
+
+    /// What every direction's bound over the input box `u` is made of (module documentation):
+    /// `None` where the derivatives have no enclosure.
+    fn terms(&self, u: &[Interval; NU]) -> Option<Terms<NX, NP, NU, R>> {
+        let widened = self.widened(u, true);
         let rows = self
             .prediction
             .model()
             .evaluate_rows_interval(&self.hull, &slot(&widened, Interval::ZERO));
-        // Σ_i |H_ri| ε_i: each input's error takes its own worst sign (they do not cancel).
         let bounded = |v: &Interval| v.is_bounded() && !v.is_empty();
         if !rows
             .iter()
             .all(|e| e.dx.iter().all(bounded) && e.dm[..NU].iter().all(bounded))
         {
-            // No enclosure of the derivatives here: no bound (the branch and bound splits).
-            return f64::INFINITY;
+            return None;
         }
+        // Σ_i |H_ri| ε_i: each input's error takes its own worst sign (they do not cancel).
         let input_term: [f64; R] = core::array::from_fn(|r| {
             (0..NU)
                 .fold(Interval::ZERO, |s, i| {
@@ -270,10 +283,6 @@ where
                 })
                 .sup()
         });
-        let centre = u.map(|v| v.mid());
-        let mut first = [0.0; R];
-        first[0] = 1.0;
-        let axes = frame(self.direction_at(&centre).unwrap_or(first));
         let widest = widened.iter().map(|v| v.wid()).fold(0.0, f64::max);
         let spread: [Interval; NX] =
             core::array::from_fn(|j| self.hull[j] - Interval::point(self.nominal[j]));
@@ -290,41 +299,51 @@ where
         } else {
             None
         };
-        let component = |w: &[f64; R]| -> Component<NX> {
-            let (slopes, shift) = match (&columns, curvature) {
-                (Some(c), Some(k)) => (
-                    Slopes::second_order(w, c, &rows, &self.reach),
-                    (0..R).fold(Interval::ZERO, |s, r| s + Interval::point(w[r]) * k[r]),
-                ),
-                (Some(c), None) => (
-                    Slopes::second_order(w, c, &rows, &self.reach),
-                    Interval::ZERO,
-                ),
-                (None, _) => (Slopes::interval(w, &rows), Interval::ZERO),
-            };
-            let inputs = (0..R).fold(Interval::ZERO, |s, r| {
-                s + Interval::point(w[r].abs()) * Interval::point(input_term[r])
-            });
-            self.component(slopes, inputs.sup(), shift)
+        Some(Terms {
+            rows,
+            input_term,
+            columns,
+            curvature,
+        })
+    }
+
+    /// The component of the error along `w` over the box `terms` were made for.
+    fn along(&self, terms: &Terms<NX, NP, NU, R>, w: &[f64; R]) -> Component<NX> {
+        let (slopes, shift) = match (&terms.columns, terms.curvature) {
+            (Some(c), Some(k)) => (
+                Slopes::second_order(w, c, &terms.rows, &self.reach),
+                (0..R).fold(Interval::ZERO, |s, r| s + Interval::point(w[r]) * k[r]),
+            ),
+            (Some(c), None) => (
+                Slopes::second_order(w, c, &terms.rows, &self.reach),
+                Interval::ZERO,
+            ),
+            (None, _) => (Slopes::interval(w, &terms.rows), Interval::ZERO),
         };
-        let mut per_axis: Vec<Component<NX>> = axes.iter().map(component).collect();
+        let inputs = (0..R).fold(Interval::ZERO, |s, r| {
+            s + Interval::point(w[r].abs()) * Interval::point(terms.input_term[r])
+        });
+        self.component(slopes, inputs.sup(), shift)
+    }
+
+    /// An upper bound of the error over the input box `u` (module documentation): the
+    /// parallelotope's bound, and where that exceeds `enough`, the linear programs' (the smaller
+    /// of the two). `+∞` when an enclosure failed.
+    fn upper(&self, u: &[Interval; NU], enough: f64, lps: &mut SlotQueries<'_, NX, NMS>) -> f64 {
+        let Some(terms) = self.terms(u) else {
+            // No enclosure of the derivatives here: no bound (the branch and bound splits).
+            return f64::INFINITY;
+        };
+        let centre = u.map(|v| v.mid());
+        let mut first = [0.0; R];
+        first[0] = 1.0;
+        let axes = frame(self.direction_at(&centre).unwrap_or(first));
+        let mut per_axis: Vec<Component<NX>> = axes.iter().map(|w| self.along(&terms, w)).collect();
         // The norm's bound from the frame's ranges, the main terms' support from `main` (told
         // the slot of its linear function: programs warm-start per slot).
         let bound = |per_axis: &[Component<NX>],
                      main: &mut dyn FnMut(usize, &[Interval; NX]) -> f64|
-         -> f64 {
-            let ranges: [Interval; R] = core::array::from_fn(|k| {
-                let c = &per_axis[k];
-                let hi = c.max(2 * k, 1.0, main);
-                let lo = -c.max(2 * k + 1, -1.0, main);
-                if lo.is_finite() && hi.is_finite() && lo <= hi {
-                    Interval::new(lo, hi)
-                } else {
-                    Interval::ENTIRE
-                }
-            });
-            farthest_corner(&ranges)
-        };
+         -> f64 { farthest_corner(&ranges_of::<NX, R>(per_axis, main)) };
         // Stages, each only where the previous ones cannot discard the box: the main terms over
         // the parallelotope; by linear programs; then (in three dimensions) the norm by the
         // directions of the sphere's cover instead of the frame's corner.
@@ -345,8 +364,163 @@ where
         }
         cover_bound(best, |d, w3| {
             let w: [f64; R] = core::array::from_fn(|r| w3[r]);
-            component(&w).max(2 * R + d, 1.0, &mut lp)
+            self.along(&terms, &w).max(2 * R + d, 1.0, &mut lp)
         })
+    }
+
+    /// The linear programs [`SetAccuracy::predict`] asks, one set per worker (they warm-start
+    /// from the previous prediction's).
+    pub fn programs(&self) -> SlotQueries<'_, NX, NMS> {
+        let slots = program_slots(R);
+        if P::OWN_ROWS {
+            SlotQueries::new(&self.set, slots)
+        } else {
+            SlotQueries::with_all_rows(&self.set, slots)
+        }
+    }
+
+    /// What the robot predicts over the set at the inputs `u` (a point; a thin box around one,
+    /// for an input with no exact binary value; or the box a measured input's error bounds
+    /// allow): per coordinate, an enclosure of `g_r(u + e; θ*)` over every `u` in the box,
+    /// `θ*` in the set and, when `errors`, every `|e| <=` the inputs' own errors (`e = 0`
+    /// otherwise), and the range the catalogue's certified geometries reach there. `None` where
+    /// no enclosure could be made.
+    ///
+    /// Two enclosures, each where the prediction allows it, intersected: the affine form of `g`
+    /// over the set's outer box `X` and the inputs (`g ∈ c + Σ_j (g_j / rad X_j)(θ_j - mid X_j)
+    /// + Σ_i h_i η_i ± e`, [`VectorModel::linear_enclosures`]), its parameters' part bounded over
+    /// the set by a linear program per side; and `g(u; θ̂) + ∇_θ g(u; θ̂)·(θ - θ̂) +` the
+    /// prediction's curvature enclosure ([`Prediction::curvature`]), the gradient's part
+    /// likewise. The programs are safe bounds ([`SlotQueries::max_linear`]), warm-started from
+    /// the previous prediction's in the same slots.
+    pub fn predict(
+        &self,
+        u: &[Interval; NU],
+        errors: bool,
+        lps: &mut SlotQueries<'_, NX, NMS>,
+    ) -> Option<Predicted<NX, R>> {
+        let widened = self.widened(u, errors);
+        let model = self.prediction.model();
+        let m = slot(&widened, Interval::ZERO);
+        let mut found = Vec::new();
+        let mut outer = [Interval::ENTIRE; R];
+        let mut narrow = |r: usize, v: Interval| {
+            if v.is_bounded() && !v.is_empty() {
+                let both = outer[r].intersection(v);
+                // Both hold every prediction: disjoint only by a fault, then the wider.
+                outer[r] = if both.is_empty() {
+                    outer[r].hull(v)
+                } else {
+                    both
+                };
+            }
+        };
+        // The main term `s·(θ - about)` over the set, both sides: `[-down, up]`.
+        let mut over_set = |slot: usize, s: &[Interval; NX], about: &[f64; NX]| {
+            let up = lps.max_linear(slot, s, about);
+            let down = lps.max_linear(slot + 1, &s.map(|v| -v), about);
+            (up.is_finite() && down.is_finite() && -down <= up).then(|| Interval::new(-down, up))
+        };
+        if let Some(forms) = model.linear_enclosures(&self.hull, &m) {
+            let mid = self.hull.map(|v| v.mid());
+            for (r, f) in forms.iter().enumerate() {
+                // θ_j - mid_j = rad_j ε_j: the coefficient of (θ_j - mid_j) is g_j / rad_j.
+                let slopes: [Interval; NX] = core::array::from_fn(|j| {
+                    let rad = self.hull[j].rad();
+                    if f.gx[j] == 0.0 || rad == 0.0 {
+                        Interval::ZERO
+                    } else {
+                        Interval::point(f.gx[j]) / Interval::point(rad)
+                    }
+                });
+                let rest =
+                    f.gm.iter()
+                        .fold(Interval::point(f.e), |s, g| s + Interval::point(g.abs()));
+                let rest = Interval::new(-rest.sup(), rest.sup());
+                if let Some(main) = over_set(2 * r, &slopes, &mid) {
+                    narrow(r, Interval::point(f.c) + main + rest);
+                }
+                if let Some(main) = self.refined(&slopes, &mid, &mut found) {
+                    narrow(r, Interval::point(f.c) + main + rest);
+                }
+            }
+        }
+        let spread: [Interval; NX] =
+            core::array::from_fn(|j| self.hull[j] - Interval::point(self.nominal[j]));
+        if let Some(k) = self.prediction.curvature(&spread, &widened) {
+            let at = model.evaluate_rows_interval(&self.nominal.map(Interval::point), &m);
+            for r in 0..R {
+                if let Some(main) = over_set(2 * (R + r), &at[r].dx, &self.nominal) {
+                    narrow(r, at[r].value + main + k[r]);
+                }
+                if let Some(main) = self.refined(&at[r].dx, &self.nominal, &mut found) {
+                    narrow(r, at[r].value + main + k[r]);
+                }
+            }
+        }
+        if !outer.iter().all(|v| v.is_bounded() && !v.is_empty()) {
+            return None;
+        }
+        // Inward: some certified geometry gives at most `lo`, another at least `hi`.
+        let at = slot(u, Interval::ZERO);
+        let mut lowest: [Option<(f64, [f64; NX])>; R] = [None; R];
+        let mut highest: [Option<(f64, [f64; NX])>; R] = [None; R];
+        for theta in locked(&self.catalogue).iter().chain(&found) {
+            let g = model.residuals_interval(&theta.map(Interval::point), &at);
+            for r in 0..R {
+                if !g[r].is_bounded() || g[r].is_empty() {
+                    continue;
+                }
+                if lowest[r].is_none_or(|(v, _)| g[r].sup() < v) {
+                    lowest[r] = Some((g[r].sup(), *theta));
+                }
+                if highest[r].is_none_or(|(v, _)| g[r].inf() > v) {
+                    highest[r] = Some((g[r].inf(), *theta));
+                }
+            }
+        }
+        Some(Predicted {
+            outer,
+            attained: core::array::from_fn(|r| match (lowest[r], highest[r]) {
+                (Some((lo, a)), Some((hi, b))) if lo <= hi => Some(Attained {
+                    range: Interval::new(lo, hi),
+                    lowest: a,
+                    highest: b,
+                }),
+                _ => None,
+            }),
+        })
+    }
+
+    /// `s·(θ - about)` over the set, both sides, by [`Prediction::max_over_set`] (the pieces
+    /// refined where the bound is attained) at the slopes' midpoints, their radii against the
+    /// set's hull; the certified geometries the maxima found go to `found`. `None` where the
+    /// prediction does not refine or a bound failed.
+    fn refined(
+        &self,
+        s: &[Interval; NX],
+        about: &[f64; NX],
+        found: &mut Vec<[f64; NX]>,
+    ) -> Option<Interval> {
+        let mid = s.map(|v| v.mid());
+        // s·(θ - about) <= mid·(θ - about) + Σ_j |s_j - mid_j| max|θ_j - about_j|.
+        let slack = (0..NX)
+            .fold(Interval::ZERO, |acc, j| {
+                let reach = (self.hull[j] - Interval::point(about[j])).mag();
+                acc + Interval::point((s[j] - Interval::point(mid[j])).mag())
+                    * Interval::point(reach)
+            })
+            .sup();
+        let centre = (0..NX).fold(Interval::ZERO, |acc, j| {
+            acc + Interval::point(mid[j]) * Interval::point(about[j])
+        });
+        let mut set = locked(&self.pushes);
+        let up = self.prediction.max_over_set(&mut set, &mid)?;
+        let down = self.prediction.max_over_set(&mut set, &mid.map(|v| -v))?;
+        found.extend(up.argmax.into_iter().chain(down.argmax));
+        let hi = (Interval::point(up.upper) - centre + Interval::point(slack)).sup();
+        let lo = (-Interval::point(down.upper) - centre - Interval::point(slack)).inf();
+        (lo.is_finite() && hi.is_finite() && lo <= hi).then(|| Interval::new(lo, hi))
     }
 
     /// One component's bound from its slopes (module documentation): the inputs' linear terms
@@ -461,8 +635,7 @@ where
 
     /// The catalogue's geometry with the largest error at `u` (floating point), and its error.
     fn best(&self, u: &[f64; NU]) -> ([f64; NX], f64) {
-        self.catalogue
-            .borrow()
+        locked(&self.catalogue)
             .iter()
             .map(|t| (*t, norm(&self.error_estimate(u, t))))
             .max_by(|a, b| a.1.total_cmp(&b.1))
@@ -702,6 +875,42 @@ fn first_term_slot(r: usize) -> usize {
     (2 * r + cover) << VERTEX_INPUTS
 }
 
+/// The slots of the programs of one box: the frame's and the cover's components (each with its
+/// vertices), then the terms bounded by programs.
+fn program_slots(r: usize) -> usize {
+    first_term_slot(r) + 2 * r * TERM_SLOTS
+}
+
+/// The ranges of components (the component `k` along its axis up and down, slots `2k` and
+/// `2k + 1`), the main terms' support from `main`; `ENTIRE` where a bound failed.
+fn ranges_of<const NX: usize, const R: usize>(
+    components: &[Component<NX>],
+    main: &mut dyn FnMut(usize, &[Interval; NX]) -> f64,
+) -> [Interval; R] {
+    core::array::from_fn(|k| {
+        let c = &components[k];
+        let hi = c.max(2 * k, 1.0, main);
+        let lo = -c.max(2 * k + 1, -1.0, main);
+        if lo.is_finite() && hi.is_finite() && lo <= hi {
+            Interval::new(lo, hi)
+        } else {
+            Interval::ENTIRE
+        }
+    })
+}
+
+/// What the components of the error over one input box are made of ([`SetAccuracy::terms`]).
+struct Terms<const NX: usize, const NP: usize, const NU: usize, const R: usize> {
+    /// The prediction's rows with their derivatives over the box and the set's outer box.
+    rows: [Evaluation<Interval, NX, NP>; R],
+    /// Per coordinate, the inputs' own errors' term (`Σ_i |H_ri| ε_i`, rounded up).
+    input_term: [f64; R],
+    /// The columns `∂g/∂θ_j` as second-order models in the inputs (narrow boxes).
+    columns: Option<Box<Columns<NX, NU, R>>>,
+    /// The robot's curvature enclosure, when it has one.
+    curvature: Option<[Interval; R]>,
+}
+
 /// Slots per component for the terms bounded by programs ([`Prediction::TERMS_BY_PROGRAMS`]):
 /// the inputs' linear and second-order terms of up to seven inputs (any beyond share the last).
 const TERM_SLOTS: usize = 7 + 7 * 8 / 2;
@@ -864,16 +1073,10 @@ where
     P: Prediction<NX, NMS, NP, NU, R>,
 {
     let start = Instant::now();
-    let slots =
-        ((2 * R + if R == 3 { COVER_DIRECTIONS } else { 0 }) << VERTEX_INPUTS) + 2 * R * TERM_SLOTS;
     let objective = SetError {
         problem,
         lower: Cell::new(0.0),
-        lps: RefCell::new(if P::OWN_ROWS {
-            SlotQueries::new(&problem.set, slots)
-        } else {
-            SlotQueries::with_all_rows(&problem.set, slots)
-        }),
+        lps: RefCell::new(problem.programs()),
     };
     let m = maximize(
         &objective,
