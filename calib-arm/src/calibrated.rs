@@ -20,7 +20,7 @@ use crate::pose::certification::NX6;
 use crate::pose::Arm7Pose;
 use crate::robot::{Arm, Joint, ToolRotation};
 use crate::units::{deg_to_rad, rad_to_deg, to_deg};
-use crate::Arm7Point;
+use crate::{Arm7Point, ArmError};
 use calib_core::{
     calibrated_point, is_certified_consistent, CalibratedPoint, Interval, PointRule, VectorModel,
 };
@@ -104,24 +104,28 @@ pub fn calibrated_arm(
     run: &ArmRun,
     joints_deg: &[Vec<f64>],
     choice: PointChoice,
-) -> Result<CalibratedArm, String> {
+) -> Result<CalibratedArm, ArmError> {
     if run.pose_set.is_some() {
         return calibrated_pose_arm(arm, run, joints_deg, choice);
     }
     let outer = certified_outer(run)?;
-    let mut set = run.set.clone().ok_or(UNDECIDED)?;
+    let mut set = run.set.clone().ok_or(ArmError::Undecided)?;
     let joints = arm.joints.len();
     let index = padded_index(joints);
     if outer.len() != index.len() {
-        return Err(format!(
-            "the certified box has {} parameters; the arm has {}",
-            outer.len(),
-            index.len()
-        ));
+        return Err(ArmError::CertifiedBoxSize {
+            found: outer.len(),
+            expected: index.len(),
+        });
     }
-    let witness = set.points().first().map(|p| p.x).ok_or(UNDECIDED)?;
+    let witness = set
+        .points()
+        .first()
+        .map(|p| p.x)
+        .ok_or(ArmError::Undecided)?;
     let preds = predictions(joints_deg, &witness);
-    let point = calibrated_point(&Arm7Point, &mut set, rule(choice, &preds)).ok_or(UNDECIDED)?;
+    let point =
+        calibrated_point(&Arm7Point, &mut set, rule(choice, &preds)).ok_or(ArmError::Undecided)?;
     // The point as the file writes it, proved again as a controller reads it back; else the
     // deepest point, which keeps the most room.
     let kept = set.subset_measurements(point.subset);
@@ -129,7 +133,7 @@ pub fn calibrated_arm(
         .into_iter()
         .map(|x| with_point(arm, outer, &x))
         .find(|a| is_certified_consistent(&Arm7Point, &read_back(a), &kept))
-        .ok_or(UNDECIDED)?;
+        .ok_or(ArmError::Undecided)?;
     Ok(CalibratedArm {
         arm: written,
         set,
@@ -147,33 +151,32 @@ pub fn calibrated_pose_arm(
     run: &ArmRun,
     joints_deg: &[Vec<f64>],
     choice: PointChoice,
-) -> Result<CalibratedArm, String> {
+) -> Result<CalibratedArm, ArmError> {
     let outer = certified_outer(run)?;
-    let mut pose_set = run.pose_set.clone().ok_or(UNDECIDED)?;
-    let set = run.set.clone().ok_or(UNDECIDED)?;
-    let tool = arm.tool_rotation.ok_or(
-        "a 6-DoF calibration needs the tool frame's rotation in the robot file ([tool] rpy_deg)",
-    )?;
+    let mut pose_set = run.pose_set.clone().ok_or(ArmError::Undecided)?;
+    let set = run.set.clone().ok_or(ArmError::Undecided)?;
+    let tool = arm
+        .tool_rotation
+        .ok_or(ArmError::CalibrationNeedsToolRotation)?;
     let index = padded_index(arm.joints.len());
     if outer.len() != index.len() + 3 {
-        return Err(format!(
-            "the certified box has {} parameters; the arm measured in 6-DoF has {}",
-            outer.len(),
-            index.len() + 3
-        ));
+        return Err(ArmError::PoseCertifiedBoxSize {
+            found: outer.len(),
+            expected: index.len() + 3,
+        });
     }
     let witness = pose_set
         .points()
         .first()
         .map(|p| head(&p.x))
-        .ok_or(UNDECIDED)?;
+        .ok_or(ArmError::Undecided)?;
     // The position rows' gradients, the tool rotation's columns 0: the tool points predicted.
     let preds: Vec<[f64; NX6]> = predictions(joints_deg, &witness)
         .iter()
         .map(|g| core::array::from_fn(|i| g.get(i).copied().unwrap_or(0.0)))
         .collect();
-    let point =
-        calibrated_point(&Arm7Pose, &mut pose_set, rule(choice, &preds)).ok_or(UNDECIDED)?;
+    let point = calibrated_point(&Arm7Pose, &mut pose_set, rule(choice, &preds))
+        .ok_or(ArmError::Undecided)?;
     let kept = pose_set.subset_measurements(point.subset);
     let (outer_point, outer_tool) = outer.split_at(index.len());
     let written = [point.x, point.deepest]
@@ -202,7 +205,7 @@ pub fn calibrated_pose_arm(
             a
         })
         .find(|a| read_back_pose(a).is_some_and(|x| is_certified_consistent(&Arm7Pose, &x, &kept)))
-        .ok_or(UNDECIDED)?;
+        .ok_or(ArmError::Undecided)?;
     let point = CalibratedPoint {
         x: head(&point.x),
         deepest: head(&point.deepest),
@@ -220,20 +223,9 @@ pub fn calibrated_pose_arm(
     })
 }
 
-/// Why no calibrated vector can be handed out when none was certified.
-const UNDECIDED: &str = "no parameter vector was proved consistent with every measurement (the \
-                         certification is undecided), so none can be handed out as calibrated: \
-                         check the error bounds (`--error-scale auto`), allow more time (--hull), \
-                         or tolerate outliers";
-
 /// The certified outer box, or why there is none (the data were proved inconsistent).
-fn certified_outer(run: &ArmRun) -> Result<&[Interval], String> {
-    run.outcome.outer.as_deref().ok_or_else(|| {
-        "the data were proved inconsistent with the model and the error bounds: there is no \
-         calibrated geometry to write (re-measure the conflicting configurations, or tolerate \
-         outliers)"
-            .to_string()
-    })
+fn certified_outer(run: &ArmRun) -> Result<&[Interval], ArmError> {
+    run.outcome.outer.as_deref().ok_or(ArmError::Inconsistent)
 }
 
 /// The point rule of `choice`, with the predicted tool points' gradients `preds`.

@@ -14,7 +14,7 @@ use crate::params::{self, Unit};
 use crate::robot::Arm;
 use crate::simulate::{measurement_box, Reading, Uncertainty};
 use crate::units::{rad_to_deg, to_deg, to_rad};
-use crate::Arm7Point;
+use crate::{Arm7Point, ArmError};
 use calib_core::{CertifiedSet, Interval, Settings};
 use calib_pipeline::design::CandidateRows;
 use calib_pipeline::identify::{analyse, identification_jacobian, Identifiability};
@@ -22,7 +22,8 @@ use calib_pipeline::lsq::{least_squares, Fit};
 use calib_pipeline::report::OutcomeReport;
 use calib_pipeline::verdict::{self, ConfigurationNames};
 use calib_pipeline::{
-    certify_model, check_hull_options, smallest_consistent, Depth, Outcome, OutlierBudget,
+    certify_model, check_hull_options, smallest_consistent, Depth, OptionError, Outcome,
+    OutlierBudget,
 };
 
 /// What one run on an arm's data found (every value in the files' units: mm and degrees).
@@ -106,20 +107,20 @@ pub fn identifiability(
     arm: &Arm,
     readings: &[Reading],
     u: &Uncertainty,
-) -> Result<Identifiability, String> {
+) -> Result<Identifiability, ArmError> {
     Ok(dispatch(arm, readings, u, Job::Identify, &Settings::default())?.identifiability)
 }
 
 /// The least-squares fit of `arm`'s free parameters to `readings` (taken as exact), from the
 /// nominal, in the files' units.
-pub fn fit_arm(arm: &Arm, readings: &[Reading]) -> Result<Fit, String> {
+pub fn fit_arm(arm: &Arm, readings: &[Reading]) -> Result<Fit, ArmError> {
     let exact = Uncertainty {
         joint_deg: 0.0,
         pos: 0.0,
     };
     dispatch(arm, readings, &exact, Job::Fit, &Settings::default())?
         .fit
-        .ok_or_else(|| "no fit was made".to_string())
+        .ok_or(ArmError::NoFit)
 }
 
 /// Whether the arm's nominal values — one parameter vector — are proved consistent with every
@@ -172,11 +173,9 @@ impl Default for CertifyRequest {
 impl CertifyRequest {
     /// The kernel settings for `configs` configurations (outliers are set per try); errors name
     /// the option as the command line spells it.
-    pub fn settings(&self, configs: usize) -> Result<Settings, String> {
-        check_hull_options(self.tolerance, self.max_seconds).map_err(|e| e.to_string())?;
-        self.max_outliers
-            .check(configs)
-            .map_err(|e| e.to_string())?;
+    pub fn settings(&self, configs: usize) -> Result<Settings, OptionError> {
+        check_hull_options(self.tolerance, self.max_seconds)?;
+        self.max_outliers.check(configs)?;
         Ok(arm_settings()
             .with_hull_tolerance(self.tolerance)
             .with_hull_budget(self.max_boxes, self.max_seconds))
@@ -184,7 +183,7 @@ impl CertifyRequest {
 
     /// The settings (outliers set per try) and options of each certification this request makes
     /// on `configs` configurations.
-    pub(crate) fn prepared(&self, configs: usize) -> Result<(Settings, RunOptions), String> {
+    pub(crate) fn prepared(&self, configs: usize) -> Result<(Settings, RunOptions), OptionError> {
         let mut settings = self.settings(configs)?;
         if self.max_outliers == OutlierBudget::Auto {
             // Every result `auto` keeps is consistent, or tolerates outliers: a conflict set
@@ -206,7 +205,7 @@ pub fn certify_request(
     readings: &[Reading],
     u: &Uncertainty,
     request: &CertifyRequest,
-) -> Result<(usize, ArmRun), String> {
+) -> Result<(usize, ArmRun), ArmError> {
     let (settings, options) = request.prepared(readings.len())?;
     smallest_consistent(
         request.max_outliers,
@@ -264,7 +263,7 @@ pub fn certify_arm(
     u: &Uncertainty,
     options: RunOptions,
     settings: &Settings,
-) -> Result<ArmRun, String> {
+) -> Result<ArmRun, ArmError> {
     dispatch(arm, readings, u, Job::Certify(options), settings)
 }
 
@@ -275,7 +274,7 @@ pub fn verdict_only(
     arm: &Arm,
     readings: &[Reading],
     u: &Uncertainty,
-) -> Result<calib_core::Status, String> {
+) -> Result<calib_core::Status, ArmError> {
     let (settings, options) = verdict_settings(readings.len())?;
     Ok(certify_arm(arm, readings, u, options, &settings)?
         .outcome
@@ -284,7 +283,7 @@ pub fn verdict_only(
 
 /// The settings and options of a verdict-only certification on `configs` configurations: x1,
 /// no inner bounds, no search of conflicting configurations.
-pub(crate) fn verdict_settings(configs: usize) -> Result<(Settings, RunOptions), String> {
+pub(crate) fn verdict_settings(configs: usize) -> Result<(Settings, RunOptions), OptionError> {
     let mut settings = CertifyRequest::default()
         .settings(configs)?
         .with_conflict_sets(false);
@@ -302,25 +301,23 @@ fn dispatch(
     u: &Uncertainty,
     job: Job,
     settings: &Settings,
-) -> Result<ArmRun, String> {
+) -> Result<ArmRun, ArmError> {
     check_shape(arm, readings)?;
     Ok(run(arm, readings, u, job, settings))
 }
 
 /// Whether the padded model takes `arm` (3 to [`MAX_JOINTS`] joints) and `readings` (one reading
 /// per joint each); the error says what is wrong.
-pub(crate) fn check_shape(arm: &Arm, readings: &[Reading]) -> Result<(), String> {
+pub(crate) fn check_shape(arm: &Arm, readings: &[Reading]) -> Result<(), ArmError> {
     let joints = arm.joints.len();
     if !(3..=MAX_JOINTS).contains(&joints) {
-        return Err(format!(
-            "arms with 3 to {MAX_JOINTS} joints are supported, not {joints}"
-        ));
+        return Err(ArmError::Joints(joints));
     }
     if let Some(r) = readings.iter().find(|r| r.joints_deg.len() != joints) {
-        return Err(format!(
-            "a configuration has {} joint readings; the arm has {joints} joints",
-            r.joints_deg.len()
-        ));
+        return Err(ArmError::JointReadings {
+            readings: r.joints_deg.len(),
+            joints,
+        });
     }
     Ok(())
 }
@@ -409,7 +406,7 @@ pub fn identification_rows(
     arm: &Arm,
     readings: &[Reading],
     u: &Uncertainty,
-) -> Result<(Vec<usize>, Vec<CandidateRows>), String> {
+) -> Result<(Vec<usize>, Vec<CandidateRows>), ArmError> {
     dispatch(arm, readings, u, Job::Identify, &Settings::default())?;
     let p = padded(arm, readings, u);
     let (free, j) = identification_jacobian(&Arm7Point, &p.nominal, &p.x0, &p.boxes);

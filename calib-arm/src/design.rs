@@ -9,6 +9,7 @@ use crate::params::{self, Unit};
 use crate::robot::Arm;
 use crate::simulate::{Reading, Uncertainty, JOINT_LIMIT_DEG};
 use crate::units::to_rad;
+use crate::ArmError;
 use calib_pipeline::design::{
     certified_design, greedy_design, linearized_widths, Criterion, Group,
 };
@@ -55,7 +56,7 @@ pub fn design_arm(
     candidates: usize,
     criterion: Criterion,
     seed: u64,
-) -> Result<ArmDesign, String> {
+) -> Result<ArmDesign, ArmError> {
     let mut rng = StdRng::seed_from_u64(seed);
     let mut draw = |n: usize| -> Vec<Vec<f64>> {
         (0..n)
@@ -71,7 +72,7 @@ pub fn design_arm(
     let readings: Vec<Reading> = pool
         .iter()
         .chain(&random)
-        .map(|q| nominal_reading(arm, q).ok_or("arms with 3 to 7 joints are supported"))
+        .map(|q| nominal_reading(arm, q).ok_or(ArmError::UnsupportedArm))
         .collect::<Result<_, _>>()?;
     let (free, rows) = identification_rows(arm, &readings, u)?;
     let all = Group {

@@ -9,7 +9,7 @@ use crate::pose::certification::{padded_pose, verdict_only_pose, NM6};
 use crate::pose::{Arm7Pose, PoseReading, PoseUncertainty};
 use crate::robot::Arm;
 use crate::simulate::{measurement_box, Reading, Uncertainty};
-use crate::Arm7Point;
+use crate::{Arm7Point, ArmError};
 use calib_core::Interval;
 use calib_pipeline::error_scale::{search_from_estimate, ErrorScale, ScaledProblem};
 
@@ -130,13 +130,9 @@ fn times_if(scaled: bool, v: f64, s: f64) -> f64 {
 }
 
 /// The error when `which` scales no bound of these data (orientations without 6-DoF data).
-fn check_scaled(which: ScaleBounds, six_dof: bool) -> Result<(), String> {
+fn check_scaled(which: ScaleBounds, six_dof: bool) -> Result<(), ArmError> {
     if which == ScaleBounds::OrientDeg && !six_dof {
-        return Err(
-            "--scale-bounds orient_deg scales the orientations' bound: it needs 6-DoF \
-                    data (--orientation-columns)"
-                .to_string(),
-        );
+        return Err(ArmError::OrientScaleNeedsPose);
     }
     Ok(())
 }
@@ -151,7 +147,7 @@ pub fn search(
     u: &Uncertainty,
     which: ScaleBounds,
     on_trial: impl FnMut(f64),
-) -> Result<ErrorScale, String> {
+) -> Result<ErrorScale, ArmError> {
     check_scaled(which, false)?;
     let joints = arm.joints.len();
     if !(3..=MAX_JOINTS).contains(&joints) || readings.iter().any(|r| r.joints_deg.len() != joints)
@@ -188,7 +184,7 @@ pub fn search_pose(
     u: &PoseUncertainty,
     which: ScaleBounds,
     on_trial: impl FnMut(f64),
-) -> Result<ErrorScale, String> {
+) -> Result<ErrorScale, ArmError> {
     check_scaled(which, true)?;
     let x0 = padded_pose(arm, readings, u)?.x0;
     let boxes = |s: f64| -> Vec<[Interval; NM6]> {

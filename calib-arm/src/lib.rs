@@ -8,7 +8,8 @@
 //! and the arm's use of the robot-agnostic pipeline ([`certification`]: identifiability,
 //! certification, least squares, in the files' units); the calibrated robot file
 //! ([`calibrated`]) and the accuracy certificate over a joint box ([`accuracy`], [`joint_space`]).
-//! The `arm` binary is the command line.
+//! The library functions report their errors as [`ArmError`] (messages name the option as `arm`
+//! spells it, or the file and field). The `arm` binary is the command line.
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 #![allow(clippy::needless_range_loop)]
@@ -17,6 +18,7 @@ pub mod accuracy;
 pub mod calibrated;
 pub mod certification;
 pub mod design;
+mod error;
 pub mod error_scale;
 pub mod files;
 pub mod joint_space;
@@ -33,6 +35,7 @@ pub mod units;
 pub mod vendor;
 pub mod write;
 
+pub use error::ArmError;
 pub use model::Arm7Point;
 pub use robot::{builtin_arm, Arm, Joint};
 pub use simulate::{simulate, Simulation};

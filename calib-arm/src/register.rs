@@ -22,6 +22,7 @@ use crate::pose::orientation::{from_euler_xyz, orientation_errors_deg};
 use crate::robot::{Arm, ToolRotation};
 use crate::simulate::Reading;
 use crate::vendor::{arm_flange, base_frame, base_parameters, Frame};
+use crate::ArmError;
 use nalgebra::{Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 
 /// Prior half-widths written around the registered base and tool.
@@ -148,7 +149,7 @@ pub fn register(
     nominal: &Arm,
     readings: &[Reading],
     priors: RegistrationPriors,
-) -> Result<Registration, String> {
+) -> Result<Registration, ArmError> {
     register_with(nominal, readings, priors, ToolPoint::Auto)
 }
 
@@ -160,20 +161,17 @@ pub fn register_with(
     readings: &[Reading],
     priors: RegistrationPriors,
     tool: ToolPoint,
-) -> Result<Registration, String> {
+) -> Result<Registration, ArmError> {
     if readings.len() < 3 {
-        return Err(format!(
-            "registration needs at least 3 configurations, found {}",
-            readings.len()
-        ));
+        return Err(ArmError::TooFewConfigurations(readings.len()));
     }
-    for (v, name) in [
+    for (value, prior) in [
         (priors.base_mm, "base position prior"),
         (priors.base_deg, "base rotation prior"),
         (priors.tool_mm, "tool prior"),
     ] {
-        if !(v.is_finite() && v >= 0.0) {
-            return Err(format!("{name} {v}: expected a finite half-width >= 0"));
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(ArmError::Prior { prior, value });
         }
     }
     let flanges = flange_frames(nominal, readings);
@@ -195,8 +193,7 @@ pub fn register_with(
             .iter()
             .map(|f| (f * Point3::from(t)).coords)
             .collect();
-        pose = kabsch(&points, &measured)
-            .ok_or("the configurations' points are collinear: registration needs a spread")?;
+        pose = kabsch(&points, &measured).ok_or(ArmError::Collinear)?;
         if keep {
             break;
         }
@@ -397,11 +394,12 @@ pub fn register_tool_rotation(
     readings: &[Reading],
     euler_xyz_deg: &[[f64; 3]],
     radius_deg: f64,
-) -> Result<(ToolRotation, f64, f64), String> {
+) -> Result<(ToolRotation, f64, f64), ArmError> {
     if !(radius_deg.is_finite() && radius_deg >= 0.0) {
-        return Err(format!(
-            "tool rotation prior {radius_deg}: expected a finite half-width >= 0"
-        ));
+        return Err(ArmError::Prior {
+            prior: "tool rotation prior",
+            value: radius_deg,
+        });
     }
     let pairs: Vec<(Rotation3<f64>, Rotation3<f64>)> = readings
         .iter()
@@ -416,7 +414,7 @@ pub fn register_tool_rotation(
         .iter()
         .map(|(f, m)| (f.inverse() * m).into_inner())
         .sum();
-    let tool = nearest_rotation(&sum).ok_or("no orientation to register the tool frame from")?;
+    let tool = nearest_rotation(&sum).ok_or(ArmError::NoOrientation)?;
     let angles = orientation_errors_deg(arm, &tool, readings, euler_xyz_deg);
     let rms = (angles.iter().map(|a| a * a).sum::<f64>() / angles.len().max(1) as f64).sqrt();
     let max = angles.iter().fold(0.0_f64, |a, b| a.max(*b));

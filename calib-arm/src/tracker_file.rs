@@ -10,6 +10,7 @@
 use crate::files::Measurements;
 use crate::simulate::{Reading, Uncertainty};
 use crate::units::rad_to_deg;
+use crate::ArmError;
 use calib_core::Interval;
 use calib_pipeline::{parse_named_columns, DataError};
 use std::path::Path;
@@ -51,11 +52,11 @@ pub struct RowRange {
 }
 
 impl std::str::FromStr for RowRange {
-    type Err = String;
+    type Err = ArmError;
 
     /// `A-B`, `A-` or `A` (1-based data rows, inclusive): `1-60`, `61-`, `7`.
-    fn from_str(s: &str) -> Result<Self, String> {
-        let bad = || format!("`{s}`: expected rows as A-B, A- or A (1-based, e.g. 1-60 or 61-)");
+    fn from_str(s: &str) -> Result<Self, ArmError> {
+        let bad = || ArmError::Rows(s.to_string());
         let number = |t: &str| t.trim().parse::<usize>().ok().filter(|v| *v >= 1);
         let (first, last) = match s.split_once('-') {
             Some((a, "")) => (number(a).ok_or_else(bad)?, None),
@@ -66,7 +67,7 @@ impl std::str::FromStr for RowRange {
             }
         };
         if last.is_some_and(|l| l < first) {
-            return Err(format!("`{s}`: the last row comes before the first"));
+            return Err(ArmError::RowsReversed(s.to_string()));
         }
         Ok(RowRange { first, last })
     }
@@ -105,59 +106,58 @@ impl MeasurementColumns {
     /// The standard layout with the given joint and point columns (the command line's
     /// `--joint-columns`, `--point-columns`; the Python package's `joint_columns`,
     /// `point_columns`) where given: an error (to be prefixed with the option's name) when the
-    /// point columns are not three names.
+    /// point columns are not three names ([`ArmError::PointColumns`]).
     pub fn with_names(
         joints: usize,
         joint_columns: Option<Vec<String>>,
         point_columns: Option<Vec<String>>,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, ArmError> {
         let mut c = MeasurementColumns::standard(joints);
         if let Some(j) = joint_columns {
             c.joints = j;
         }
         if let Some(p) = point_columns {
-            c.point = <[String; 3]>::try_from(p)
-                .map_err(|p| format!("expected three names x,y,z, found {}", p.len()))?;
+            c.point = <[String; 3]>::try_from(p).map_err(|p| ArmError::PointColumns(p.len()))?;
         }
         Ok(c)
     }
 }
 
 impl std::str::FromStr for JointUnit {
-    type Err = String;
+    type Err = ArmError;
 
     /// `deg` or `rad`.
-    fn from_str(s: &str) -> Result<Self, String> {
+    fn from_str(s: &str) -> Result<Self, ArmError> {
         match s {
             "deg" => Ok(JointUnit::Deg),
             "rad" => Ok(JointUnit::Rad),
-            other => Err(format!("`deg` or `rad`, not `{other}`")),
+            other => Err(ArmError::JointUnit(other.to_string())),
         }
     }
 }
 
 impl std::str::FromStr for OrientationConvention {
-    type Err = String;
+    type Err = ArmError;
 
     /// `euler-xyz-deg` or `euler-xyz-rad`.
-    fn from_str(s: &str) -> Result<Self, String> {
+    fn from_str(s: &str) -> Result<Self, ArmError> {
         match s {
             "euler-xyz-deg" => Ok(OrientationConvention::EulerXyzDeg),
             "euler-xyz-rad" => Ok(OrientationConvention::EulerXyzRad),
-            other => Err(format!("`euler-xyz-deg` or `euler-xyz-rad`, not `{other}`")),
+            other => Err(ArmError::OrientationConvention(other.to_string())),
         }
     }
 }
 
 impl std::str::FromStr for LengthUnit {
-    type Err = String;
+    type Err = ArmError;
 
     /// `mm` or `m`.
-    fn from_str(s: &str) -> Result<Self, String> {
+    fn from_str(s: &str) -> Result<Self, ArmError> {
         match s {
             "mm" => Ok(LengthUnit::Mm),
             "m" => Ok(LengthUnit::M),
-            other => Err(format!("`mm` or `m`, not `{other}`")),
+            other => Err(ArmError::LengthUnit(other.to_string())),
         }
     }
 }
@@ -227,7 +227,7 @@ pub fn parse_tracker_measurements(
         let mut joints_deg = Vec::with_capacity(joints);
         for (v, name) in row[..joints].iter().zip(&columns.joints) {
             largest_joint = largest_joint.max(v.abs());
-            let deg = joint_deg(*v, columns.joint_unit).map_err(|e| bad(name, e))?;
+            let deg = joint_deg(*v, columns.joint_unit, |e| bad(name, e))?;
             joints_deg.push(out.slack.keep_joint(deg));
         }
         let mut point = [0.0; 3];
@@ -237,7 +237,7 @@ pub fn parse_tracker_measurements(
             .zip(&columns.point)
         {
             largest_coordinate = largest_coordinate.max(v.abs());
-            let mm = coordinate_mm(*v, columns.length_unit).map_err(|e| bad(name, e))?;
+            let mm = coordinate_mm(*v, columns.length_unit, |e| bad(name, e))?;
             *p = out.slack.keep_point(mm);
         }
         if let (Some((names, convention)), Some(orientations)) =
@@ -245,7 +245,7 @@ pub fn parse_tracker_measurements(
         {
             let mut angles = [0.0; 3];
             for ((e, v), name) in angles.iter_mut().zip(&row[joints + 3..]).zip(names) {
-                *e = orientation_deg(*v, *convention, &mut out.slack).map_err(|e| bad(name, e))?;
+                *e = orientation_deg(*v, *convention, &mut out.slack, |e| bad(name, e))?;
             }
             orientations.push(angles);
         }
@@ -275,46 +275,57 @@ fn chosen_rows(
     Ok((first, end))
 }
 
-/// A joint reading `v` in `unit`, in degrees; the error's message when it looks like another unit.
-fn joint_deg(v: f64, unit: JointUnit) -> Result<Interval, String> {
+/// A joint reading `v` in `unit`, in degrees; `bad` of the error's message when it looks like
+/// another unit.
+fn joint_deg(
+    v: f64,
+    unit: JointUnit,
+    bad: impl FnOnce(String) -> DataError,
+) -> Result<Interval, DataError> {
     match unit {
         JointUnit::Deg => Ok(Interval::point(v)),
-        JointUnit::Rad if v.abs() > MAX_RADIANS => Err(format!(
+        JointUnit::Rad if v.abs() > MAX_RADIANS => Err(bad(format!(
             "{v} read as radians is more than a turn: it looks like degrees \
              (use --joint-unit deg)"
-        )),
+        ))),
         JointUnit::Rad => Ok(rad_to_deg(Interval::point(v))),
     }
 }
 
-/// A coordinate `v` in `unit`, in mm; the error's message when it looks like another unit.
-fn coordinate_mm(v: f64, unit: LengthUnit) -> Result<Interval, String> {
+/// A coordinate `v` in `unit`, in mm; `bad` of the error's message when it looks like another
+/// unit.
+fn coordinate_mm(
+    v: f64,
+    unit: LengthUnit,
+    bad: impl FnOnce(String) -> DataError,
+) -> Result<Interval, DataError> {
     match unit {
         LengthUnit::Mm => Ok(Interval::point(v)),
-        LengthUnit::M if v.abs() > MAX_METRES => Err(format!(
+        LengthUnit::M if v.abs() > MAX_METRES => Err(bad(format!(
             "{v} read as metres is more than {MAX_METRES} m: it looks like \
              millimetres (use --length-unit mm)"
-        )),
+        ))),
         LengthUnit::M => Ok(Interval::point(v) * Interval::point(1000.0)),
     }
 }
 
 /// An Euler angle `v` written in `convention`, in degrees (a conversion's rounding kept in
-/// `slack`); the error's message when it is out of range.
+/// `slack`); `bad` of the error's message when it is out of range.
 fn orientation_deg(
     v: f64,
     convention: OrientationConvention,
     slack: &mut Slack,
-) -> Result<f64, String> {
+    bad: impl FnOnce(String) -> DataError,
+) -> Result<f64, DataError> {
     match convention {
-        OrientationConvention::EulerXyzDeg if v.abs() > 360.0 => Err(format!(
+        OrientationConvention::EulerXyzDeg if v.abs() > 360.0 => Err(bad(format!(
             "{v}: an Euler angle in degrees within ±360 expected"
-        )),
+        ))),
         OrientationConvention::EulerXyzDeg => Ok(v),
-        OrientationConvention::EulerXyzRad if v.abs() > MAX_RADIANS => Err(format!(
+        OrientationConvention::EulerXyzRad if v.abs() > MAX_RADIANS => Err(bad(format!(
             "{v} read as radians is more than a turn: it looks like \
              degrees (use --orientation-convention euler-xyz-deg)"
-        )),
+        ))),
         OrientationConvention::EulerXyzRad => {
             Ok(slack.keep_orientation(rad_to_deg(Interval::point(v))))
         }

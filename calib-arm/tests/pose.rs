@@ -18,7 +18,7 @@ use calib_arm::pose::{PoseReading, PoseUncertainty};
 use calib_arm::robot::ToolRotation;
 use calib_arm::simulate::{measurement_box, Reading, Uncertainty};
 use calib_arm::units::deg_to_rad;
-use calib_arm::{Arm, Arm7Point};
+use calib_arm::{Arm, Arm7Point, ArmError};
 use calib_core::{is_certified_consistent, Status};
 use calib_core::{Interval, VectorModel};
 use nalgebra::Rotation3;
@@ -168,7 +168,8 @@ fn the_six_dof_error_scale_brackets_the_bound_the_truth_needs() {
         |_| {},
     )
     .unwrap_err();
-    assert!(e.contains("--orientation-columns"), "{e}");
+    assert_eq!(e, ArmError::OrientScaleNeedsPose);
+    assert!(e.to_string().contains("--orientation-columns"), "{e}");
 }
 
 #[test]
@@ -182,6 +183,8 @@ fn six_dof_needs_the_tool_rotation_and_its_bound() {
         ..arm.clone()
     };
     let e = certify_pose_request(&plain, &readings, &BOUNDS, &request).unwrap_err();
+    assert_eq!(e, ArmError::PoseNeedsToolRotation);
+    let e = e.to_string();
     assert!(
         e.contains("rpy_deg") && e.contains("rotation_radius"),
         "{e}"
@@ -191,7 +194,8 @@ fn six_dof_needs_the_tool_rotation_and_its_bound() {
         ..BOUNDS
     };
     let e = certify_pose_request(&arm, &readings, &no_bound, &request).unwrap_err();
-    assert!(e.contains("orient_deg"), "{e}");
+    assert_eq!(e, ArmError::PoseNeedsOrientBound);
+    assert!(e.to_string().contains("orient_deg"), "{e}");
 }
 
 /// The 6-DoF model's parameters: a random 7-joint arm, then a tool rotation (radians).

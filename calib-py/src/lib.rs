@@ -415,7 +415,7 @@ fn orientation_layout(
     })?;
     let convention = convention
         .parse()
-        .map_err(|e: String| value_error(format!("orientation_convention: {e}")))?;
+        .map_err(|e: calib_arm::ArmError| value_error(format!("orientation_convention: {e}")))?;
     Ok(Some((names, convention)))
 }
 
@@ -449,10 +449,10 @@ fn arm_columns(joints: usize, c: Columns) -> PyResult<calib_arm::tracker_file::M
     use calib_arm::tracker_file::MeasurementColumns;
     let mut m = MeasurementColumns::with_names(joints, c.joint_columns, c.point_columns)
         .map_err(|e| value_error(format!("point_columns: {e}")))?;
-    m.joint_unit =
-        (c.joint_unit.parse()).map_err(|e: String| value_error(format!("joint_unit: {e}")))?;
-    m.length_unit =
-        (c.length_unit.parse()).map_err(|e: String| value_error(format!("length_unit: {e}")))?;
+    m.joint_unit = (c.joint_unit.parse())
+        .map_err(|e: calib_arm::ArmError| value_error(format!("joint_unit: {e}")))?;
+    m.length_unit = (c.length_unit.parse())
+        .map_err(|e: calib_arm::ArmError| value_error(format!("length_unit: {e}")))?;
     m.rows = c
         .rows
         .map(|r| r.parse())

@@ -23,7 +23,7 @@ use crate::params::{self, Unit};
 use crate::robot::Arm;
 use crate::simulate::{measurement_box, Reading};
 use crate::units::{deg_to_rad, to_rad};
-use crate::Arm7Point;
+use crate::{Arm7Point, ArmError};
 use calib_core::{CertifiedSet, Interval};
 use calib_pipeline::smallest_consistent;
 
@@ -54,7 +54,7 @@ pub fn certify_pose_request(
     readings: &[PoseReading],
     u: &PoseUncertainty,
     request: &CertifyRequest,
-) -> Result<(usize, ArmRun), String> {
+) -> Result<(usize, ArmRun), ArmError> {
     let p = padded_pose(arm, readings, u)?;
     let (settings, options) = request.prepared(readings.len())?;
     let names = names(arm.joints.len());
@@ -115,7 +115,7 @@ pub fn verdict_only_pose(
     arm: &Arm,
     readings: &[PoseReading],
     u: &PoseUncertainty,
-) -> Result<calib_core::Status, String> {
+) -> Result<calib_core::Status, ArmError> {
     let p = padded_pose(arm, readings, u)?;
     let (settings, options) = verdict_settings(readings.len())?;
     let prior: Vec<Interval> = p.index.iter().map(|&i| p.x0[i]).collect();
@@ -130,18 +130,11 @@ pub(crate) fn padded_pose(
     arm: &Arm,
     readings: &[PoseReading],
     u: &PoseUncertainty,
-) -> Result<Padded<NX6, NM6>, String> {
+) -> Result<Padded<NX6, NM6>, ArmError> {
     let plain: Vec<Reading> = readings.iter().map(|r| r.reading.clone()).collect();
     check_shape(arm, &plain)?;
-    let tool = arm.tool_rotation.ok_or(
-        "6-DoF measurements need the measured frame's rotation on the flange: [tool] rpy_deg \
-         and rotation_radius in the robot file (`arm register` with --orientation-columns finds \
-         them)",
-    )?;
-    let orient_deg = u.orient_deg.ok_or(
-        "6-DoF measurements need the orientation's error bound: orient_deg (degrees, the \
-         half-width of each measured Euler angle) in the uncertainty file",
-    )?;
+    let tool = arm.tool_rotation.ok_or(ArmError::PoseNeedsToolRotation)?;
+    let orient_deg = u.orient_deg.ok_or(ArmError::PoseNeedsOrientBound)?;
     let joints = arm.joints.len();
     let base = padded_box(arm);
     let nominal = padded_nominal(arm);
@@ -156,14 +149,14 @@ pub(crate) fn padded_pose(
     let boxes = readings
         .iter()
         .map(|r| {
-            let point: [Interval; NM] = measurement_box(&r.reading, &u.position)
-                .ok_or("a configuration has more joint readings than the model")?;
+            let point: [Interval; NM] =
+                measurement_box(&r.reading, &u.position).ok_or(ArmError::TooManyJointReadings)?;
             Ok(core::array::from_fn(|i| match i.checked_sub(NM) {
                 None => point[i],
                 Some(k) => deg_to_rad(Interval::mid_rad(r.euler_xyz_deg[k], orient_deg)),
             }))
         })
-        .collect::<Result<Vec<[Interval; NM6]>, String>>()?;
+        .collect::<Result<Vec<[Interval; NM6]>, ArmError>>()?;
     let mut index = padded_index(joints);
     index.extend(NX..NX6);
     let units = params::pose_names(joints)

@@ -14,6 +14,7 @@ pub use model::Arm7Pose;
 use crate::certification::{ArmRun, CertifyRequest};
 use crate::robot::Arm;
 use crate::simulate::{Reading, Uncertainty};
+use crate::ArmError;
 
 /// One configuration's 6-DoF measurement: the reading (joints, tracked point) and the measured
 /// frame's orientation, intrinsic Euler angles `XYZ` in degrees.
@@ -33,19 +34,13 @@ pub fn require_pose_inputs(
     robot: &std::path::Path,
     u: &PoseUncertainty,
     uncertainty: &std::path::Path,
-) -> Result<(), String> {
+) -> Result<(), ArmError> {
     if arm.tool_rotation.is_none() {
-        return Err(format!(
-            "{}: [tool] has no rpy_deg and rotation_radius: 6-DoF measurements need the measured \
-             frame's rotation on the flange (`arm register --orientation-columns …` finds it)",
-            robot.display()
-        ));
+        return Err(ArmError::RobotLacksToolRotation(robot.to_path_buf()));
     }
     if u.orient_deg.is_none() {
-        return Err(format!(
-            "{}: no orient_deg: 6-DoF measurements need the orientation's error bound (degrees, \
-             the half-width of each measured Euler angle)",
-            uncertainty.display()
+        return Err(ArmError::UncertaintyLacksOrientBound(
+            uncertainty.to_path_buf(),
         ));
     }
     Ok(())
@@ -57,7 +52,7 @@ pub fn certify_pose(
     readings: &[PoseReading],
     u: &PoseUncertainty,
     request: &CertifyRequest,
-) -> Result<(usize, ArmRun), String> {
+) -> Result<(usize, ArmRun), ArmError> {
     certification::certify_pose_request(arm, readings, u, request)
 }
 

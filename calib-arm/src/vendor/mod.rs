@@ -35,6 +35,7 @@ pub mod ur_yaml;
 pub mod urdf;
 
 use crate::robot::{Arm, Joint};
+use crate::ArmError;
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 
 /// A rigid transform (lengths in mm).
@@ -196,7 +197,7 @@ const SPLIT_TOLERANCE: f64 = 1e-9;
 /// Splits `g` (from a joint's frame to the next joint's frame) into the five link parameters
 /// `theta, d, a, alpha, beta` (radians, mm) and the turn and slide `(φ, s)` about the next axis:
 /// `g = link(…) · Rz(φ) Tz(s)` (see the module documentation for the choice).
-pub fn split_link(g: &Frame) -> Result<([f64; 5], (f64, f64)), String> {
+pub fn split_link(g: &Frame) -> Result<([f64; 5], (f64, f64)), ArmError> {
     let u = g.rotation * Vector3::z();
     let p = g.translation.vector;
     let sin = u.x.hypot(u.y);
@@ -237,9 +238,7 @@ pub fn split_link(g: &Frame) -> Result<([f64; 5], (f64, f64)), String> {
     let rest = link(theta, d, a, alpha, beta).inverse() * g;
     let off = off_axis(&rest);
     if off > SPLIT_TOLERANCE * (1.0 + p.norm()) {
-        return Err(format!(
-            "a link could not be split into Denavit-Hartenberg/Hayati parameters (off by {off:e})"
-        ));
+        return Err(ArmError::Split(off));
     }
     Ok((params, turn_and_slide(&rest)))
 }
@@ -247,14 +246,10 @@ pub fn split_link(g: &Frame) -> Result<([f64; 5], (f64, f64)), String> {
 /// The arm of a vendor chain `origins` (mm): exact parameters (see the module documentation),
 /// priors `radii` on the free ones, the base at the chain's base frame (refined by registration),
 /// the tool point at the flange's origin with no prior.
-pub fn chain_to_arm(origins: &[Frame], radii: ImportRadii) -> Result<Arm, String> {
+pub fn chain_to_arm(origins: &[Frame], radii: ImportRadii) -> Result<Arm, ArmError> {
     let n = origins.len();
     if !crate::files::JOINTS.contains(&n) {
-        return Err(format!(
-            "a chain of {n} joints; arms with {} to {} joints are supported",
-            crate::files::JOINTS.start(),
-            crate::files::JOINTS.end()
-        ));
+        return Err(ArmError::ChainJoints(n));
     }
     // F_1 = base · Rz(φ) Tz(s): the base is the identity when F_1 turns and slides along z.
     let (base, mut carry) = if off_axis(&origins[0]) <= SPLIT_TOLERANCE {
@@ -284,7 +279,7 @@ pub fn chain_to_arm(origins: &[Frame], radii: ImportRadii) -> Result<Arm, String
             [ar, lr, lr, ar, 0.0]
         };
         if i + 1 == n && (a.abs() > SPLIT_TOLERANCE || alpha.abs() > SPLIT_TOLERANCE) {
-            return Err("the flange frame is not the last joint's frame".to_string());
+            return Err(ArmError::FlangeNotLastFrame);
         }
         joints.push(Joint {
             nominal: [
@@ -307,7 +302,7 @@ pub fn chain_to_arm(origins: &[Frame], radii: ImportRadii) -> Result<Arm, String
         .chain(base)
         .any(|v| !v.is_finite())
     {
-        return Err("the chain holds a non-finite number (NaN or infinity)".to_string());
+        return Err(ArmError::NonFiniteChain);
     }
     Ok(Arm {
         joints,
@@ -338,7 +333,7 @@ fn wrap_deg(a: f64) -> f64 {
 
 /// The vendor chain (mm) of `arm`'s joints, from its base frame (see the module documentation);
 /// the last joint's `a, alpha, beta` must be 0 (the flange is its frame).
-pub fn arm_to_chain(arm: &Arm) -> Result<Vec<Frame>, String> {
+pub fn arm_to_chain(arm: &Arm) -> Result<Vec<Frame>, ArmError> {
     let n = arm.joints.len();
     let rad = |j: &Joint| {
         let [theta, d, a, alpha, beta] = j.nominal;
@@ -352,10 +347,7 @@ pub fn arm_to_chain(arm: &Arm) -> Result<Vec<Frame>, String> {
     };
     let last = rad(&arm.joints[n - 1]);
     if last.2 != 0.0 || last.3 != 0.0 || last.4 != 0.0 {
-        return Err(format!(
-            "a{n}, alpha{n}, beta{n} must be 0 to write a vendor chain (its flange is the last \
-             joint's frame)"
-        ));
+        return Err(ArmError::FlangeOffset(n));
     }
     let mut out = Vec::with_capacity(n);
     let mut before = Frame::identity();

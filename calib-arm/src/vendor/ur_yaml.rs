@@ -9,6 +9,7 @@
 //! own (`certicalib_…`) unless one is given (e.g. the imported one, to silence the check knowingly).
 
 use super::{from_xyz_rpy, to_xyz_rpy, Frame};
+use crate::ArmError;
 use calib_pipeline::{finite_number, DataError};
 use serde::Deserialize;
 use std::fmt::Write as _;
@@ -148,12 +149,9 @@ fn line_of(text: &str, joint: &str, key: &str) -> Option<usize> {
 
 /// The YAML of six joint origins (mm) in UR's layout, with `hash` (or this file's own checksum
 /// when `None`), preceded by the `comment` lines.
-pub fn write(origins: &[Frame], hash: Option<&str>, comment: &str) -> Result<String, String> {
+pub fn write(origins: &[Frame], hash: Option<&str>, comment: &str) -> Result<String, ArmError> {
     if origins.len() != 6 {
-        return Err(format!(
-            "a UR kinematics file has 6 joints; this arm has {}",
-            origins.len()
-        ));
+        return Err(ArmError::UrJoints(origins.len()));
     }
     let mut body = String::new();
     for (o, name) in origins.iter().zip(JOINT_NAMES) {

@@ -50,9 +50,9 @@ pub fn parse(
     }
     let tip = match tip {
         Some(t) => t.to_string(),
-        None => only_tip(&robot, base).map_err(|m| err(Some("tip link"), m))?,
+        None => only_tip(file, &robot, base)?,
     };
-    let joints = chain(&robot, base, &tip).map_err(|m| err(Some("tip link"), m))?;
+    let joints = chain(file, &robot, base, &tip)?;
     let (origins, pending) = moving_origins(file, &joints)?;
     let off = pending
         .translation
@@ -77,9 +77,9 @@ pub fn parse(
     Ok(origins)
 }
 
-/// The end of the chain below `base` (following the only child joint while there is one); the
-/// error's message when it branches.
-fn only_tip(robot: &urdf_rs::Robot, base: &str) -> Result<String, String> {
+/// The end of the chain below `base` (following the only child joint while there is one); an
+/// error at `file`'s tip link when it branches.
+fn only_tip(file: &Path, robot: &urdf_rs::Robot, base: &str) -> Result<String, DataError> {
     let mut link = base.to_string();
     loop {
         let children: Vec<&urdf_rs::Joint> = robot
@@ -90,17 +90,24 @@ fn only_tip(robot: &urdf_rs::Robot, base: &str) -> Result<String, String> {
         match children.as_slice() {
             [] => return Ok(link),
             [j] => link = j.child.link.clone(),
-            _ => return Err(format!("the chain branches at `{link}`: name the tip link")),
+            _ => {
+                return Err(tip_error(
+                    file,
+                    format!("the chain branches at `{link}`: name the tip link"),
+                ))
+            }
         }
     }
 }
 
-/// The joints from `base` down to `tip`; the error's message when `tip` is not below `base`.
+/// The joints from `base` down to `tip`; an error at `file`'s tip link when `tip` is not below
+/// `base`.
 fn chain<'r>(
+    file: &Path,
     robot: &'r urdf_rs::Robot,
     base: &str,
     tip: &str,
-) -> Result<Vec<&'r urdf_rs::Joint>, String> {
+) -> Result<Vec<&'r urdf_rs::Joint>, DataError> {
     // From the tip up to the base.
     let mut joints = Vec::new();
     let mut link = tip.to_string();
@@ -109,12 +116,22 @@ fn chain<'r>(
             .joints
             .iter()
             .find(|j| j.child.link == link)
-            .ok_or_else(|| format!("`{tip}` is not below `{base}` (or no link `{tip}`)"))?;
+            .ok_or_else(|| {
+                tip_error(
+                    file,
+                    format!("`{tip}` is not below `{base}` (or no link `{tip}`)"),
+                )
+            })?;
         joints.push(j);
         link = j.parent.link.clone();
     }
     joints.reverse();
     Ok(joints)
+}
+
+/// An error `message` at `file`'s tip link (the link the chain ends at).
+fn tip_error(file: &Path, message: String) -> DataError {
+    DataError::new(file, None, Some("tip link"), message)
 }
 
 /// The moving joints' origins (mm), each with its axis turned onto `z`, fixed joints folded into

@@ -3,6 +3,7 @@
 
 mod accuracy_directions;
 mod calibrated;
+mod error;
 mod error_scale;
 mod joint_space;
 mod params;

@@ -156,10 +156,14 @@ fn layouts_and_units_from_names() {
         .expect("layout");
     assert_eq!(c.joints, ["a", "b"]);
     assert_eq!(c.point, ["px", "py", "pz"]);
-    let e = MeasurementColumns::with_names(2, None, Some(vec!["x".into()])).unwrap_err();
+    let e = MeasurementColumns::with_names(2, None, Some(vec!["x".into()]))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("three names") && e.contains("found 1"), "{e}");
     assert_eq!("rad".parse::<JointUnit>(), Ok(JointUnit::Rad));
     assert_eq!("m".parse::<LengthUnit>(), Ok(LengthUnit::M));
-    assert!("grad".parse::<JointUnit>().unwrap_err().contains("`grad`"));
-    assert!("ft".parse::<LengthUnit>().unwrap_err().contains("`ft`"));
+    let e = "grad".parse::<JointUnit>().unwrap_err().to_string();
+    assert!(e.contains("`grad`"), "{e}");
+    let e = "ft".parse::<LengthUnit>().unwrap_err().to_string();
+    assert!(e.contains("`ft`"), "{e}");
 }

@@ -75,7 +75,7 @@ mod tests {
             for bad in [f64::NAN, f64::INFINITY] {
                 let mut origins = good;
                 origins[k] *= trans(bad, 0.0, 0.0);
-                let e = chain_to_arm(&origins, radii).unwrap_err();
+                let e = chain_to_arm(&origins, radii).unwrap_err().to_string();
                 assert!(
                     e.contains("non-finite") || e.contains("split"),
                     "{k} {bad}: {e}"
