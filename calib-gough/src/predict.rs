@@ -4,7 +4,7 @@
 //!
 //! Each leg's predictions run on the accuracy engine ([`SetAccuracy::predict`](
 //! calib_pipeline::accuracy::SetAccuracy::predict), the leg's length as its prediction
-//! [`crate::accuracy::over_set::LegLength`]): with `θ̂` the file's geometry, the reading is
+//! `LegLength`): with `θ̂` the file's geometry, the reading is
 //! `L(X; θ̂) + ∇_θ L(X; θ̂)·(θ - θ̂) + r`, `0 <= r <=` the legs' curvature bound
 //! ([`crate::accuracy::LegCurvature`]), the gradient's term bracketed over the set with
 //! refinement ([`calib_core::maximize_over_set`]: the pieces where the bound is attained split

@@ -383,16 +383,21 @@ where
     /// for an input with no exact binary value; or the box a measured input's error bounds
     /// allow): per coordinate, an enclosure of `g_r(u + e; θ*)` over every `u` in the box,
     /// `θ*` in the set and, when `errors`, every `|e| <=` the inputs' own errors (`e = 0`
-    /// otherwise), and the range the catalogue's certified geometries reach there. `None` where
-    /// no enclosure could be made.
+    /// otherwise), and what certified geometries reach there ([`Predicted`]). `None` where no
+    /// enclosure could be made.
     ///
-    /// Two enclosures, each where the prediction allows it, intersected: the affine form of `g`
-    /// over the set's outer box `X` and the inputs (`g ∈ c + Σ_j (g_j / rad X_j)(θ_j - mid X_j)
-    /// + Σ_i h_i η_i ± e`, [`VectorModel::linear_enclosures`]), its parameters' part bounded over
-    /// the set by a linear program per side; and `g(u; θ̂) + ∇_θ g(u; θ̂)·(θ - θ̂) +` the
-    /// prediction's curvature enclosure ([`Prediction::curvature`]), the gradient's part
-    /// likewise. The programs are safe bounds ([`SlotQueries::max_linear`]), warm-started from
-    /// the previous prediction's in the same slots.
+    /// Two enclosures, each where the prediction allows it, intersected:
+    ///
+    /// - the affine form of `g` over the set's outer box `X` and the inputs,
+    ///   `g ∈ c + Σ_j (g_j / rad X_j)(θ_j - mid X_j) + Σ_i h_i η_i ± e`
+    ///   ([`VectorModel::linear_enclosures`]), its parameters' part bounded over the set;
+    /// - `g(u; θ̂) + ∇_θ g(u; θ̂)·(θ - θ̂) +` the prediction's curvature enclosure
+    ///   ([`Prediction::curvature`]), the gradient's part likewise.
+    ///
+    /// Each part over the set takes one linear program per side (safe bounds,
+    /// [`SlotQueries::max_linear`], warm-started from the previous prediction's in the same
+    /// slots) and, where the prediction refines ([`Prediction::max_over_set`]), a refined
+    /// maximum, whose certified maximisers join what is attained.
     pub fn predict(
         &self,
         u: &[Interval; NU],
