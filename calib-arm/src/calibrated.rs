@@ -38,9 +38,13 @@ pub enum PointChoice {
     /// within the set, regularised towards the certified box's
     /// centre by a weight chosen by cross-validation (`calib_core::set_least_squares`): on
     /// held-out data with errors the model does not hold (gravity, gears), the best predictor
-    /// (real UR10 at 0.6 mm: held-out rms 0.330 mm, against 0.448 mm towards the centre).
+    /// (real UR10 at 0.6 mm: held-out rms 0.330 mm, against 0.612 mm towards the centre).
     #[default]
     LeastSquares,
+    /// Towards the Chebyshev centre of the tool points predicted at exactly the configurations
+    /// given (the task's, `arm certify --task`): the worst prediction error over the set, there,
+    /// is as small as the data allow.
+    Task,
 }
 
 /// Random configurations (besides the measured ones) whose tool points the centre rule predicts.
@@ -67,9 +71,13 @@ fn padded_joints(joints_deg: &[f64]) -> [f64; NM] {
     m
 }
 
-/// The gradients `∂p/∂θ` (three rows per configuration) at the measured configurations and at
-/// [`PREDICTION_CONFIGURATIONS`] random ones within their joint ranges, at `at`.
-fn predictions(joints: &[Vec<f64>], at: &[f64; NX]) -> Vec<[f64; NX]> {
+/// The gradients `∂p/∂θ` (three rows per configuration) at `at` the rule `choice` predicts at:
+/// for [`PointChoice::Task`] the configurations `joints`, else the measured configurations
+/// `joints` and [`PREDICTION_CONFIGURATIONS`] random ones within their joint ranges.
+fn predictions(choice: PointChoice, joints: &[Vec<f64>], at: &[f64; NX]) -> Vec<[f64; NX]> {
+    if choice == PointChoice::Task {
+        return gradients(joints, at);
+    }
     let n = joints.first().map_or(0, Vec::len);
     let range: Vec<[f64; 2]> = (0..n)
         .map(|i| {
@@ -89,9 +97,13 @@ fn predictions(joints: &[Vec<f64>], at: &[f64; NX]) -> Vec<[f64; NX]> {
                 .collect()
         })
         .collect();
+    gradients(&[joints, &random[..]].concat(), at)
+}
+
+/// The gradients `∂p/∂θ` at `at`, three rows per configuration of `joints`.
+fn gradients(joints: &[Vec<f64>], at: &[f64; NX]) -> Vec<[f64; NX]> {
     joints
         .iter()
-        .chain(&random)
         .flat_map(|q| Arm7Point.evaluate_rows(at, &padded_joints(q)).map(|e| e.dx))
         .collect()
 }
@@ -123,7 +135,7 @@ pub fn calibrated_arm(
         .first()
         .map(|p| p.x)
         .ok_or(ArmError::Undecided)?;
-    let preds = predictions(joints_deg, &witness);
+    let preds = predictions(choice, joints_deg, &witness);
     let point =
         calibrated_point(&Arm7Point, &mut set, rule(choice, &preds)).ok_or(ArmError::Undecided)?;
     // The point as the file writes it, proved again as a controller reads it back; else the
@@ -171,7 +183,7 @@ pub fn calibrated_pose_arm(
         .map(|p| head(&p.x))
         .ok_or(ArmError::Undecided)?;
     // The position rows' gradients, the tool rotation's columns 0: the tool points predicted.
-    let preds: Vec<[f64; NX6]> = predictions(joints_deg, &witness)
+    let preds: Vec<[f64; NX6]> = predictions(choice, joints_deg, &witness)
         .iter()
         .map(|g| core::array::from_fn(|i| g.get(i).copied().unwrap_or(0.0)))
         .collect();
@@ -231,7 +243,7 @@ fn certified_outer(run: &ArmRun) -> Result<&[Interval], ArmError> {
 /// The point rule of `choice`, with the predicted tool points' gradients `preds`.
 fn rule<const X: usize>(choice: PointChoice, preds: &[[f64; X]]) -> PointRule<'_, X> {
     match choice {
-        PointChoice::Centre => PointRule::PredictionCentre(preds),
+        PointChoice::Centre | PointChoice::Task => PointRule::PredictionCentre(preds),
         PointChoice::LeastSquares => PointRule::LeastSquares,
     }
 }

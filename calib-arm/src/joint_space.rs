@@ -104,3 +104,56 @@ pub fn parse_joint_space(file: &Path, text: &str, joints: usize) -> Result<Joint
         .collect::<Result<_, _>>()?;
     Ok(JointSpace { ranges_deg })
 }
+
+/// Configurations spread over the joint box that stand for it where a finite list is needed
+/// (`arm certify --task joints.toml`): its `2^N` corners, its centre and this many more at
+/// golden-ratio fractions of every range.
+const TASK_SPREAD: usize = 192;
+
+impl JointSpace {
+    /// Configurations spread over the box (degrees): its corners, its centre and
+    /// 192 points inside.
+    pub fn spread(&self) -> Vec<Vec<f64>> {
+        let n = self.ranges_deg.len();
+        let corners = (0..1usize << n).map(|bits| {
+            (0..n)
+                .map(|i| self.ranges_deg[i][bits >> i & 1])
+                .collect::<Vec<f64>>()
+        });
+        let inside = (0..=TASK_SPREAD).map(|k| {
+            (0..n)
+                .map(|i| {
+                    let [lo, hi] = self.ranges_deg[i];
+                    let t = if k == 0 {
+                        0.5
+                    } else {
+                        (k as f64 * (i as f64 + 1.0) * 0.618_033_988_7).fract()
+                    };
+                    lo + t * (hi - lo)
+                })
+                .collect()
+        });
+        corners.chain(inside).collect()
+    }
+}
+
+/// The configurations of a task (`arm certify --task FILE`, degrees): a `.toml` file is a joint
+/// box (`joints.toml`, [`parse_joint_space`]) standing for its [`JointSpace::spread`]; any other
+/// a CSV of configurations with columns `q1..qN`. Errors name the file, the line and the field.
+pub fn read_task(file: &Path, joints: usize) -> Result<Vec<Vec<f64>>, DataError> {
+    let text = read_text(file)?;
+    if file.extension().is_some_and(|e| e == "toml") {
+        return Ok(parse_joint_space(file, &text, joints)?.spread());
+    }
+    let header: Vec<String> = (1..=joints).map(|i| format!("q{i}")).collect();
+    let table = calib_pipeline::parse_number_table(file, &text, &header)?;
+    if table.rows.is_empty() {
+        return Err(DataError::new(
+            file,
+            None,
+            None,
+            "no configurations: expected a header q1..qN and one row per configuration",
+        ));
+    }
+    Ok(table.rows)
+}

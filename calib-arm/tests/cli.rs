@@ -477,6 +477,97 @@ fn bad_files_name_file_line_and_field_and_write_nothing() {
     assert!(!json.exists());
 }
 
+/// The calibrated file `cal` (in `dir`, beside the simulated data) carries its certified set and
+/// fits every configuration: with the joint errors of a weighted least-squares fit of each
+/// configuration's reading (an independent computation: plain Gauss–Newton in floating point),
+/// every joint error and every coordinate's residual is within its bound. Returns the file's arm,
+/// the data and their error bounds.
+fn assert_fits_every_configuration(
+    dir: &Path,
+    cal: &str,
+) -> (
+    calib_arm::Arm,
+    calib_arm::files::Measurements,
+    calib_arm::simulate::Uncertainty,
+) {
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let (calibrated, set) =
+        calib_arm::files::read_calibrated(Path::new(&p(cal))).expect("a calibrated file");
+    assert!(
+        set.is_some(),
+        "the calibrated file carries its certified set"
+    );
+    let data = calib_arm::files::read_measurements(
+        Path::new(&p("measurements.csv")),
+        calibrated.joints.len(),
+    )
+    .expect("data");
+    let u = calib_arm::files::read_uncertainty(Path::new(&p("uncertainty.toml"))).expect("u");
+    for (k, r) in data.readings.iter().enumerate() {
+        let (joint_errors, residual) = fit_joint_errors(&calibrated, &r.joints_deg, &r.point, &u);
+        assert!(
+            joint_errors.iter().all(|e| e.abs() <= u.joint_deg)
+                && residual.iter().all(|e| e.abs() <= u.pos),
+            "configuration {}: joint errors {joint_errors:?} (bound {}), residual {residual:?} \
+             (bound {})",
+            k + 1,
+            u.joint_deg,
+            u.pos
+        );
+    }
+    (calibrated, data, u)
+}
+
+#[test]
+fn a_calibration_chosen_for_a_task_fits_every_measurement() {
+    let dir = tempdir("task");
+    simulated(&dir, 12, &[]);
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let task = |file: &str, out: &str| {
+        certify(
+            &dir,
+            &[
+                "--json",
+                &p("report.json"),
+                "--write-calibrated",
+                &p(out),
+                "--task",
+                &p(file),
+            ],
+        )
+    };
+    // A joint box and a list of configurations.
+    std::fs::write(
+        p("task.toml"),
+        "q1 = [-10.0, 10.0]\nq2 = [-100.0, -80.0]\nq3 = [80.0, 100.0]\n",
+    )
+    .expect("write");
+    std::fs::write(p("task.csv"), "q1,q2,q3\n0,-90,90\n5,-85,95\n-5,-95,85\n").expect("write");
+    for (file, out) in [("task.toml", "box.toml"), ("task.csv", "rows.toml")] {
+        let o = task(file, out);
+        assert!(o.status.success(), "{}", text(&o));
+        assert!(text(&o).contains("at the task's"), "{}", text(&o));
+        let report: Value =
+            serde_json::from_str(&std::fs::read_to_string(p("report.json")).expect("report"))
+                .expect("json");
+        assert_eq!(report["calibrated"]["rule"], "task", "{report}");
+        assert_fits_every_configuration(&dir, out);
+    }
+    // A task file with the wrong columns: named with its line, exit 1, nothing written.
+    std::fs::write(p("bad.csv"), "q1,q2\n0,-90\n").expect("write");
+    let o = task("bad.csv", "never.toml");
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(
+        text(&o).contains("bad.csv") && text(&o).contains("line 1"),
+        "{}",
+        text(&o)
+    );
+    assert!(!dir.join("never.toml").exists());
+    // --task without --write-calibrated: a usage error.
+    let o = certify(&dir, &["--task", &p("task.toml")]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+}
+
 #[test]
 fn the_calibrated_arm_contains_the_certified_box_and_its_accuracy_is_bracketed() {
     let dir = tempdir("accuracy");
@@ -520,33 +611,7 @@ fn the_calibrated_arm_contains_the_certified_box_and_its_accuracy_is_bracketed()
             assert_eq!(r, 0.0);
         }
     }
-    // It fits every configuration: with the joint errors of a weighted least-squares fit of each
-    // configuration's reading (an independent computation: plain Gauss–Newton in floating
-    // point), every joint error and every coordinate's residual is within its bound.
-    let (calibrated, set) =
-        calib_arm::files::read_calibrated(Path::new(&p("cal.toml"))).expect("a calibrated file");
-    assert!(
-        set.is_some(),
-        "the calibrated file carries its certified set"
-    );
-    let data = calib_arm::files::read_measurements(
-        Path::new(&p("measurements.csv")),
-        calibrated.joints.len(),
-    )
-    .expect("data");
-    let u = calib_arm::files::read_uncertainty(Path::new(&p("uncertainty.toml"))).expect("u");
-    for (k, r) in data.readings.iter().enumerate() {
-        let (joint_errors, residual) = fit_joint_errors(&calibrated, &r.joints_deg, &r.point, &u);
-        assert!(
-            joint_errors.iter().all(|e| e.abs() <= u.joint_deg)
-                && residual.iter().all(|e| e.abs() <= u.pos),
-            "configuration {}: joint errors {joint_errors:?} (bound {}), residual {residual:?} \
-             (bound {})",
-            k + 1,
-            u.joint_deg,
-            u.pos
-        );
-    }
+    let (calibrated, data, u) = assert_fits_every_configuration(&dir, "cal.toml");
     std::fs::write(
         p("joints.toml"),
         "q1 = [-10.0, 10.0]\nq2 = [-100.0, -80.0]\nq3 = [80.0, 100.0]\n",

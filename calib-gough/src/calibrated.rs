@@ -19,7 +19,7 @@
 use crate::accuracy::LegReading;
 use crate::certification::LegResult;
 use crate::files::LegSpec;
-use crate::geometry::Leg;
+use crate::geometry::{Leg, Pose};
 use crate::measurement::{leg_boxes, Configuration, Orientation, Uncertainty};
 use crate::workspace::Workspace;
 use crate::GoughError;
@@ -79,13 +79,67 @@ pub fn measured_workspace(configs: &[Configuration]) -> Workspace {
     }
 }
 
-/// The gradients `∂L_i/∂θ` of leg `leg`'s reading at poses sampled in `workspace` (at the
-/// geometry `at`): the predictions whose Chebyshev centre the calibrated geometry approaches.
-fn predictions(robot: &[LegSpec], workspace: &Workspace, at: &[f64; 7]) -> Vec<[f64; 7]> {
-    let mut rng = rand::rngs::StdRng::seed_from_u64(0x5e7);
-    let legs: Vec<Leg> = robot.iter().map(|s| s.nominal).collect();
-    (0..PREDICTION_POSES)
-        .filter_map(|k| workspace.sample(&mut rng, &legs, k % 2 == 0))
+/// Where the calibrated geometry should predict best: the Chebyshev centre of the leg lengths it
+/// predicts there is the target of its choice ([`PointRule::PredictionCentre`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Task<'a> {
+    /// 300 poses sampled in a workspace.
+    Workspace(&'a Workspace),
+    /// Exactly these poses (`gough certify --task poses.csv`).
+    Poses(&'a [Pose]),
+}
+
+impl Task<'_> {
+    /// The task's poses (sampled in a workspace with the legs of `robot`).
+    fn poses(&self, robot: &[LegSpec]) -> Vec<Pose> {
+        match self {
+            Task::Poses(poses) => poses.to_vec(),
+            Task::Workspace(workspace) => {
+                let mut rng = rand::rngs::StdRng::seed_from_u64(0x5e7);
+                let legs: Vec<Leg> = robot.iter().map(|s| s.nominal).collect();
+                (0..PREDICTION_POSES)
+                    .filter_map(|k| workspace.sample(&mut rng, &legs, k % 2 == 0))
+                    .collect()
+            }
+        }
+    }
+}
+
+/// A task file read (`gough certify --task FILE`): a workspace or a list of poses.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TaskFile {
+    /// `workspace.toml`.
+    Workspace(Workspace),
+    /// A poses CSV (`px,py,pz,ax,ay,az,angle_deg`, as `gough design` writes it).
+    Poses(Vec<Pose>),
+}
+
+impl TaskFile {
+    /// Reads a task: a `.toml` file is a workspace ([`crate::workspace::read_workspace`]), any
+    /// other a poses CSV ([`crate::files::parse_poses_at_least`], at least one pose). Errors name
+    /// the file, the line and the field.
+    pub fn read(file: &std::path::Path) -> Result<TaskFile, calib_pipeline::DataError> {
+        if file.extension().is_some_and(|e| e == "toml") {
+            return crate::workspace::read_workspace(file).map(TaskFile::Workspace);
+        }
+        let text = calib_pipeline::read_text(file)?;
+        crate::files::parse_poses_at_least(file, &text, 1).map(TaskFile::Poses)
+    }
+
+    /// The task it describes.
+    pub fn task(&self) -> Task<'_> {
+        match self {
+            TaskFile::Workspace(w) => Task::Workspace(w),
+            TaskFile::Poses(p) => Task::Poses(p),
+        }
+    }
+}
+
+/// The gradients `∂L_i/∂θ` of a leg's reading at `poses` (at the geometry `at`): the
+/// predictions whose Chebyshev centre the calibrated geometry approaches.
+fn predictions(poses: &[Pose], at: &[f64; 7]) -> Vec<[f64; 7]> {
+    poses
+        .iter()
         .map(|pose| {
             let q = pose.rodrigues();
             LegReading.jacobian_x(at, &[pose.p[0], pose.p[1], pose.p[2], q[0], q[1], q[2]])
@@ -94,7 +148,7 @@ fn predictions(robot: &[LegSpec], workspace: &Workspace, at: &[f64; 7]) -> Vec<[
 }
 
 /// The calibrated robot from the certified legs (see the module documentation): predictions over
-/// `workspace`, or over [`measured_workspace`] when none is given. An error naming a leg proved
+/// `task`, or over [`measured_workspace`] when none is given. An error naming a leg proved
 /// inconsistent, or a leg with no geometry proved consistent (undecided): there is then no
 /// calibrated geometry to hand out.
 pub fn calibrated_robot(
@@ -102,10 +156,10 @@ pub fn calibrated_robot(
     results: &[LegResult],
     configs: &[Configuration],
     u: &Uncertainty,
-    workspace: Option<&Workspace>,
+    task: Option<Task<'_>>,
 ) -> Result<CalibratedRobot, GoughError> {
     let fallback = measured_workspace(configs);
-    let workspace = workspace.unwrap_or(&fallback);
+    let poses = task.unwrap_or(Task::Workspace(&fallback)).poses(robot);
     let mut out = CalibratedRobot {
         legs: robot.to_vec(),
         sets: vec![None; robot.len()],
@@ -119,7 +173,7 @@ pub fn calibrated_robot(
         let boxes = leg_boxes(configs, u, r.leg);
         let model = LegModel::of(configs);
         let mut set = CertifiedSet::new(&model, &r.cover, &boxes, &r.points, MAX_PIECES);
-        let preds = predictions(robot, workspace, witness);
+        let preds = predictions(&poses, witness);
         let point = calibrated_point(&model, &mut set, PointRule::PredictionCentre(&preds))
             .ok_or_else(undecided)?;
         let spec = &robot[r.leg];

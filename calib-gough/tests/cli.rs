@@ -850,3 +850,51 @@ fn write_calibrated_refuses_an_inconsistent_leg() {
     assert!(stderr.contains("leg 2 was proved inconsistent"), "{stderr}");
     assert!(!cal.exists());
 }
+
+#[test]
+fn write_calibrated_for_a_task_says_so_and_a_bad_task_file_is_named() {
+    let dir = tempdir("calibrated-task");
+    simulate(&dir, 5, &[]);
+    let (cal, poses) = (dir.join("calibrated.toml"), dir.join("poses.csv"));
+    std::fs::write(
+        &poses,
+        "px,py,pz,ax,ay,az,angle_deg\n0,0,60,1,0,0,5\n3,-2,58,0,1,0,8\n",
+    )
+    .unwrap();
+    let out = certify(
+        &dir,
+        &[
+            "--legs",
+            "1",
+            "--write-calibrated",
+            cal.to_str().unwrap(),
+            "--task",
+            poses.to_str().unwrap(),
+        ],
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}");
+    assert!(stdout.contains("over the task"), "{stdout}");
+    assert!(std::fs::read_to_string(&cal)
+        .unwrap()
+        .contains("over the task"));
+    // A poses file with a column missing: file and line named, exit 1, nothing written.
+    let (bad, never) = (dir.join("bad.csv"), dir.join("never.toml"));
+    std::fs::write(&bad, "px,py,pz,ax,ay,az\n0,0,60,1,0,0\n").unwrap();
+    let out = certify(
+        &dir,
+        &[
+            "--write-calibrated",
+            never.to_str().unwrap(),
+            "--task",
+            bad.to_str().unwrap(),
+        ],
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("bad.csv") && stderr.contains("line 1"),
+        "{stderr}"
+    );
+    assert!(!never.exists());
+}

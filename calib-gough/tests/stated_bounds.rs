@@ -19,7 +19,7 @@
 
 use calib_core::{hull, CertifiedSet, Interval, Settings};
 use calib_gough::accuracy::AccuracyProblem;
-use calib_gough::calibrated::{calibrated_robot, measured_workspace};
+use calib_gough::calibrated::{calibrated_robot, measured_workspace, Task};
 use calib_gough::certification::{certify_legs, CertifyOptions};
 use calib_gough::files::{read_measurements, read_robot, read_uncertainty, LegSpec};
 use calib_gough::geometry::rodrigues_box;
@@ -118,6 +118,12 @@ fn handed_out(
 ) -> Vec<(String, usize, [f64; 7])> {
     let results = certify_legs(robot, configs, u, &CertifyOptions::default(), &|| {}).unwrap();
     let calibrated = calibrated_robot(robot, &results, configs, u, None).unwrap();
+    // A task other than the measured range: the level poses of a smaller box.
+    let mut level = measured_workspace(configs);
+    level.tilt_deg = 0.0;
+    level.x = [level.x[0] / 2.0, level.x[1] / 2.0];
+    let for_task =
+        calibrated_robot(robot, &results, configs, u, Some(Task::Workspace(&level))).unwrap();
     let mut out = Vec::new();
     for r in &results {
         let leg = r.leg;
@@ -130,6 +136,8 @@ fn handed_out(
             leg,
             calibrated.legs[leg].nominal.params(),
         ));
+        let task = for_task.legs[leg].nominal.params();
+        out.push(("geometry written for a task".into(), leg, task));
         let set = calibrated.sets[leg].as_ref().expect("a set");
         for (k, p) in set.points().iter().enumerate() {
             out.push((format!("set point {k}"), leg, p.x));

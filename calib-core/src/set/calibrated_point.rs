@@ -12,9 +12,11 @@
 //! 2. **A target** `t`, by the [`PointRule`]: the Chebyshev centre of the predictions (the point
 //!    that minimises, to first order, the largest distance from its predictions to the extreme
 //!    predictions of the set: `min_x max_s max(hi_s - g_s·x, g_s·x - lo_s)`, `[lo_s, hi_s]` the
-//!    set's range of the prediction `g_s·x`, one linear program per piece), or the regularised
-//!    least-squares fit of the residuals within the linearised set
-//!    ([`crate::least_squares_in_set`]).
+//!    set's range of the prediction `g_s·x`, over the set linearised around `c`: one linear
+//!    program), or the regularised least-squares fit of the residuals within the linearised set
+//!    ([`crate::least_squares_in_set`]). Both lie in the linearised set, so that the segment
+//!    towards them stays consistent far along it (over the set's own polyhedra, wider than the
+//!    set, the centre lay so far out that the segment stopped at 6.5% of it on the real UR10).
 //! 3. **The point itself**: the last point of the segment from `c` to `t` proved consistent with
 //!    every measurement box *narrowed by a margin* (bisection; 5% of every error bound, or 2%, 1%,
 //!    0 when the data leave less room): a vector that fits every measurement with part of each
@@ -24,10 +26,12 @@
 //! boxes, hence with the measurement boxes themselves.
 
 use crate::lp::{DenseSimplex, LpBackend, LpStatus, Polyhedron};
+use crate::model::coupling::for_each_linearised_row;
 use crate::proof::chebyshev::{minimax_point, normalised_misfit};
 use crate::proof::consistency::least_squares_point;
-use crate::set::least_squares::least_squares_in_set;
+use crate::set::least_squares::{least_squares_in_set, SHRINK};
 use crate::{is_consistent_point, CertifiedSet, Interval, VectorModel};
+use std::cmp::Ordering;
 
 /// How the calibrated point is chosen (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -155,7 +159,7 @@ where
             (fit.x, Some(fit.prior_weight))
         }
         PointRule::PredictionCentre(predictions) => (
-            prediction_centre(set, subset, predictions).unwrap_or(from),
+            prediction_centre(model, &region, &boxes, &from, set, predictions).unwrap_or(from),
             None,
         ),
     };
@@ -189,52 +193,65 @@ where
     })
 }
 
-/// The Chebyshev centre of the predictions over the pieces of `subset`: per piece, the linear
-/// program `min τ` over `(y, τ)` with the piece's rows and `hi_s - g_s·x <= τ`,
-/// `g_s·x - lo_s <= τ` (`x = c + y`); the best piece's optimum. A target, not a proof.
-fn prediction_centre<const NX: usize, const NM: usize>(
+/// The Chebyshev centre of the predictions over the set linearised around `from`: the linear
+/// program `min τ` over `(δ, τ)` with every row and coupling combination of `measurements`
+/// linearised at `from` within [`SHRINK`] of its half-range, `from + δ` in the box `region`, and
+/// `hi_s - g_s·(from + δ) <= τ`, `g_s·(from + δ) - lo_s <= τ`, `[lo_s, hi_s]` the set's range of
+/// `g_s·x`. A target, not a proof.
+fn prediction_centre<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    region: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    from: &[f64; NX],
     set: &CertifiedSet<NX, NM>,
-    subset: usize,
     predictions: &[[f64; NX]],
-) -> Option<[f64; NX]> {
+) -> Option<[f64; NX]>
+where
+    M: VectorModel<NX, NM, NR>,
+{
     let mut query = set.query();
     let ranges: Vec<Interval> = predictions.iter().map(|g| query.range(g)).collect();
-    let mut lp = DenseSimplex::default();
-    let mut poly = Polyhedron::default();
-    let mut best: Option<(f64, [f64; NX])> = None;
-    let mut row = vec![0.0; NX + 1];
-    for piece in set.pieces().iter().filter(|p| p.subset() == subset) {
-        let p = piece.polyhedron();
-        let c = piece.centre();
-        let spread = ranges.iter().map(|r| r.wid()).fold(0.0, f64::max);
-        let lo: Vec<f64> = p.lo().iter().copied().chain([0.0]).collect();
-        let hi: Vec<f64> = p.hi().iter().copied().chain([spread.max(1e-300)]).collect();
-        poly.reset(&lo, &hi);
-        for i in 0..p.rows() {
-            row[..NX].copy_from_slice(p.row(i));
-            row[NX] = 0.0;
-            poly.push_row(&row, p.rhs(i));
-        }
-        for (g, r) in predictions.iter().zip(&ranges) {
-            let gc: f64 = g.iter().zip(c).map(|(a, b)| a * b).sum();
-            // -g·y - τ <= g·c - hi  and  g·y - τ <= lo - g·c
-            row[..NX].iter_mut().zip(g).for_each(|(v, a)| *v = -a);
-            row[NX] = -1.0;
-            poly.push_row(&row, gc - r.sup());
-            row[..NX].copy_from_slice(g);
-            poly.push_row(&row, r.inf() - gc);
-        }
-        let mut objective = vec![0.0; NX + 1];
-        objective[NX] = 1.0;
-        let mut dual = vec![0.0; poly.rows()];
-        let mut primal = vec![0.0; NX + 1];
-        if lp.minimize(&poly, &objective, &mut dual, &mut primal) != LpStatus::Optimal {
-            continue;
-        }
-        let tau = primal[NX];
-        if best.as_ref().is_none_or(|b| tau < b.0) {
-            best = Some((tau, core::array::from_fn(|j| c[j] + primal[j])));
-        }
+    let spread = ranges.iter().map(|r| r.wid()).fold(0.0, f64::max);
+    let lo: Vec<f64> = (0..NX)
+        .map(|j| region[j].inf() - from[j])
+        .chain([0.0])
+        .collect();
+    let hi: Vec<f64> = (0..NX)
+        .map(|j| region[j].sup() - from[j])
+        .chain([spread.max(1e-300)])
+        .collect();
+    // `from` outside the box, or a NaN: no program.
+    let ordered =
+        |(l, h): (&f64, &f64)| matches!(l.partial_cmp(h), Some(Ordering::Less | Ordering::Equal));
+    if !lo.iter().zip(&hi).all(ordered) {
+        return None;
     }
-    best.map(|b| b.1)
+    let mut poly = Polyhedron::default();
+    poly.reset(&lo, &hi);
+    let mut row = vec![0.0; NX + 1];
+    for m in measurements {
+        let e = model.evaluate_rows(from, &m.map(|v| v.mid()));
+        for_each_linearised_row(&e, &m.map(|v| v.rad()), |value, dx, w| {
+            row[..NX].copy_from_slice(dx);
+            row[NX] = 0.0;
+            poly.push_row(&row, SHRINK * w - value);
+            row[..NX].iter_mut().for_each(|v| *v = -*v);
+            poly.push_row(&row, SHRINK * w + value);
+        });
+    }
+    for (g, r) in predictions.iter().zip(&ranges) {
+        let gf: f64 = g.iter().zip(from).map(|(a, b)| a * b).sum();
+        row[..NX].iter_mut().zip(g).for_each(|(v, a)| *v = -a);
+        row[NX] = -1.0;
+        poly.push_row(&row, gf - r.sup());
+        row[..NX].copy_from_slice(g);
+        poly.push_row(&row, r.inf() - gf);
+    }
+    let mut objective = vec![0.0; NX + 1];
+    objective[NX] = 1.0;
+    let mut dual = vec![0.0; poly.rows()];
+    let mut primal = vec![0.0; NX + 1];
+    let mut lp = DenseSimplex::default();
+    (lp.minimize(&poly, &objective, &mut dual, &mut primal) == LpStatus::Optimal)
+        .then(|| core::array::from_fn(|j| from[j] + primal[j]))
 }

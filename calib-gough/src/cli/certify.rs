@@ -3,7 +3,7 @@
 use super::DataFiles;
 use calib_core::Status;
 use calib_gough::accuracy::{accuracy_report, AccuracyProblem, AccuracyReport, AccuracySettings};
-use calib_gough::calibrated::{calibrated_robot, robot_toml, CalibratedRobot};
+use calib_gough::calibrated::{calibrated_robot, robot_toml, CalibratedRobot, Task, TaskFile};
 use calib_gough::certification::{
     certify_legs, identifiability, report, CertifyOptions, LegResult,
 };
@@ -74,6 +74,14 @@ pub struct Args {
     /// leg is proved inconsistent or undecided (no geometry proved consistent).
     #[arg(long, value_name = "FILE")]
     write_calibrated: Option<PathBuf>,
+    /// Choose the --write-calibrated geometry for where the robot will work: towards the centre
+    /// of the leg lengths it predicts over the task (to first order, the smallest worst
+    /// leg-length error there). FILE is a workspace (`workspace.toml`: x, y, z = [lo, hi] cm,
+    /// tilt_deg; 300 poses sampled in it stand for it) or a poses CSV
+    /// (px,py,pz,ax,ay,az,angle_deg, as `gough design` writes it). Default: --workspace, else the
+    /// measured poses' range. The geometry is proved consistent as always.
+    #[arg(long, value_name = "FILE", requires = "write_calibrated")]
+    task: Option<PathBuf>,
     /// Also certify the accuracy over this workspace (workspace.toml): per leg, how far the
     /// commanded leg length can be from the needed one, calibrated (over the certified set) and
     /// uncalibrated (robot.toml's box), and the platform's pose errors, as in `gough accuracy`;
@@ -143,6 +151,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         None => (None, input.u, Vec::new()),
     };
     let workspace = a.workspace.as_deref().map(read_workspace).transpose()?;
+    let task = a.task.as_deref().map(TaskFile::read).transpose()?;
     let pose_seconds = super::accuracy::checked_pose_seconds(a.pose_seconds)?;
     let (results, total) = certify_with_progress(robot, &data.configs, &u, &options, legs.len())?;
     let file = file_name(&a.files.measurements);
@@ -164,7 +173,9 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             &results,
             &data.configs,
             &u,
-            workspace.as_ref(),
+            task.as_ref()
+                .map(TaskFile::task)
+                .or(workspace.as_ref().map(Task::Workspace)),
         )?)
     } else {
         None
@@ -302,10 +313,15 @@ fn write_calibrated(
     path: &Path,
     cal: &CalibratedRobot,
 ) -> Result<(), Box<dyn std::error::Error>> {
+    let over = match (&a.task, &a.workspace) {
+        (Some(task), _) => format!("the task {}", task.display()),
+        (None, Some(w)) => format!("the workspace {}", w.display()),
+        (None, None) => "the measured poses' range".to_string(),
+    };
     let comment = format!(
         "calibrated by certicalib {} from {} and {}:\n\
          a, b, l: per leg, a geometry proved consistent with every measurement ({}),\n\
-         chosen towards the centre of the leg lengths it predicts over the workspace;\n\
+         chosen towards the centre of the leg lengths it predicts over {over};\n\
          radius: a box around it that contains the certified outer box;\n\
          [leg.certified_set]: the certified set `gough accuracy` and `gough predict` work over",
         calib_pipeline::html::VERSION,
@@ -317,7 +333,7 @@ fn write_calibrated(
         .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
     println!(
         "calibrated robot written to {}: each certified leg's geometry fits every \
-         measurement ({})",
+         measurement ({}), chosen towards the centre of the leg lengths it predicts over {over}",
         path.display(),
         margin_words(cal)
     );
