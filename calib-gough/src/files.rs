@@ -320,6 +320,32 @@ pub fn parse_measurements_at_least(
         .iter()
         .map(str::to_string)
         .collect();
+    let (rodrigues, columns) = measurement_columns(file, &header, legs)?;
+    let mut configs = Vec::new();
+    let mut lines = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| record_error(file, &e))?;
+        let line = record.position().map(|p| p.line() as usize);
+        configs.push(configuration(file, line, &columns, &record, rodrigues)?);
+        lines.push(line.unwrap_or(configs.len() + 1));
+    }
+    enough_configurations(file, configs.len(), least)?;
+    Ok(Measurements {
+        configs,
+        rodrigues,
+        lines,
+    })
+}
+
+/// The columns of a measurements file with `legs` legs, chosen by its header: whether the
+/// rotations are Rodrigues vectors (`q1` fourth), and the column names the header must have
+/// (`px,py,pz,ax,ay,az,angle_deg` or `px,py,pz,q1,q2,q3`, then `L1..Lk`). An error on line 1
+/// when the header differs, saying so when it has another number of leg columns.
+fn measurement_columns(
+    file: &Path,
+    header: &[String],
+    legs: usize,
+) -> Result<(bool, Vec<String>), DataError> {
     let axis_angle = ["px", "py", "pz", "ax", "ay", "az", "angle_deg"];
     let rodrigues_cols = ["px", "py", "pz", "q1", "q2", "q3"];
     let rodrigues = header.get(3).map(String::as_str) == Some("q1");
@@ -328,13 +354,12 @@ pub fn parse_measurements_at_least(
     } else {
         &axis_angle
     };
-    let lengths: Vec<String> = (1..=legs).map(|i| format!("L{i}")).collect();
-    let expected: Vec<&str> = fixed
+    let expected: Vec<String> = fixed
         .iter()
-        .copied()
-        .chain(lengths.iter().map(String::as_str))
+        .map(|c| c.to_string())
+        .chain((1..=legs).map(|i| format!("L{i}")))
         .collect();
-    if header != expected {
+    if header != expected.as_slice() {
         let found_legs = header.iter().filter(|h| h.starts_with('L')).count();
         let hint = if found_legs != legs && header.len() > fixed.len() {
             format!(" (the file has {found_legs} leg columns, robot.toml has {legs} legs)")
@@ -352,87 +377,95 @@ pub fn parse_measurements_at_least(
             ),
         ));
     }
-    let mut configs = Vec::new();
-    let mut lines = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| {
-            let line = e.position().map(|p| p.line() as usize);
-            let message = match e.kind() {
-                csv::ErrorKind::UnequalLengths {
-                    expected_len, len, ..
-                } => {
-                    format!("expected {expected_len} columns, found {len}")
-                }
-                _ => e.to_string(),
-            };
-            error(file, line, None, message)
-        })?;
-        let line = record.position().map(|p| p.line() as usize);
-        let mut values = Vec::with_capacity(expected.len());
-        for (field, raw) in expected.iter().zip(record.iter()) {
-            let v: f64 = raw.parse().map_err(|_| {
-                error(
-                    file,
-                    line,
-                    Some(field),
-                    format!("expected a number, found `{raw}`"),
-                )
-            })?;
-            values.push(finite_number(file, line, field, v)?);
+    Ok((rodrigues, expected))
+}
+
+/// A row the CSV reader could not read, as a [`DataError`] on its line (a wrong number of
+/// columns says how many were expected and found).
+fn record_error(file: &Path, e: &csv::Error) -> DataError {
+    let line = e.position().map(|p| p.line() as usize);
+    let message = match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => {
+            format!("expected {expected_len} columns, found {len}")
         }
-        let p = [values[0], values[1], values[2]];
-        let (orientation, rest) = if rodrigues {
-            (
-                Orientation::Rodrigues([values[3], values[4], values[5]]),
-                &values[6..],
+        _ => e.to_string(),
+    };
+    error(file, line, None, message)
+}
+
+/// The configuration in `record`, a row of a measurements file on `line`: a finite number in each
+/// of the `columns` (from [`measurement_columns`]); an axis-angle rotation's axis within 1e-3 of
+/// unit length.
+fn configuration(
+    file: &Path,
+    line: Option<usize>,
+    columns: &[String],
+    record: &csv::StringRecord,
+    rodrigues: bool,
+) -> Result<Configuration, DataError> {
+    let mut values = Vec::with_capacity(columns.len());
+    for (field, raw) in columns.iter().zip(record.iter()) {
+        let v: f64 = raw.parse().map_err(|_| {
+            error(
+                file,
+                line,
+                Some(field),
+                format!("expected a number, found `{raw}`"),
             )
-        } else {
-            let axis = [values[3], values[4], values[5]];
-            let norm = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
-            if (norm - 1.0).abs() > 1e-3 {
-                return Err(error(
-                    file,
-                    line,
-                    Some("ax,ay,az"),
-                    format!("the rotation axis has length {norm}; expected a unit vector"),
-                ));
-            }
-            (
-                Orientation::AxisAngle {
-                    axis,
-                    angle_deg: values[6],
-                },
-                &values[7..],
-            )
-        };
-        configs.push(Configuration {
-            p,
-            orientation,
-            lengths: rest.to_vec(),
-        });
-        lines.push(line.unwrap_or(configs.len() + 1));
+        })?;
+        values.push(finite_number(file, line, field, v)?);
     }
-    if configs.len() < least {
-        let why = if least == MIN_CONFIGURATIONS {
-            " (one per unknown parameter of a leg)"
-        } else {
-            ""
-        };
-        return Err(error(
-            file,
-            None,
-            None,
-            format!(
-                "{} configurations; at least {least} are needed{why}",
-                configs.len()
-            ),
-        ));
-    }
-    Ok(Measurements {
-        configs,
-        rodrigues,
-        lines,
+    let p = [values[0], values[1], values[2]];
+    let (orientation, rest) = if rodrigues {
+        (
+            Orientation::Rodrigues([values[3], values[4], values[5]]),
+            &values[6..],
+        )
+    } else {
+        let axis = [values[3], values[4], values[5]];
+        let norm = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+        if (norm - 1.0).abs() > 1e-3 {
+            return Err(error(
+                file,
+                line,
+                Some("ax,ay,az"),
+                format!("the rotation axis has length {norm}; expected a unit vector"),
+            ));
+        }
+        (
+            Orientation::AxisAngle {
+                axis,
+                angle_deg: values[6],
+            },
+            &values[7..],
+        )
+    };
+    Ok(Configuration {
+        p,
+        orientation,
+        lengths: rest.to_vec(),
     })
+}
+
+/// An error unless there are at least `least` configurations (saying why when it is the
+/// calibration's [`MIN_CONFIGURATIONS`]).
+fn enough_configurations(file: &Path, count: usize, least: usize) -> Result<(), DataError> {
+    if count >= least {
+        return Ok(());
+    }
+    let why = if least == MIN_CONFIGURATIONS {
+        " (one per unknown parameter of a leg)"
+    } else {
+        ""
+    };
+    Err(error(
+        file,
+        None,
+        None,
+        format!("{count} configurations; at least {least} are needed{why}"),
+    ))
 }
 
 /// The columns of a poses file: the platform centre (cm, base frame) and the rotation as a unit

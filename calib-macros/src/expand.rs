@@ -178,46 +178,22 @@ fn vector_model(
     curvature: bool,
 ) -> TokenStream {
     let nr = outputs.len();
-    let n_inputs = nx + nm;
     let s = Ident::new("__S", Span::call_site());
-    let values = evaluator(graph, &s, outputs, |v| quote!([#(#v),*]));
-    let jm: Vec<Id> = grads.iter().flat_map(|g| g.m.iter().copied()).collect();
-    let jacobians_m = evaluator(graph, &s, &jm, |v| {
-        let rows = v.chunks(nm).map(|r| quote!([#(#r),*]));
-        quote!([#(#rows),*])
-    });
-    let mut values_jm = outputs.to_vec();
-    values_jm.extend(&jm);
-    let values_and_jacobians_m = evaluator(graph, &s, &values_jm, |v| {
-        let (values, derivatives) = v.split_at(nr);
-        let rows = derivatives.chunks(nm).map(|r| quote!([#(#r),*]));
-        quote!(([#(#values),*], [#(#rows),*]))
-    });
-    let mut all = outputs.to_vec();
-    for g in grads {
-        all.extend(&g.x);
-        all.extend(&g.m);
-    }
-    let rows = evaluator(graph, &s, &all, |v| {
-        let (values, derivatives) = v.split_at(nr);
-        let rows = values
-            .iter()
-            .zip(derivatives.chunks(nx + nm))
-            .map(|(f, d)| {
-                let (dx, dm) = d.split_at(nx);
-                quote!(::calib_core::Evaluation { value: #f, dx: [#(#dx),*], dm: [#(#dm),*] })
-            });
-        quote!([#(#rows),*])
-    });
+    let VectorEvaluators {
+        values,
+        jacobians_m,
+        values_and_jacobians_m,
+        rows,
+    } = vector_evaluators(graph, &s, nx, nm, outputs, grads);
     let args = quote!(__x: &[#s; #nx], __m: &[#s; #nm]);
     let bound = quote!(#s: ::calib_core::Scalar);
-    let iv = quote!(::calib_core::Interval);
     let (curvature_method, curvature_impl) = if curvature {
         let curved = crate::diff::curved_inputs(graph, grads, nx, nm);
         curvature_tokens(name, nx, nm, nr, &curved)
     } else {
         (quote!(), quote!())
     };
+    let trait_impl = vector_model_impl(name, nx, nm, nr, curvature_method);
     quote! {
         #[allow(clippy::all, clippy::pedantic, unused_variables, non_snake_case)]
         // Never inlined: a chain of rotations differentiated in every parameter is a large body,
@@ -235,6 +211,24 @@ fn vector_model(
             fn __rows<#bound>(#args) -> [::calib_core::Evaluation<#s, #nx, #nm>; #nr] { #rows }
         }
 
+        #trait_impl
+
+        #curvature_impl
+    }
+}
+
+/// The `calib_core::VectorModel` implementation of `name` (`nr` residuals), calling the evaluator
+/// functions of [`vector_model`]; `curvature_method` is its `curvature` method, if any.
+fn vector_model_impl(
+    name: &Ident,
+    nx: usize,
+    nm: usize,
+    nr: usize,
+    curvature_method: TokenStream,
+) -> TokenStream {
+    let n_inputs = nx + nm;
+    let iv = quote!(::calib_core::Interval);
+    quote! {
         impl ::calib_core::VectorModel<#nx, #nm, #nr> for #name {
             #[inline]
             fn residuals(&self, x: &[f64; #nx], m: &[f64; #nm]) -> [f64; #nr] {
@@ -289,8 +283,67 @@ fn vector_model(
             }
             #curvature_method
         }
+    }
+}
 
-        #curvature_impl
+/// The four evaluator bodies of a vector model, each one straight-line body over the graph.
+struct VectorEvaluators {
+    /// The `NR` residuals.
+    values: TokenStream,
+    /// `∂f/∂m`, `NR` rows of `NM`.
+    jacobians_m: TokenStream,
+    /// The residuals and `∂f/∂m` together.
+    values_and_jacobians_m: TokenStream,
+    /// Every row's value with its Jacobians in the parameters and the measurements
+    /// (`calib_core::Evaluation`).
+    rows: TokenStream,
+}
+
+/// The [`VectorEvaluators`] of the residuals `outputs` with gradients `grads`, over the scalar
+/// type `s` (`nx` parameters, `nm` measured quantities).
+fn vector_evaluators(
+    graph: &Graph,
+    s: &Ident,
+    nx: usize,
+    nm: usize,
+    outputs: &[Id],
+    grads: &[Gradient],
+) -> VectorEvaluators {
+    let nr = outputs.len();
+    let values = evaluator(graph, s, outputs, |v| quote!([#(#v),*]));
+    let jm: Vec<Id> = grads.iter().flat_map(|g| g.m.iter().copied()).collect();
+    let jacobians_m = evaluator(graph, s, &jm, |v| {
+        let rows = v.chunks(nm).map(|r| quote!([#(#r),*]));
+        quote!([#(#rows),*])
+    });
+    let mut values_jm = outputs.to_vec();
+    values_jm.extend(&jm);
+    let values_and_jacobians_m = evaluator(graph, s, &values_jm, |v| {
+        let (values, derivatives) = v.split_at(nr);
+        let rows = derivatives.chunks(nm).map(|r| quote!([#(#r),*]));
+        quote!(([#(#values),*], [#(#rows),*]))
+    });
+    let mut all = outputs.to_vec();
+    for g in grads {
+        all.extend(&g.x);
+        all.extend(&g.m);
+    }
+    let rows = evaluator(graph, s, &all, |v| {
+        let (values, derivatives) = v.split_at(nr);
+        let rows = values
+            .iter()
+            .zip(derivatives.chunks(nx + nm))
+            .map(|(f, d)| {
+                let (dx, dm) = d.split_at(nx);
+                quote!(::calib_core::Evaluation { value: #f, dx: [#(#dx),*], dm: [#(#dm),*] })
+            });
+        quote!([#(#rows),*])
+    });
+    VectorEvaluators {
+        values,
+        jacobians_m,
+        values_and_jacobians_m,
+        rows,
     }
 }
 

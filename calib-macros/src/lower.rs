@@ -28,6 +28,25 @@ fn unsupported(tokens: &dyn quote::ToTokens, what: &str) -> Error {
     Error::new_spanned(tokens, format!("{what} is not supported\n{SUPPORTED}"))
 }
 
+/// The error for an expression the evaluators cannot contain, saying what it is (a macro call,
+/// branching, a loop, a cast, a closure, an assignment, or another expression).
+fn refusal(e: &Expr) -> Error {
+    match e {
+        Expr::Macro(m) => unsupported(m, "a macro call"),
+        Expr::If(_) | Expr::Match(_) => unsupported(
+            e,
+            "branching (`if`/`match`; the evaluators are straight-line code)",
+        ),
+        Expr::Loop(_) | Expr::While(_) | Expr::ForLoop(_) => {
+            unsupported(e, "a loop (unroll it with `let` bindings)")
+        }
+        Expr::Cast(_) => unsupported(e, "a cast"),
+        Expr::Closure(_) => unsupported(e, "a closure"),
+        Expr::Assign(_) => unsupported(e, "assignment"),
+        _ => unsupported(e, "this expression"),
+    }
+}
+
 /// Lowers the body; returns the graph and the output nodes (one for a scalar residual, `NR` for an
 /// array of residuals).
 pub fn lower(sig: &Signature, body: &Block) -> syn::Result<(Graph, Vec<Id>)> {
@@ -188,88 +207,19 @@ impl Lowering {
         }
     }
 
+    /// The value of an expression: the supported syntax lowered onto the graph, anything else
+    /// refused with a spanned error ([`refusal`]).
     fn expr(&mut self, e: &Expr) -> syn::Result<Value> {
         Ok(match e {
             Expr::Lit(l) => Value::Scalar(self.literal(&l.lit)?),
-            Expr::Path(p) => {
-                let name = p.path.get_ident().filter(|_| p.qself.is_none());
-                let Some(name) = name else {
-                    return Err(unsupported(p, "a path other than a local name"));
-                };
-                match self.env.get(&name.to_string()) {
-                    Some(v) => v.clone(),
-                    None => {
-                        return Err(Error::new_spanned(
-                            p,
-                            format!("`{name}` is not a parameter or a `let` binding of this body"),
-                        ))
-                    }
-                }
-            }
+            Expr::Path(p) => self.path(p)?,
             Expr::Paren(p) => self.expr(&p.expr)?,
             Expr::Group(g) => self.expr(&g.expr)?,
             Expr::Block(b) if b.label.is_none() => self.block(&b.block)?,
-            Expr::Unary(u) => match u.op {
-                UnOp::Neg(_) => {
-                    let a = self.scalar(&u.expr)?;
-                    Value::Scalar(self.graph.neg(a))
-                }
-                UnOp::Deref(_) => match self.expr(&u.expr)? {
-                    v @ Value::Array(_) => v,
-                    _ => {
-                        return Err(Error::new_spanned(
-                            e,
-                            "only the array arguments can be dereferenced",
-                        ))
-                    }
-                },
-                _ => return Err(unsupported(e, "this unary operator")),
-            },
-            Expr::Binary(b) => {
-                let l = self.scalar(&b.left)?;
-                let r = self.scalar(&b.right)?;
-                let g = &mut self.graph;
-                Value::Scalar(match b.op {
-                    BinOp::Add(_) => g.add(l, r),
-                    BinOp::Sub(_) => g.sub(l, r),
-                    BinOp::Mul(_) => g.mul(l, r),
-                    BinOp::Div(_) => g.div(l, r),
-                    _ => return Err(unsupported(&b.op, "this binary operator")),
-                })
-            }
-            Expr::Index(ix) => {
-                let Value::Array(items) = self.expr(&ix.expr)? else {
-                    return Err(Error::new_spanned(&ix.expr, "only arrays can be indexed"));
-                };
-                let i = constant_index(&ix.index)?;
-                match items.get(i) {
-                    Some(v) => v.clone(),
-                    None => {
-                        return Err(Error::new_spanned(
-                            &ix.index,
-                            format!(
-                                "index {i} is out of bounds for an array of length {}",
-                                items.len()
-                            ),
-                        ))
-                    }
-                }
-            }
-            Expr::Field(f) => {
-                let Member::Unnamed(idx) = &f.member else {
-                    return Err(unsupported(&f.member, "a named field"));
-                };
-                let Value::Tuple(items) = self.expr(&f.base)? else {
-                    return Err(Error::new_spanned(
-                        &f.base,
-                        "only tuples have fields `.0`, `.1`, ...",
-                    ));
-                };
-                match items.get(idx.index as usize) {
-                    Some(v) => v.clone(),
-                    None => return Err(Error::new_spanned(&f.member, "no such tuple field")),
-                }
-            }
+            Expr::Unary(u) => self.unary(e, u)?,
+            Expr::Binary(b) => self.binary(b)?,
+            Expr::Index(ix) => self.index(ix)?,
+            Expr::Field(f) => self.field(f)?,
             Expr::Array(a) => Value::Array(
                 a.elems
                     .iter()
@@ -284,21 +234,90 @@ impl Lowering {
             ),
             Expr::MethodCall(mc) => Value::Scalar(self.method_call(mc)?),
             Expr::Call(c) => Value::Scalar(self.constant_call(c)?),
-            Expr::Macro(m) => return Err(unsupported(m, "a macro call")),
-            Expr::If(_) | Expr::Match(_) => {
-                return Err(unsupported(
-                    e,
-                    "branching (`if`/`match`; the evaluators are straight-line code)",
-                ))
-            }
-            Expr::Loop(_) | Expr::While(_) | Expr::ForLoop(_) => {
-                return Err(unsupported(e, "a loop (unroll it with `let` bindings)"))
-            }
-            Expr::Cast(_) => return Err(unsupported(e, "a cast")),
-            Expr::Closure(_) => return Err(unsupported(e, "a closure")),
-            Expr::Assign(_) => return Err(unsupported(e, "assignment")),
-            _ => return Err(unsupported(e, "this expression")),
+            _ => return Err(refusal(e)),
         })
+    }
+
+    /// A local name: a parameter or a `let` binding.
+    fn path(&self, p: &syn::ExprPath) -> syn::Result<Value> {
+        let name = p.path.get_ident().filter(|_| p.qself.is_none());
+        let Some(name) = name else {
+            return Err(unsupported(p, "a path other than a local name"));
+        };
+        match self.env.get(&name.to_string()) {
+            Some(v) => Ok(v.clone()),
+            None => Err(Error::new_spanned(
+                p,
+                format!("`{name}` is not a parameter or a `let` binding of this body"),
+            )),
+        }
+    }
+
+    /// `-a` on a scalar, or `*a` on an array argument (`e` is the whole expression, for errors).
+    fn unary(&mut self, e: &Expr, u: &syn::ExprUnary) -> syn::Result<Value> {
+        match u.op {
+            UnOp::Neg(_) => {
+                let a = self.scalar(&u.expr)?;
+                Ok(Value::Scalar(self.graph.neg(a)))
+            }
+            UnOp::Deref(_) => match self.expr(&u.expr)? {
+                v @ Value::Array(_) => Ok(v),
+                _ => Err(Error::new_spanned(
+                    e,
+                    "only the array arguments can be dereferenced",
+                )),
+            },
+            _ => Err(unsupported(e, "this unary operator")),
+        }
+    }
+
+    /// `a + b`, `a - b`, `a * b` or `a / b` on scalars.
+    fn binary(&mut self, b: &syn::ExprBinary) -> syn::Result<Value> {
+        let l = self.scalar(&b.left)?;
+        let r = self.scalar(&b.right)?;
+        let g = &mut self.graph;
+        Ok(Value::Scalar(match b.op {
+            BinOp::Add(_) => g.add(l, r),
+            BinOp::Sub(_) => g.sub(l, r),
+            BinOp::Mul(_) => g.mul(l, r),
+            BinOp::Div(_) => g.div(l, r),
+            _ => return Err(unsupported(&b.op, "this binary operator")),
+        }))
+    }
+
+    /// `a[i]`: an element of an array, at a constant index within its length.
+    fn index(&mut self, ix: &syn::ExprIndex) -> syn::Result<Value> {
+        let Value::Array(items) = self.expr(&ix.expr)? else {
+            return Err(Error::new_spanned(&ix.expr, "only arrays can be indexed"));
+        };
+        let i = constant_index(&ix.index)?;
+        match items.get(i) {
+            Some(v) => Ok(v.clone()),
+            None => Err(Error::new_spanned(
+                &ix.index,
+                format!(
+                    "index {i} is out of bounds for an array of length {}",
+                    items.len()
+                ),
+            )),
+        }
+    }
+
+    /// `t.0`, `t.1`, ...: a field of a tuple.
+    fn field(&mut self, f: &syn::ExprField) -> syn::Result<Value> {
+        let Member::Unnamed(idx) = &f.member else {
+            return Err(unsupported(&f.member, "a named field"));
+        };
+        let Value::Tuple(items) = self.expr(&f.base)? else {
+            return Err(Error::new_spanned(
+                &f.base,
+                "only tuples have fields `.0`, `.1`, ...",
+            ));
+        };
+        match items.get(idx.index as usize) {
+            Some(v) => Ok(v.clone()),
+            None => Err(Error::new_spanned(&f.member, "no such tuple field")),
+        }
     }
 
     fn literal(&mut self, lit: &Lit) -> syn::Result<Id> {

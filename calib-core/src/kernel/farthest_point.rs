@@ -52,11 +52,7 @@ where
     let reach = |x: &[f64; NX]| -> f64 { direction.iter().zip(x).map(|(d, v)| d * v).sum() };
     // The region's extent along the direction: steps that gain less than `MIN_GAIN` of it end
     // the push.
-    let span: f64 = region
-        .iter()
-        .zip(direction)
-        .map(|(r, d)| r.wid() * d.abs())
-        .sum();
+    let span = extent(region, direction);
     let mut dual = vec![0.0; 2 * measurements.len()];
     let mut primal = [0.0; NX];
     let mut rows: Vec<LinearisedRow<NX>> = Vec::new();
@@ -64,32 +60,10 @@ where
     // steps move the point little, so the same rows bind).
     let mut active: Vec<bool> = Vec::new();
     for _ in 0..12 {
-        let lo: [f64; NX] = core::array::from_fn(|j| region[j].inf() - p[j]);
-        let hi: [f64; NX] = core::array::from_fn(|j| region[j].sup() - p[j]);
-        if lo
-            .iter()
-            .zip(&hi)
-            .any(|(l, h)| l.partial_cmp(h).is_none_or(|o| o.is_gt()))
-        {
+        let Some((lo, hi)) = step_box(region, &p) else {
             break;
-        }
-        rows.clear();
-        for m in measurements {
-            let mm = m.map(|v| v.mid());
-            let rad = m.map(|v| v.rad());
-            let e = model.evaluate_rows(&p, &mm);
-            let mut count = 0;
-            for_each_linearised_row(&e, &rad, |value, dx, w| {
-                let k = rows.len();
-                rows.push(LinearisedRow {
-                    value,
-                    dx: *dx,
-                    w: (1.0 - margin) * w,
-                    active: count < NR || active.get(k).copied().unwrap_or(false),
-                });
-                count += 1;
-            });
-        }
+        };
+        linearise(model, &p, measurements, margin, &active, &mut rows);
         let lp_step = PushLp {
             lp: &mut *lp,
             poly: &mut poly,
@@ -131,6 +105,67 @@ where
         }
     }
     best
+}
+
+/// `Σ_j wid(region_j) |direction_j|`: the extent of `region` along `direction`.
+fn extent<const NX: usize>(region: &[Interval; NX], direction: &[f64; NX]) -> f64 {
+    region
+        .iter()
+        .zip(direction)
+        .map(|(r, d)| r.wid() * d.abs())
+        .sum()
+}
+
+/// The steps `d` that keep `p + d` in `region`: the box `[inf(region) - p, sup(region) - p]`
+/// as its lower and upper corners (`None` when a lower corner is above its upper one or either is
+/// not a number).
+fn step_box<const NX: usize>(
+    region: &[Interval; NX],
+    p: &[f64; NX],
+) -> Option<([f64; NX], [f64; NX])> {
+    let lo: [f64; NX] = core::array::from_fn(|j| region[j].inf() - p[j]);
+    let hi: [f64; NX] = core::array::from_fn(|j| region[j].sup() - p[j]);
+    if lo
+        .iter()
+        .zip(&hi)
+        .any(|(l, h)| l.partial_cmp(h).is_none_or(|o| o.is_gt()))
+    {
+        return None;
+    }
+    Some((lo, hi))
+}
+
+/// Replaces `rows` by the linearised rows of every configuration at `p` (see the module
+/// documentation), their half-ranges scaled by `θ = 1 - margin`. A configuration's `NR` residual
+/// rows are always active; a coupling row is active when the row at its index in `active` (the
+/// previous step's rows) was.
+fn linearise<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    p: &[f64; NX],
+    measurements: &[[Interval; NM]],
+    margin: f64,
+    active: &[bool],
+    rows: &mut Vec<LinearisedRow<NX>>,
+) where
+    M: VectorModel<NX, NM, NR>,
+{
+    rows.clear();
+    for m in measurements {
+        let mm = m.map(|v| v.mid());
+        let rad = m.map(|v| v.rad());
+        let e = model.evaluate_rows(p, &mm);
+        let mut count = 0;
+        for_each_linearised_row(&e, &rad, |value, dx, w| {
+            let k = rows.len();
+            rows.push(LinearisedRow {
+                value,
+                dx: *dx,
+                w: (1.0 - margin) * w,
+                active: count < NR || active.get(k).copied().unwrap_or(false),
+            });
+            count += 1;
+        });
+    }
 }
 
 /// The LP engines of the pushes, reused from push to push: the dense simplex (walking on from

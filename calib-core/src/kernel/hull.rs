@@ -43,7 +43,9 @@
 
 use crate::kernel::bisection::split_widest;
 use crate::kernel::certify::{certify, hull_box, MAX_SUBSETS};
-use crate::kernel::contract::{contract, contract_from, is_fixed, EmptinessProof, Workspace};
+use crate::kernel::contract::{
+    contract, contract_from, is_fixed, Contraction, EmptinessProof, Workspace,
+};
 use crate::kernel::cover::Cover;
 use crate::kernel::farthest_point::{push_towards, PushEngines};
 use crate::kernel::inner_targets::wider_inner_points;
@@ -247,7 +249,9 @@ where
     out
 }
 
-/// [`hull_with`] without the conflict search.
+/// [`hull_with`] without the conflict search, in its steps: the measurement subsets (one without
+/// outliers), the paper's `x1` of each, certified points pushed to the faces of `x1`, the
+/// refinement of the cover until the faces meet the inner bound, and the verdict.
 fn hull_core<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     x0: &[Interval; NX],
@@ -259,32 +263,9 @@ where
     M: VectorModel<NX, NM, NR> + Sync,
 {
     let start = Instant::now();
-    let mut out = Hull {
-        status: Status::Undecided,
-        outer: *x0,
-        inner: None,
-        x1: None,
-        iterations: 0,
-        emptiness: None,
-        witness: None,
-        inner_points: Vec::new(),
-        ratio: [f64::INFINITY; NX],
-        converged: false,
-        boxes_contracted: 0,
-        rounds: 0,
-        seconds: 0.0,
-        conflict: None,
-        support: None,
-        spread: false,
-        outliers: Vec::new(),
-        cover: Cover::single(*x0),
-    };
+    let mut out = Hull::undecided(x0);
     let q = settings.max_outliers;
-    let drops = if q == 0 {
-        vec![Vec::new()]
-    } else if let Some(d) = drop_sets(measurements.len(), q, MAX_SUBSETS) {
-        d
-    } else {
+    let Some(drops) = dropped_subsets(measurements.len(), q) else {
         // Too many subsets (or q >= p): keep the initial box, undecided.
         out.x1 = Some(*x0);
         return out;
@@ -293,44 +274,9 @@ where
         .iter()
         .map(|d| keep_all_but(measurements, d))
         .collect();
-    // x1 of every subset (one subset without outliers), with its LP extreme points.
-    let first = |ws: &mut Workspace<NX>, set: &Vec<[Interval; NM]>| {
-        let c = contract(model, x0, set, settings, ws);
-        let extremes = if c.iterations > 0 {
-            ws.extreme_points.clone()
-        } else {
-            Vec::new()
-        };
-        (c, extremes, Arc::new(ws.lp_memory()))
-    };
-    let firsts: Vec<_> = if settings.parallel && sets.len() > 1 {
-        sets.par_iter()
-            .map_init(|| Workspace::with_backend(engine()), first)
-            .collect()
-    } else {
-        let mut ws = Workspace::with_backend(engine());
-        sets.iter().map(|set| first(&mut ws, set)).collect()
-    };
+    let firsts = first_steps(model, x0, &sets, settings, engine);
     out.boxes_contracted = sets.len();
-    let mut cover = Vec::new();
-    let mut x1: Option<[Interval; NX]> = None;
-    for (set, (c, _, bases)) in firsts.iter().enumerate() {
-        out.iterations += c.iterations;
-        match c.result {
-            Err(proof) => {
-                out.emptiness.get_or_insert(proof);
-            }
-            Ok(b) => {
-                x1 = Some(hull_box(x1, &b));
-                cover.push(Piece {
-                    b,
-                    atomic: false,
-                    set,
-                    bases: Arc::clone(bases),
-                });
-            }
-        }
-    }
+    let (cover, x1) = first_cover(&mut out, &firsts);
     let Some(x1) = x1 else {
         out.status = Status::Empty;
         out.outer = [Interval::EMPTY; NX];
@@ -343,126 +289,145 @@ where
     };
     out.emptiness = None;
     out.x1 = Some(x1);
-    out.cover = Cover {
-        boxes: cover.iter().map(|p: &Piece<NX>| p.b).collect(),
-        subsets: cover.iter().map(|p: &Piece<NX>| p.set).collect(),
-        dropped: drops.clone(),
-    };
+    out.cover = cover_of(cover.iter(), &drops);
     if !x1.iter().all(|v| v.is_bounded()) {
         // An unbounded box can be neither split at its midpoint nor linearised: keep it whole.
         out.outer = x1;
         out.seconds = start.elapsed().as_secs_f64();
         return out;
     }
-    let mut refiner = Refiner {
-        model,
-        x0,
-        sets: &sets,
-        settings,
-        engine,
-        cover,
-        retired: None,
-        retired_pieces: Vec::new(),
-        retired_sets: vec![false; sets.len()],
-        pointed_sets: vec![false; sets.len()],
-        inner: None,
-        inner_points: Vec::new(),
-        witness: None,
-        contracted: sets.len(),
-        rows: PhantomData,
-    };
+    let mut refiner = Refiner::new(model, x0, &sets, settings, engine, cover);
     let pieces = refiner.cover.clone();
     for piece in &pieces {
-        let extremes = &firsts[piece.set].1;
-        let witness = if refiner.witness.is_none() {
-            find_witness(model, &piece.b, &sets[piece.set], extremes)
-        } else {
-            None
-        };
-        if !settings.inner_bounds {
-            if witness.is_some() {
-                refiner.witness = witness;
-                refiner.pointed_sets[piece.set] = true;
-            }
-            continue;
-        }
-        refiner.add_points(witness.as_slice(), piece.set);
-        if NR >= 2 {
-            // Vector models: the segment search of `certify` (witness to each LP extreme point,
-            // then to first-order extremes) seeds the inner box too. Their pushes below solve LPs
-            // over every coupling direction of every configuration (thousands of nearly parallel
-            // rows) and alone leave the inner bound of angles far inside, where the segments
-            // reach much tighter ratios in a fraction of the time (`benches/README.md`).
-            if let Some(w) = witness.or(refiner.witness) {
-                let mut points = inner_points(
-                    model,
-                    &w,
-                    &piece.b,
-                    extremes,
-                    &sets[piece.set],
-                    settings.inner_bisections,
-                );
-                points.extend(wider_inner_points(
-                    model,
-                    &w,
-                    &piece.b,
-                    &sets[piece.set],
-                    &points,
-                    settings.inner_bisections,
-                ));
-                refiner.add_points(&points, piece.set);
-            }
-        }
-        // First inner points: push the LP extreme points of x1 (or the witness) to their faces.
-        // (Not along parameters fixed at a point: nothing to gain there.)
-        let seeds: Vec<(Face, [f64; NX])> = Face::all(NX)
-            .filter(|f| !is_fixed(x0[f.j]))
-            .flat_map(|f| {
-                let lp = extremes.get(f.slot()).copied();
-                lp.into_iter().chain(witness).map(move |p| (f, p))
-            })
-            .collect();
-        let points = refiner.push_all(&piece.b, &seeds, piece.set);
-        refiner.add_points(&points, piece.set);
+        refiner.seed(piece, &firsts[piece.set].extremes);
     }
-    let converged = refiner.run(start);
-    out.boxes_contracted = refiner.contracted;
-    out.rounds = converged.1;
-    out.converged = converged.0;
-    out.witness = refiner.witness;
-    out.inner = refiner.inner;
-    out.inner_points = refiner.inner_points.clone();
-    let pieces = refiner.cover.iter().chain(&refiner.retired_pieces);
-    out.cover = Cover {
-        boxes: pieces.clone().map(|p| p.b).collect(),
-        subsets: pieces.map(|p| p.set).collect(),
-        dropped: drops.clone(),
-    };
-    match refiner.outer() {
-        None => {
-            out.status = Status::Empty;
-            out.outer = [Interval::EMPTY; NX];
-            out.emptiness = Some(if q > 0 {
-                EmptinessProof::EverySubset
-            } else {
-                EmptinessProof::Subdivision
-            });
-        }
-        Some(outer) => {
-            out.outer = outer;
-            if out.witness.is_some() {
-                out.status = Status::Consistent;
-            }
-            if let Some(inner) = out.inner {
-                out.ratio = core::array::from_fn(|j| outer[j].wid() / inner[j].wid());
-            }
-            if q > 0 {
-                out.outliers = certified_outliers(measurements.len(), &drops, &refiner.alive());
-            }
-        }
-    }
+    let (converged, rounds) = refiner.run(start);
+    out.rounds = rounds;
+    out.converged = converged;
+    refiner.conclude(&mut out, measurements.len(), &drops);
     out.seconds = start.elapsed().as_secs_f64();
     out
+}
+
+impl<const NX: usize> Hull<NX> {
+    /// The answer before any work: undecided, `outer = x0`, nothing certified.
+    fn undecided(x0: &[Interval; NX]) -> Self {
+        Hull {
+            status: Status::Undecided,
+            outer: *x0,
+            inner: None,
+            x1: None,
+            iterations: 0,
+            emptiness: None,
+            witness: None,
+            inner_points: Vec::new(),
+            ratio: [f64::INFINITY; NX],
+            converged: false,
+            boxes_contracted: 0,
+            rounds: 0,
+            seconds: 0.0,
+            conflict: None,
+            support: None,
+            spread: false,
+            outliers: Vec::new(),
+            cover: Cover::single(*x0),
+        }
+    }
+}
+
+/// Per measurement subset, the measurements it drops: none without outliers (`q = 0`), else
+/// every set of `q` of the `p` measurements; `None` when there are more than [`MAX_SUBSETS`].
+fn dropped_subsets(p: usize, q: usize) -> Option<Vec<Vec<usize>>> {
+    if q == 0 {
+        Some(vec![Vec::new()])
+    } else {
+        drop_sets(p, q, MAX_SUBSETS)
+    }
+}
+
+/// The contraction of `x0` to the paper's `x1` against one measurement subset, with where it
+/// ended: the LP extreme points of its last step (the seeds of the inner bound) and its LP bases
+/// (where its halves' contractions start).
+struct FirstStep<const NX: usize> {
+    contraction: Contraction<NX>,
+    /// `extreme_points` of the contraction's last step (empty when it took no step).
+    extremes: Vec<[f64; NX]>,
+    bases: Arc<LpMemory>,
+}
+
+/// The [`FirstStep`] of every measurement subset, in parallel when there are several.
+fn first_steps<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    x0: &[Interval; NX],
+    sets: &[Vec<[Interval; NM]>],
+    settings: &Settings,
+    engine: &(dyn Fn() -> Box<dyn LpBackend> + Sync),
+) -> Vec<FirstStep<NX>>
+where
+    M: VectorModel<NX, NM, NR> + Sync,
+{
+    let first = |ws: &mut Workspace<NX>, set: &Vec<[Interval; NM]>| {
+        let contraction = contract(model, x0, set, settings, ws);
+        let extremes = if contraction.iterations > 0 {
+            ws.extreme_points.clone()
+        } else {
+            Vec::new()
+        };
+        FirstStep {
+            contraction,
+            extremes,
+            bases: Arc::new(ws.lp_memory()),
+        }
+    };
+    if settings.parallel && sets.len() > 1 {
+        sets.par_iter()
+            .map_init(|| Workspace::with_backend(engine()), first)
+            .collect()
+    } else {
+        let mut ws = Workspace::with_backend(engine());
+        sets.iter().map(|set| first(&mut ws, set)).collect()
+    }
+}
+
+/// The boxes the first steps kept, as the first cover, and their hull `x1` (`None` when every
+/// subset was proved empty). Records the steps' iterations in `out`, and the first proof of
+/// emptiness in `out.emptiness`.
+fn first_cover<const NX: usize>(
+    out: &mut Hull<NX>,
+    firsts: &[FirstStep<NX>],
+) -> (Vec<Piece<NX>>, Option<[Interval; NX]>) {
+    let mut cover = Vec::new();
+    let mut x1: Option<[Interval; NX]> = None;
+    for (set, first) in firsts.iter().enumerate() {
+        out.iterations += first.contraction.iterations;
+        match first.contraction.result {
+            Err(proof) => {
+                out.emptiness.get_or_insert(proof);
+            }
+            Ok(b) => {
+                x1 = Some(hull_box(x1, &b));
+                cover.push(Piece {
+                    b,
+                    atomic: false,
+                    set,
+                    bases: Arc::clone(&first.bases),
+                });
+            }
+        }
+    }
+    (cover, x1)
+}
+
+/// The [`Cover`] made of `pieces`, the subsets being those that drop `drops`.
+fn cover_of<'p, const NX: usize>(
+    pieces: impl Iterator<Item = &'p Piece<NX>> + Clone,
+    drops: &[Vec<usize>],
+) -> Cover<NX> {
+    Cover {
+        boxes: pieces.clone().map(|p| p.b).collect(),
+        subsets: pieces.map(|p| p.set).collect(),
+        dropped: drops.to_vec(),
+    }
 }
 
 /// The state of the refinement: the cover of the solution set and the certified points.
@@ -495,10 +460,39 @@ struct Refiner<'a, M, const NX: usize, const NM: usize, const NR: usize> {
     rows: PhantomData<[(); NR]>,
 }
 
-impl<M, const NX: usize, const NM: usize, const NR: usize> Refiner<'_, M, NX, NM, NR>
+impl<'a, M, const NX: usize, const NM: usize, const NR: usize> Refiner<'a, M, NX, NM, NR>
 where
     M: VectorModel<NX, NM, NR> + Sync,
 {
+    /// The refinement of `cover`, the boxes of the first contraction of each measurement subset
+    /// of `sets` (one contraction per subset so far), before any certified point is known.
+    fn new(
+        model: &'a M,
+        x0: &'a [Interval; NX],
+        sets: &'a [Vec<[Interval; NM]>],
+        settings: &'a Settings,
+        engine: &'a (dyn Fn() -> Box<dyn LpBackend> + Sync),
+        cover: Vec<Piece<NX>>,
+    ) -> Self {
+        Refiner {
+            model,
+            x0,
+            sets,
+            settings,
+            engine,
+            cover,
+            retired: None,
+            retired_pieces: Vec::new(),
+            retired_sets: vec![false; sets.len()],
+            pointed_sets: vec![false; sets.len()],
+            inner: None,
+            inner_points: Vec::new(),
+            witness: None,
+            contracted: sets.len(),
+            rows: PhantomData,
+        }
+    }
+
     /// The hull of the cover, the retired boxes and the inner box (`None` when all are empty).
     /// Sound: every solution lies in a cover box or a retired box, and the inner box is made of
     /// solutions, so adding it changes nothing but keeps the outer box around it.
@@ -542,6 +536,101 @@ where
             alive[p.set] = true;
         }
         alive
+    }
+
+    /// The first certified points in `piece`, a box of `x1`: a witness (from the contraction's
+    /// LP `extremes`), for vector models the segment search of `certify`, then the LP extreme
+    /// points and the witness pushed to their faces. Without inner bounds, the witness alone.
+    fn seed(&mut self, piece: &Piece<NX>, extremes: &[[f64; NX]]) {
+        let witness = if self.witness.is_none() {
+            find_witness(self.model, &piece.b, &self.sets[piece.set], extremes)
+        } else {
+            None
+        };
+        if !self.settings.inner_bounds {
+            if witness.is_some() {
+                self.witness = witness;
+                self.pointed_sets[piece.set] = true;
+            }
+            return;
+        }
+        self.add_points(witness.as_slice(), piece.set);
+        if NR >= 2 {
+            // Vector models: the segment search of `certify` (witness to each LP extreme point,
+            // then to first-order extremes) seeds the inner box too. Their pushes below solve LPs
+            // over every coupling direction of every configuration (thousands of nearly parallel
+            // rows) and alone leave the inner bound of angles far inside, where the segments
+            // reach much tighter ratios in a fraction of the time (`benches/README.md`).
+            if let Some(w) = witness.or(self.witness) {
+                let points = self.segment_points(piece, &w, extremes);
+                self.add_points(&points, piece.set);
+            }
+        }
+        // First inner points: push the LP extreme points of x1 (or the witness) to their faces.
+        // (Not along parameters fixed at a point: nothing to gain there.)
+        let seeds: Vec<(Face, [f64; NX])> = Face::all(NX)
+            .filter(|f| !is_fixed(self.x0[f.j]))
+            .flat_map(|f| {
+                let lp = extremes.get(f.slot()).copied();
+                lp.into_iter().chain(witness).map(move |p| (f, p))
+            })
+            .collect();
+        let points = self.push_all(&piece.b, &seeds, piece.set);
+        self.add_points(&points, piece.set);
+    }
+
+    /// Certified points of `piece` on segments from the certified point `w`: towards each LP
+    /// extreme point, then towards first-order extremes ([`inner_points`],
+    /// [`wider_inner_points`]).
+    fn segment_points(
+        &self,
+        piece: &Piece<NX>,
+        w: &[f64; NX],
+        extremes: &[[f64; NX]],
+    ) -> Vec<[f64; NX]> {
+        let set = &self.sets[piece.set];
+        let bisections = self.settings.inner_bisections;
+        let mut points = inner_points(self.model, w, &piece.b, extremes, set, bisections);
+        points.extend(wider_inner_points(
+            self.model, w, &piece.b, set, &points, bisections,
+        ));
+        points
+    }
+
+    /// Writes the refinement's answer into `out`: the certified points, the final cover, and
+    /// the verdict — `Empty` when no box is left (by subdivision, or in every subset with
+    /// outliers), else the outer box, `Consistent` with a witness, the ratios and the certified
+    /// outliers (`p` measurements, subsets dropping `drops`).
+    fn conclude(&self, out: &mut Hull<NX>, p: usize, drops: &[Vec<usize>]) {
+        let q = self.settings.max_outliers;
+        out.boxes_contracted = self.contracted;
+        out.witness = self.witness;
+        out.inner = self.inner;
+        out.inner_points = self.inner_points.clone();
+        out.cover = cover_of(self.cover.iter().chain(&self.retired_pieces), drops);
+        match self.outer() {
+            None => {
+                out.status = Status::Empty;
+                out.outer = [Interval::EMPTY; NX];
+                out.emptiness = Some(if q > 0 {
+                    EmptinessProof::EverySubset
+                } else {
+                    EmptinessProof::Subdivision
+                });
+            }
+            Some(outer) => {
+                out.outer = outer;
+                if out.witness.is_some() {
+                    out.status = Status::Consistent;
+                }
+                if let Some(inner) = out.inner {
+                    out.ratio = core::array::from_fn(|j| outer[j].wid() / inner[j].wid());
+                }
+                if q > 0 {
+                    out.outliers = certified_outliers(p, drops, &self.alive());
+                }
+            }
+        }
     }
 
     /// Adds points certified against subset `set`: each face keeps the point that reaches

@@ -20,31 +20,31 @@
 //!
 //! **Spread misfits.** The deletion filter costs one certification per measurement, and where the
 //! misfit is spread over the data its answer names many of them (22 of the real UR10's 60
-//! configurations at 0.98 times their smallest consistent error bound, in a minute where the
-//! verdict takes one second): no list of readings to re-measure, but a model that does not describe
-//! the data to these bounds. What tells the two apart at no cost is the *support* of the final
-//! certificate of emptiness, the measurements it weighs ([`crate::Certification::support`]). A
-//! certificate in `n` free parameters combines at most `n + 1` rows (a vertex of the LP's dual; the
-//! second-order certificate's weights, once the solver's noise is dropped, stay below that), so it
-//! weighs at most `min(p, n + 1)` of `p` measurements. When it weighs more than half of that
+//! configurations at 0.98 times their smallest consistent error bound, in many times the verdict's
+//! time; `benches/README.md`): no list of readings to re-measure, but a model that does not
+//! describe the data to these bounds. What tells the two apart at no cost is the *support* of the
+//! final certificate of emptiness, the measurements it weighs ([`crate::Certification::support`]).
+//! A certificate in `n` free parameters combines at most `n + 1` rows (a vertex of the LP's dual;
+//! the second-order certificate's weights, once the solver's noise is dropped, stay below that), so
+//! it weighs at most `min(p, n + 1)` of `p` measurements. When it weighs more than half of that
 //! ([`is_spread`]), the misfit is called spread and the conflict set is not searched.
 //!
 //! Measured supports. Kept (a few bad readings): a gross error, 1 of 10 configurations (simulated
-//! arms) or 2 of 21 (Gough leg, 7 free parameters: spread above 4); a subtle one on a leg, 4 of
-//! 21; one configuration of the real UR10 (27 free parameters: spread above 14) moved 1.2 or 1.5
-//! mm at bounds 0.39–0.42 mm, 6 and 10 of 60. Spread: the real UR10's series at 0.52–0.98 times
-//! its smallest consistent bound, 17–18 of 60; Gough legs with every reading off by up to three
-//! times its bound, 5–7 of 21. The rule is a heuristic with a known miss: a bad reading just
-//! beyond consistency is weighed like a spread misfit (one UR10 configuration moved 0.9 mm at 1.01
-//! times the smallest consistent bound: 19 of 60, where the search named it and one other in a
-//! minute), and a misfit far beyond it can be weighed like a few readings (the series at 0.13
-//! times the bound: 12 of 60, searched in 7 s, 10 configurations named). `--max-outliers` is the
-//! certified way to find bad readings either way. A first-order (Farkas) certificate can also
-//! weigh many measurements around one gross error (a simulated arm with one configuration moved
-//! 50 times its bound: 19 of 50), so a spread first-order proof is checked once more: leaving
-//! out each weighed measurement in turn; if the rest is then proved consistent (a witness in
-//! the box one contraction leaves) for one or two of them only, the conflict set is searched
-//! after all ([`crate::certify`]); where a dozen would each do, no reading stands out.
+//! arms) or 2 of 21 (Gough leg, 7 free parameters: spread above 4); a subtle one on a leg, 4 of 21;
+//! one configuration of the real UR10 (27 free parameters: spread above 14) moved 1.2 or 1.5 mm at
+//! bounds 0.39–0.42 mm, 6 and 10 of 60. Spread: the real UR10's series at 0.52–0.98 times its
+//! smallest consistent bound, 17–18 of 60; Gough legs with every reading off by up to three times
+//! its bound, 5–7 of 21. The rule is a heuristic with a known miss: a bad reading just beyond
+//! consistency is weighed like a spread misfit (one UR10 configuration moved 0.9 mm at 1.01 times
+//! the smallest consistent bound: 19 of 60, where the search named it and one other), and a misfit
+//! far beyond it can be weighed like a few readings (the series at 0.13 times the bound: 12 of 60,
+//! 10 configurations named by the search). `--max-outliers` is the certified way to find bad
+//! readings either way. A first-order (Farkas) certificate can also weigh many measurements around
+//! one gross error (a simulated arm with one configuration moved 50 times its bound: 19 of 50), so
+//! a spread first-order proof is checked once more: leaving out each weighed measurement in turn;
+//! if the rest is then proved consistent (a witness in the box one contraction leaves) for one or
+//! two of them only, the conflict set is searched after all ([`crate::certify`]); where a dozen
+//! would each do, no reading stands out.
 
 /// Whether a proof of emptiness whose final certificate weighs `support` of `p` measurements, with
 /// `free` parameters not fixed in the box, points at a misfit spread over the data rather than at

@@ -413,10 +413,7 @@ impl ScaledSimplex {
             // Progress is the objective at the vertex (the dual objective), which the dual simplex
             // never lowers: pivots that do not raise it noticeably are degenerate, whatever
             // their ratio (tiny steps can cycle as surely as zero ones).
-            let (objective, size) = (0..n).fold((0.0, 0.0), |(o, s), j| {
-                let t = self.c[j] * self.b.y[j];
-                (o + t, s + t.abs())
-            });
+            let (objective, size) = self.objective_at_vertex(n);
             if objective > best + PROGRESS_TOL * size {
                 best = objective;
                 degenerate = 0;
@@ -437,53 +434,12 @@ impl ScaledSimplex {
             // Most violated constraint outside the basis (Dantzig), or the first violated one once
             // degenerate pivots pile up even after the perturbation (Bland's rule: no cycling).
             let bland = degenerate > 2 * n;
-            self.live_vertex.clear();
-            self.live_vertex
-                .extend(self.scaled.live.iter().map(|&j| self.b.y[j]));
-            let entering = self.b.most_violated(FEASIBILITY_TOL, bland, |k| {
-                live_violation(&self.scaled, p, k, &self.b.y, &self.live_vertex)
-            });
-            let Some(k) = entering else {
+            let Some(k) = self.entering_dual(p, bland) else {
                 status = LpStatus::Optimal;
                 break;
             };
-            // w = A_W⁻ᵀ a_k; leave the basis constraint with the smallest ratio λ_r / w_r, w_r > 0
-            // (Harris: the largest w_r among the ratios within tolerance of the smallest).
-            constraint(&self.scaled, p, k, &mut self.b.a_k);
-            self.b.transformed_row();
-            let eligible =
-                |r: usize| self.b.w[r] > PIVOT_TOL && !self.scaled.pinned(self.b.basis[r]);
-            let bound = (0..n)
-                .filter(|&r| eligible(r))
-                .map(|r| (self.b.lambda[r] + HARRIS_TOL) / self.b.w[r])
-                .fold(f64::INFINITY, f64::min);
-            let mut leave: Option<usize> = None;
-            for r in (0..n).filter(|&r| eligible(r)) {
-                if self.b.lambda[r] / self.b.w[r] > bound {
-                    continue;
-                }
-                let better = match leave {
-                    None => true,
-                    // Bland: the constraint with the smallest index leaves.
-                    Some(l) if bland => self.b.basis[r] < self.b.basis[l],
-                    Some(l) => self.b.w[r] > self.b.w[l],
-                };
-                if better {
-                    leave = Some(r);
-                }
-            }
-            let Some(r) = leave else {
-                // Farkas ray: μ_k = 1, μ_W = -w (>= 0 up to rounding), in the original rows.
-                dual.iter_mut().for_each(|v| *v = 0.0);
-                if k < m {
-                    dual[k] = self.scaled.row_scale[k];
-                }
-                for r in 0..n {
-                    let kr = self.b.basis[r];
-                    if kr < m {
-                        dual[kr] = (-self.b.w[r]).max(0.0) * self.scaled.row_scale[kr];
-                    }
-                }
+            let Some(r) = self.leaving_dual(p, k, bland) else {
+                self.export_farkas_ray(p, k, dual);
                 self.export_primal(primal);
                 return LpStatus::Infeasible;
             };
@@ -492,6 +448,76 @@ impl ScaledSimplex {
         }
         self.export(m, dual, primal);
         status
+    }
+
+    /// The objective at the vertex `y` (the dual objective) and the sum of its terms'
+    /// magnitudes, `(Σ_j c_j y_j, Σ_j |c_j y_j|)`: what the dual walk measures progress by.
+    fn objective_at_vertex(&self, n: usize) -> (f64, f64) {
+        (0..n).fold((0.0, 0.0), |(o, s), j| {
+            let t = self.c[j] * self.b.y[j];
+            (o + t, s + t.abs())
+        })
+    }
+
+    /// The dual simplex's entering constraint: the most violated one outside the basis
+    /// (Dantzig), or the first violated one with `bland` (Bland's rule: no cycling); `None` at
+    /// the optimum (no constraint violated).
+    fn entering_dual(&mut self, p: &Polyhedron, bland: bool) -> Option<usize> {
+        self.live_vertex.clear();
+        self.live_vertex
+            .extend(self.scaled.live.iter().map(|&j| self.b.y[j]));
+        self.b.most_violated(FEASIBILITY_TOL, bland, |k| {
+            live_violation(&self.scaled, p, k, &self.b.y, &self.live_vertex)
+        })
+    }
+
+    /// The dual simplex's ratio test for entering constraint `k`: with `w = A_W⁻ᵀ a_k`, the basis
+    /// constraint with the smallest ratio `λ_r / w_r`, `w_r > 0`, leaves (Harris: the largest
+    /// `w_r` among the ratios within tolerance of the smallest; with `bland`, the smallest
+    /// index). `None` when no `w_r` is positive: the LP is infeasible (`w` is then the Farkas
+    /// ray, [`Self::export_farkas_ray`]).
+    fn leaving_dual(&mut self, p: &Polyhedron, k: usize, bland: bool) -> Option<usize> {
+        let n = p.dim();
+        constraint(&self.scaled, p, k, &mut self.b.a_k);
+        self.b.transformed_row();
+        let eligible = |r: usize| self.b.w[r] > PIVOT_TOL && !self.scaled.pinned(self.b.basis[r]);
+        let bound = (0..n)
+            .filter(|&r| eligible(r))
+            .map(|r| (self.b.lambda[r] + HARRIS_TOL) / self.b.w[r])
+            .fold(f64::INFINITY, f64::min);
+        let mut leave: Option<usize> = None;
+        for r in (0..n).filter(|&r| eligible(r)) {
+            if self.b.lambda[r] / self.b.w[r] > bound {
+                continue;
+            }
+            let better = match leave {
+                None => true,
+                // Bland: the constraint with the smallest index leaves.
+                Some(l) if bland => self.b.basis[r] < self.b.basis[l],
+                Some(l) => self.b.w[r] > self.b.w[l],
+            };
+            if better {
+                leave = Some(r);
+            }
+        }
+        leave
+    }
+
+    /// The Farkas ray of an infeasible LP into `dual`, after [`Self::leaving_dual`] found no
+    /// leaving constraint for `k`: `μ_k = 1`, `μ_W = -w` (`>= 0` up to rounding), in the original
+    /// rows.
+    fn export_farkas_ray(&self, p: &Polyhedron, k: usize, dual: &mut [f64]) {
+        let (n, m) = (p.dim(), p.rows());
+        dual.iter_mut().for_each(|v| *v = 0.0);
+        if k < m {
+            dual[k] = self.scaled.row_scale[k];
+        }
+        for r in 0..n {
+            let kr = self.b.basis[r];
+            if kr < m {
+                dual[kr] = (-self.b.w[r]).max(0.0) * self.scaled.row_scale[kr];
+            }
+        }
     }
 
     /// `c ← c - A_Wᵀ δ`, `δ_r` pseudo-random in `[0.5, 1.5]·COST_PERTURBATION·max|c|` on the basis
@@ -558,77 +584,14 @@ impl ScaledSimplex {
                 // sturdier path.
                 return None;
             }
-            // Leave the constraint with the most negative multiplier.
-            let mut leave = None;
-            let mut most = -FEASIBILITY_TOL;
-            for r in 0..n {
-                if self.scaled.pinned(self.b.basis[r]) {
-                    continue;
-                }
-                if self.b.lambda[r] < most {
-                    most = self.b.lambda[r];
-                    leave = Some(r);
-                }
-            }
-            let Some(r) = leave else {
+            let Some(r) = self.leaving_primal(n) else {
                 self.export(m, dual, primal);
                 return Some(LpStatus::Optimal);
             };
-            // Edge direction d = -A_W⁻¹ e_r: keeps the other basis constraints active and moves
-            // inside constraint r; c·d = λ_r < 0.
-            for j in 0..n {
-                self.b.a_w[j] = -self.b.inv[j * n + r];
-            }
-            // Harris: the largest step direction among the ratios within tolerance of the
-            // smallest (slacks relaxed by the tolerance), then the step to it. One pass computes
-            // every `a_k·d` and slack; the second picks among them.
-            let mut bound = f64::INFINITY;
-            self.live_direction.clear();
-            self.live_direction
-                .extend(self.scaled.live.iter().map(|&j| self.b.a_w[j]));
-            for k in 0..total {
-                self.ratio[k] = f64::INFINITY;
-                self.along[k] = 0.0;
-                if self.b.in_basis[k] {
-                    continue;
-                }
-                let ad = if k < m {
-                    dot(self.scaled.compact_row(k), &self.live_direction)
-                } else {
-                    along(&self.scaled, k, &self.b.a_w[..n])
-                };
-                self.along[k] = ad;
-                if ad > PIVOT_TOL {
-                    let slack = self.slack[k].max(0.0);
-                    self.ratio[k] = slack / ad;
-                    bound = bound.min((slack + HARRIS_TOL) / ad);
-                }
-            }
-            let mut enter: Option<(usize, f64, f64)> = None;
-            for k in 0..total {
-                let (t, ad) = (self.ratio[k], self.along[k]);
-                if t.is_finite() && t <= bound && enter.is_none_or(|(_, _, best)| ad > best) {
-                    enter = Some((k, t, ad));
-                }
-            }
-            let (k, step, _) = enter?;
+            let (k, step) = self.entering_primal(p, r)?;
             degenerate = if step <= 1e-14 { degenerate + 1 } else { 0 };
-            for j in 0..n {
-                self.b.y[j] += step * self.b.a_w[j];
-            }
-            for (s, ad) in self.slack.iter_mut().zip(&self.along) {
-                *s -= step * ad;
-            }
-            constraint(&self.scaled, p, k, &mut self.b.a_k);
-            self.b.transformed_row();
-            if self.b.w[r].abs() < PIVOT_TOL {
-                return None;
-            }
-            // The leaving constraint's slack, and the entering one's (now active).
-            let leaving = self.b.basis[r];
-            self.slack[leaving] = -violation(&self.scaled, p, leaving, &self.b.y);
-            self.slack[k] = 0.0;
-            self.b.replace(r, k);
+            self.step_along_edge(n, step);
+            self.pivot_primal(p, r, k)?;
             since_refactor += 1;
         }
         None
@@ -636,6 +599,94 @@ impl ScaledSimplex {
 }
 
 impl ScaledSimplex {
+    /// The primal simplex's leaving constraint: the basis constraint with the most negative
+    /// multiplier (below `-FEASIBILITY_TOL`; pinned ones never leave). `None` at the optimum.
+    fn leaving_primal(&self, n: usize) -> Option<usize> {
+        let mut leave = None;
+        let mut most = -FEASIBILITY_TOL;
+        for r in 0..n {
+            if self.scaled.pinned(self.b.basis[r]) {
+                continue;
+            }
+            if self.b.lambda[r] < most {
+                most = self.b.lambda[r];
+                leave = Some(r);
+            }
+        }
+        leave
+    }
+
+    /// The primal simplex's ratio test when basis constraint `r` leaves: along the edge
+    /// `d = -A_W⁻¹ e_r` (kept in `b.a_w`; it keeps the other basis constraints active and moves
+    /// inside constraint `r`, `c·d = λ_r < 0`), the entering constraint and the step to it.
+    /// Harris: the largest `a_k·d` among the ratios within tolerance of the smallest (slacks
+    /// relaxed by the tolerance). One pass computes every `a_k·d` (kept in `along`) and ratio;
+    /// the second picks among them. `None` when no constraint bounds the edge.
+    fn entering_primal(&mut self, p: &Polyhedron, r: usize) -> Option<(usize, f64)> {
+        let (n, m) = (p.dim(), p.rows());
+        let total = m + 2 * n;
+        for j in 0..n {
+            self.b.a_w[j] = -self.b.inv[j * n + r];
+        }
+        let mut bound = f64::INFINITY;
+        self.live_direction.clear();
+        self.live_direction
+            .extend(self.scaled.live.iter().map(|&j| self.b.a_w[j]));
+        for k in 0..total {
+            self.ratio[k] = f64::INFINITY;
+            self.along[k] = 0.0;
+            if self.b.in_basis[k] {
+                continue;
+            }
+            let ad = if k < m {
+                dot(self.scaled.compact_row(k), &self.live_direction)
+            } else {
+                along(&self.scaled, k, &self.b.a_w[..n])
+            };
+            self.along[k] = ad;
+            if ad > PIVOT_TOL {
+                let slack = self.slack[k].max(0.0);
+                self.ratio[k] = slack / ad;
+                bound = bound.min((slack + HARRIS_TOL) / ad);
+            }
+        }
+        let mut enter: Option<(usize, f64, f64)> = None;
+        for k in 0..total {
+            let (t, ad) = (self.ratio[k], self.along[k]);
+            if t.is_finite() && t <= bound && enter.is_none_or(|(_, _, best)| ad > best) {
+                enter = Some((k, t, ad));
+            }
+        }
+        enter.map(|(k, step, _)| (k, step))
+    }
+
+    /// Moves the vertex `step` along the edge of [`Self::entering_primal`]: `y += t d`, and
+    /// every slack `s_k -= t a_k·d`.
+    fn step_along_edge(&mut self, n: usize, step: f64) {
+        for j in 0..n {
+            self.b.y[j] += step * self.b.a_w[j];
+        }
+        for (s, ad) in self.slack.iter_mut().zip(&self.along) {
+            *s -= step * ad;
+        }
+    }
+
+    /// Constraint `k` replaces basis constraint `r`, with the two slacks updated (the leaving
+    /// one's recomputed, the entering one's now 0). `None` when the pivot `w_r` is too small to
+    /// keep the basis well conditioned.
+    fn pivot_primal(&mut self, p: &Polyhedron, r: usize, k: usize) -> Option<()> {
+        constraint(&self.scaled, p, k, &mut self.b.a_k);
+        self.b.transformed_row();
+        if self.b.w[r].abs() < PIVOT_TOL {
+            return None;
+        }
+        let leaving = self.b.basis[r];
+        self.slack[leaving] = -violation(&self.scaled, p, leaving, &self.b.y);
+        self.slack[k] = 0.0;
+        self.b.replace(r, k);
+        Some(())
+    }
+
     /// Every constraint's slack `b_k - a_k·y` at the current vertex `y` (scaled).
     fn refresh_slacks(&mut self, p: &Polyhedron) {
         for (k, s) in self.slack.iter_mut().enumerate() {

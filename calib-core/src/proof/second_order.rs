@@ -189,35 +189,104 @@ where
         let t = curvature.third_derivatives_along(x, m, &xs, &m0, &symbols)?;
         Some((symbols, h, t))
     })?;
-    let nx = curved_x.len();
     let xp: [Interval; NX] = xs.map(Interval::point);
-    // δ over the box, per parameter.
-    let dx: [Interval; NX] = core::array::from_fn(|j| x[j] - xp[j]);
-    let mut bound = Interval::ZERO;
-    let mut gx = [Interval::ZERO; NX];
-    let mut hxx = vec![Interval::ZERO; nx * nx];
+    let mut sums = TaylorSums {
+        // δ over the box, per parameter.
+        dx: core::array::from_fn(|j| x[j] - xp[j]),
+        xp,
+        nx: curved_x.len(),
+        bound: Interval::ZERO,
+        gx: [Interval::ZERO; NX],
+        hxx: vec![Interval::ZERO; curved_x.len() * curved_x.len()],
+    };
     for (&k, d) in support.iter().zip(derivatives) {
         let (symbols, h, t) = d?;
-        let (m, c) = (&measurements[k], &weights[k]);
+        sums.add(model, &measurements[k], &weights[k], &symbols, (&h, &t))?;
+    }
+    let TaylorSums {
+        mut bound,
+        gx,
+        hxx,
+        dx,
+        ..
+    } = sums;
+    for &j in &live_x {
+        bound += Interval::point((gx[j] * dx[j]).inf());
+    }
+    let deltas: Vec<Interval> = curved_x.iter().map(|&j| dx[j]).collect();
+    bound += Interval::point(half_quadratic_lower_bound(&hxx, &deltas));
+    Some(bound.inf())
+}
+
+/// The terms of [`combination_lower_bound`] summed over the configurations, at the point `xp`
+/// with `δ = x - xp` over the box: what is bounded per configuration goes into `bound`; the
+/// parameters' gradient and curvature are summed first and bounded once over the box.
+struct TaylorSums<const NX: usize> {
+    /// The point, as intervals.
+    xp: [Interval; NX],
+    /// `δ = x - xp` over the box, per parameter.
+    dx: [Interval; NX],
+    /// How many curved parameters lead the symbols (the rows and columns of `hxx`).
+    nx: usize,
+    /// The weighted values, the readings' first-order terms and the lower bounds of the
+    /// higher-order terms not kept in `hxx`.
+    bound: Interval,
+    /// `Σ_k Σ_r c_kr ∂f_r/∂x` at the point.
+    gx: [Interval; NX],
+    /// `Σ_k Σ_r c_kr ∂²f_r/∂x²` over the curved parameters at the point (`nx × nx`, row-major).
+    hxx: Vec<Interval>,
+}
+
+impl<const NX: usize> TaylorSums<NX> {
+    /// Adds configuration `m` with weights `c`: its value and first-order terms at
+    /// `(xp, mid m)`, then its second- and third-order terms over `symbols` from the derivative
+    /// blocks `(h, t)` (`NR` blocks of `n × n`, `n = symbols.len()`; `None` if their sizes
+    /// differ).
+    fn add<M, const NM: usize, const NR: usize>(
+        &mut self,
+        model: &M,
+        m: &[Interval; NM],
+        c: &[f64; NR],
+        symbols: &[usize],
+        (h, t): (&[Interval], &[Interval]),
+    ) -> Option<()>
+    where
+        M: VectorModel<NX, NM, NR>,
+    {
         let m0 = m.map(|v| v.mid());
         let dm: [Interval; NM] = core::array::from_fn(|i| m[i] - Interval::point(m0[i]));
-        let ev = model.evaluate_rows_interval(&xp, &m0.map(Interval::point));
+        let ev = model.evaluate_rows_interval(&self.xp, &m0.map(Interval::point));
         let cw: [Interval; NR] = c.map(Interval::point);
         for r in 0..NR {
-            bound += cw[r] * ev[r].value;
+            self.bound += cw[r] * ev[r].value;
             for j in 0..NX {
-                gx[j] += cw[r] * ev[r].dx[j];
+                self.gx[j] += cw[r] * ev[r].dx[j];
             }
         }
         // The readings' first-order term, exact per configuration (its own readings only).
         for i in 0..NM {
             let g = (0..NR).fold(Interval::ZERO, |acc, r| acc + cw[r] * ev[r].dm[i]);
-            bound += Interval::point((g * dm[i]).inf());
+            self.bound += Interval::point((g * dm[i]).inf());
         }
         let n = symbols.len();
         if h.len() != NR * n * n || t.len() != NR * n * n {
             return None;
         }
+        self.add_curvature(&cw, symbols, (h, t), &dm);
+        Some(())
+    }
+
+    /// The second- and third-order terms of one configuration with weights `cw`: `½ δᵀ H δ`
+    /// between parameters goes into `hxx`; the rest of `½ δᵀ H δ` and `⅙ δᵀ T δ` are bounded by
+    /// magnitudes (`dm`: the readings' `δ`) and subtracted from `bound`.
+    fn add_curvature<const NM: usize, const NR: usize>(
+        &mut self,
+        cw: &[Interval; NR],
+        symbols: &[usize],
+        (h, t): (&[Interval], &[Interval]),
+        dm: &[Interval; NM],
+    ) {
+        let (n, nx) = (symbols.len(), self.nx);
         let combined = |blocks: &[Interval], a: usize, b: usize| -> Interval {
             (0..NR).fold(Interval::ZERO, |acc, r| {
                 acc + cw[r] * blocks[r * n * n + a * n + b]
@@ -227,7 +296,7 @@ where
         let reach = |a: usize| -> f64 {
             let s = symbols[a];
             if s < NX {
-                dx[s].mag()
+                self.dx[s].mag()
             } else {
                 dm[s - NX].mag()
             }
@@ -237,23 +306,17 @@ where
             for b in 0..n {
                 let ra = Interval::point(reach(a)) * Interval::point(reach(b));
                 // ⅙ δᵀ T δ, bounded by magnitudes.
-                lost += Interval::point(combined(&t, a, b).mag()) * ra / Interval::point(6.0);
+                lost += Interval::point(combined(t, a, b).mag()) * ra / Interval::point(6.0);
                 if a < nx && b < nx {
-                    hxx[a * nx + b] += combined(&h, a, b);
+                    self.hxx[a * nx + b] += combined(h, a, b);
                 } else {
                     // ½ δᵀ H δ between parameters and readings and between readings.
-                    lost += Interval::point(combined(&h, a, b).mag()) * ra * Interval::point(0.5);
+                    lost += Interval::point(combined(h, a, b).mag()) * ra * Interval::point(0.5);
                 }
             }
         }
-        bound -= Interval::point(lost.sup());
+        self.bound -= Interval::point(lost.sup());
     }
-    for &j in &live_x {
-        bound += Interval::point((gx[j] * dx[j]).inf());
-    }
-    let deltas: Vec<Interval> = curved_x.iter().map(|&j| dx[j]).collect();
-    bound += Interval::point(half_quadratic_lower_bound(&hxx, &deltas));
-    Some(bound.inf())
 }
 
 /// A lower bound of `½ δᵀ H δ` over every symmetric `H` in the interval matrix `h` (`n × n`,
