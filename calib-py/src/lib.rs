@@ -43,6 +43,7 @@ fn run(
     inputs: Inputs,
     options: CertifyOptions,
     write_calibrated: Option<PathBuf>,
+    task: Option<PathBuf>,
 ) -> PyResult<String> {
     check_uncertainty(
         &inputs.uncertainty_name,
@@ -50,6 +51,12 @@ fn run(
         inputs.data.rodrigues,
     )
     .map_err(value_error)?;
+    // The task is read before any work: a bad file is named at once.
+    let task = task
+        .as_deref()
+        .map(calib_gough::calibrated::TaskFile::read)
+        .transpose()
+        .map_err(value_error)?;
     let start = Instant::now();
     let results = py
         .detach(|| {
@@ -73,7 +80,7 @@ fn run(
                     &results,
                     &inputs.data.configs,
                     &inputs.uncertainty,
-                    None,
+                    task.as_ref().map(calib_gough::calibrated::TaskFile::task),
                 )
             })
             .map_err(value_error)?;
@@ -104,6 +111,8 @@ struct Options {
     max_seconds: Option<f64>,
     /// Where to write the calibrated robot file (`--write-calibrated`), if anywhere.
     write_calibrated: Option<PathBuf>,
+    /// The task its geometry is chosen for (`--task`: a workspace.toml or a poses CSV).
+    task: Option<PathBuf>,
 }
 
 impl TryFrom<Options> for CertifyOptions {
@@ -145,8 +154,8 @@ fn certify_files(
         uncertainty: u,
         uncertainty_name: uncertainty,
     };
-    let write = options.write_calibrated.clone();
-    run(py, inputs, options.try_into()?, write)
+    let (write, task) = (options.write_calibrated.clone(), options.task.clone());
+    run(py, inputs, options.try_into()?, write, task)
 }
 
 /// Certifies from the three inputs as text in the files' formats (TOML, CSV, TOML), each with
@@ -174,8 +183,8 @@ fn certify_text(
         uncertainty: u,
         uncertainty_name: un,
     };
-    let write = options.write_calibrated.clone();
-    run(py, inputs, options.try_into()?, write)
+    let (write, task) = (options.write_calibrated.clone(), options.task.clone());
+    run(py, inputs, options.try_into()?, write, task)
 }
 
 /// Writes the simulated data set of `gough simulate` into `out`, at random poses or (with
@@ -254,6 +263,9 @@ struct ArmOptions {
     lsq: bool,
     /// Where to write the calibrated robot file (`--write-calibrated`), if anywhere.
     write_calibrated: Option<PathBuf>,
+    /// The task its parameters are chosen for (`--task`: a joints.toml box or a CSV of
+    /// configurations).
+    task: Option<PathBuf>,
     /// 6-DoF data: the three orientation columns (`--orientation-columns`), if any.
     orientation_columns: Option<Vec<String>>,
     /// Their convention (`--orientation-convention`).
@@ -290,7 +302,7 @@ fn arm_certify_files(
     options: ArmOptions,
     columns: Columns,
 ) -> PyResult<String> {
-    let write = options.write_calibrated.clone();
+    let (write, options_task) = (options.write_calibrated.clone(), options.task.clone());
     let orientation = orientation_layout(
         options.orientation_columns.clone(),
         &options.orientation_convention,
@@ -298,6 +310,12 @@ fn arm_certify_files(
     let request: CertifyRequest = options.try_into()?;
     let (arm, data, bounds) =
         arm_pose_inputs(&robot, &measurements, &uncertainty, columns, orientation)?;
+    // The task is read before any work: a bad file is named at once.
+    let task = options_task
+        .as_deref()
+        .map(|t| calib_arm::joint_space::read_task(t, arm.joints.len()))
+        .transpose()
+        .map_err(value_error)?;
     let pose = data.pose_readings(&bounds);
     if pose.is_some() {
         calib_arm::pose::require_pose_inputs(&arm, &robot, &bounds, &uncertainty)
@@ -320,21 +338,30 @@ fn arm_certify_files(
         lines: &data.lines,
     };
     if let Some(path) = write {
-        let joints: Vec<Vec<f64>> = data.readings.iter().map(|r| r.joints_deg.clone()).collect();
+        use calib_arm::calibrated::PointChoice;
+        let (choice, joints, rule) = match (task, &options_task) {
+            (Some(joints), Some(t)) => (
+                PointChoice::Task,
+                joints,
+                format!(
+                    "towards the centre of the tool points it predicts over the task {}",
+                    t.display()
+                ),
+            ),
+            _ => (
+                PointChoice::LeastSquares,
+                data.readings.iter().map(|r| r.joints_deg.clone()).collect(),
+                "towards the least-squares fit within the set (regularised, weight by \
+                 cross-validation)"
+                    .to_string(),
+            ),
+        };
         let cal = py
-            .detach(|| {
-                calib_arm::calibrated::calibrated_arm(
-                    &arm,
-                    &run,
-                    &joints,
-                    calib_arm::calibrated::PointChoice::LeastSquares,
-                )
-            })
+            .detach(|| calib_arm::calibrated::calibrated_arm(&arm, &run, &joints, choice))
             .map_err(value_error)?;
         let comment = format!(
             "# calibrated by certicalib {} (Python): a parameter vector proved consistent with \
-             every measurement, towards the least-squares fit within the set (regularised, \
-             weight by cross-validation); [certified_set]: the certified set\n",
+             every measurement, {rule}; [certified_set]: the certified set\n",
             env!("CARGO_PKG_VERSION")
         );
         calib_pipeline::write_atomically(

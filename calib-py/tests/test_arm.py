@@ -128,3 +128,27 @@ def test_accuracy_arm_is_the_cli_report_over_the_certified_set(tmp_path):
     assert after["over"] == "certified set"
     assert 0 < after["lower"] <= after["upper"]
     assert mine["before"]["lower"] > 0 and mine["improvement"] is not None
+
+
+def test_write_calibrated_for_a_task_gives_the_cli_file(tmp_path):
+    simulated(tmp_path)
+    robot, meas, unc = files(tmp_path)
+    cell = tmp_path / "cell.toml"
+    cell.write_text("q1 = [10, 20]\nq2 = [-30, -20]\nq3 = [40, 50]\n")
+    mine = tmp_path / "mine.toml"
+    report = certicalib.certify_arm(robot, meas, unc, write_calibrated=mine, task=cell)
+    assert report.status == "consistent"
+    cli = tmp_path / "cli.toml"
+    subprocess.run([repo_binary("arm"), "certify", "--robot", str(robot), "--measurements",
+                    str(meas), "--uncertainty", str(unc), "--write-calibrated", str(cli),
+                    "--task", str(cell)], check=True, capture_output=True)
+    body = lambda p: [l for l in p.read_text().splitlines() if not l.startswith("#")]
+    assert body(mine) == body(cli)
+    assert "over the task" in mine.read_text()
+    # A task file with the wrong columns: named, nothing written.
+    bad = tmp_path / "bad.csv"
+    bad.write_text("q1,q2\n0,1\n")
+    never = tmp_path / "never.toml"
+    with pytest.raises(ValueError, match="bad.csv"):
+        certicalib.certify_arm(robot, meas, unc, write_calibrated=never, task=bad)
+    assert not never.exists()

@@ -225,3 +225,27 @@ def test_error_scale_matches_the_cli_and_brackets_within_two_per_cent(data):
     assert (cli["s_lo"], cli["s_hi"]) == (found["s_lo"], found["s_hi"])
     with pytest.raises(ValueError, match="scale_bounds"):
         certicalib.error_scale(*files(data), scale_bounds="joint_deg")
+
+
+def test_write_calibrated_for_a_task_gives_the_cli_file(tmp_path):
+    certicalib.simulate(tmp_path, configs=21, seed=3)
+    robot, meas, unc = files(tmp_path)
+    poses = tmp_path / "poses.csv"
+    poses.write_text("px,py,pz,ax,ay,az,angle_deg\n0,0,60,1,0,0,5\n3,-2,58,0,1,0,8\n")
+    mine = tmp_path / "mine.toml"
+    report = certicalib.certify(robot, meas, unc, legs=[1, 2], write_calibrated=mine, task=poses)
+    assert all(leg.status == "consistent" for leg in report.legs)
+    cli = tmp_path / "cli.toml"
+    subprocess.run([repo_binary("gough"), "certify", "--robot", str(robot), "--measurements",
+                    str(meas), "--uncertainty", str(unc), "--legs", "1,2",
+                    "--write-calibrated", str(cli), "--task", str(poses)],
+                   check=True, capture_output=True)
+    body = lambda p: [l for l in p.read_text().splitlines() if not l.startswith("#")]
+    assert body(mine) == body(cli)
+    # A poses file with a column missing: named, nothing written.
+    bad = tmp_path / "bad.csv"
+    bad.write_text("px,py,pz,ax,ay,az\n0,0,60,1,0,0\n")
+    never = tmp_path / "never.toml"
+    with pytest.raises(ValueError, match="bad.csv"):
+        certicalib.certify(robot, meas, unc, write_calibrated=never, task=bad)
+    assert not never.exists()

@@ -139,6 +139,12 @@ fn parse_choice(s: &str) -> Result<PointChoice, String> {
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let mut input = Files::read(&a)?;
+    // The task is read before any work: a bad file is named at once, nothing written.
+    let task = a
+        .task
+        .as_deref()
+        .map(|t| read_task(t, input.arm.joints.len()))
+        .transpose()?;
     let pose = input.pose.take();
     let (arm, data) = (&input.arm, &input.data);
     let (scale_json, u, pose, scale_words) = match a.scale.error_scale {
@@ -176,7 +182,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         extra.insert("error_scale".into(), scale);
     }
     if let Some(path) = &a.write_calibrated {
-        let calibrated = write_calibrated(&a, path, &input, &run, pose.is_some())?;
+        let calibrated = write_calibrated(&a, path, &input, &run, pose.is_some(), task)?;
         extra.insert("calibrated".into(), calibrated);
     }
     if let Some(path) = &a.json {
@@ -317,10 +323,11 @@ fn write_calibrated(
     input: &Files,
     run: &calib_arm::certification::ArmRun,
     six_dof: bool,
+    task: Option<Vec<Vec<f64>>>,
 ) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
     // The configurations the rule predicts at: the task's, or the calibration's.
-    let (choice, joints) = match &a.task {
-        Some(task) => (PointChoice::Task, read_task(task, input.arm.joints.len())?),
+    let (choice, joints) = match task {
+        Some(task) => (PointChoice::Task, task),
         None => (
             a.calibrated_point,
             input

@@ -153,13 +153,15 @@ class Report:
 def _options(legs: Optional[Sequence[int]], sweep: bool, max_outliers: Union[int, str],
              fast: bool, tolerance: float, max_boxes: int,
              max_seconds: Optional[float],
-             write_calibrated: Optional[PathLike] = None) -> Dict[str, Any]:
+             write_calibrated: Optional[PathLike] = None,
+             task: Optional[PathLike] = None) -> Dict[str, Any]:
     return dict(legs=None if legs is None else [int(v) for v in legs], sweep=bool(sweep),
                 max_outliers=str(max_outliers) if isinstance(max_outliers, str)
                 else str(int(max_outliers)), fast=bool(fast), tolerance=float(tolerance),
                 max_boxes=int(max_boxes), max_seconds=max_seconds,
                 write_calibrated=None if write_calibrated is None
-                else os.fspath(write_calibrated))
+                else os.fspath(write_calibrated),
+                task=None if task is None else os.fspath(task))
 
 
 def _is_path(value: Any) -> bool:
@@ -246,7 +248,8 @@ def certify(robot: Union[PathLike, RobotData],
             max_outliers: Union[int, str] = 0,
             fast: bool = False, tolerance: float = 0.05, max_boxes: int = 200_000,
             max_seconds: Optional[float] = None,
-            write_calibrated: Optional[PathLike] = None) -> Report:
+            write_calibrated: Optional[PathLike] = None,
+            task: Optional[PathLike] = None) -> Report:
     """Certify every leg (or ``legs``, 1-based) of a Gough platform, as ``gough certify`` does.
 
     Each input is either a path (``str`` or ``os.PathLike``) to the file ``gough certify`` reads,
@@ -266,11 +269,12 @@ def certify(robot: Union[PathLike, RobotData],
     ``outer``); ``tolerance``, ``max_boxes`` and ``max_seconds`` are the tight hull's stop rule.
     ``write_calibrated``: write the calibrated robot file there, as ``--write-calibrated`` does
     (per leg a geometry proved consistent with every measurement, and the certified set that
-    :func:`accuracy` works over). The interpreter is released while the work runs. Malformed input raises ``ValueError`` naming
+    :func:`accuracy` works over); with ``task`` (a ``workspace.toml`` or a poses CSV, as
+    ``--task``), each geometry is chosen towards the centre of its predictions there. The interpreter is released while the work runs. Malformed input raises ``ValueError`` naming
     the file (or in-memory input), the line and the field.
     """
     opts = _options(legs, sweep, max_outliers, fast, tolerance, max_boxes, max_seconds,
-                    write_calibrated)
+                    write_calibrated, task)
     if _is_path(robot) and _is_path(measurements) and _is_path(uncertainty):
         return Report(_native.certify_files(os.fspath(robot), os.fspath(measurements),
                                             os.fspath(uncertainty), opts))
@@ -538,6 +542,7 @@ def certify_arm(robot: PathLike, measurements: PathLike, uncertainty: PathLike, 
                 max_seconds: Optional[float] = None, max_outliers: Union[int, str] = 0,
                 lsq: bool = False,
                 write_calibrated: Optional[PathLike] = None,
+                task: Optional[PathLike] = None,
                 joint_columns: Optional[Sequence[str]] = None,
                 point_columns: Optional[Sequence[str]] = None, joint_unit: str = "deg",
                 length_unit: str = "mm", rows: Optional[str] = None,
@@ -549,7 +554,9 @@ def certify_arm(robot: PathLike, measurements: PathLike, uncertainty: PathLike, 
     tolerates bad configurations (``"auto"``: the smallest number not proved empty), ``lsq`` adds
     the least-squares fit. ``write_calibrated``: write the calibrated robot file there, as
     ``--write-calibrated`` does (a parameter vector proved consistent with every measurement,
-    towards the least-squares fit within the set, and the certified set). A tracker's file as it
+    towards the least-squares fit within the set, and the certified set); with ``task`` (a
+    ``joints.toml`` box or a CSV of configurations, as ``--task``), towards the centre of the tool
+    points it predicts there instead. A tracker's file as it
     comes: ``joint_columns``, ``point_columns``, ``joint_unit`` (``"deg"``/``"rad"``),
     ``length_unit`` (``"mm"``/``"m"``), ``rows`` (``"1-60"``), as ``arm certify`` takes them.
     With ``orientation_columns`` (a 6-DoF probe's Euler angles, ``orientation_convention``
@@ -564,6 +571,7 @@ def certify_arm(robot: PathLike, measurements: PathLike, uncertainty: PathLike, 
                 else str(int(max_outliers)), lsq=bool(lsq),
                 write_calibrated=None if write_calibrated is None
                 else os.fspath(write_calibrated),
+                task=None if task is None else os.fspath(task),
                 orientation_columns=None if orientation_columns is None
                 else [str(c) for c in orientation_columns],
                 orientation_convention=str(orientation_convention))
