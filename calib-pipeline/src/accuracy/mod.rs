@@ -157,6 +157,23 @@ pub struct Attained<const NX: usize> {
     pub highest: [f64; NX],
 }
 
+/// The median over `ranges` (each a certified range and what certified geometries attain in it)
+/// of the attained share of the range's width, in percent: how tight predictions are, in one
+/// number for a summary line. `None` when no range has an attained part.
+pub fn median_attained_percent(
+    ranges: impl Iterator<Item = (Interval, Option<Interval>)>,
+) -> Option<f64> {
+    let mut shares: Vec<f64> = ranges
+        .filter_map(|(range, attained)| {
+            let a = attained?;
+            (range.wid() > 0.0).then(|| 100.0 * (a.wid() / range.wid()).min(1.0))
+        })
+        .filter(|v| v.is_finite())
+        .collect();
+    shares.sort_by(f64::total_cmp);
+    shares.get(shares.len() / 2).copied()
+}
+
 /// A certified bracket of the largest prediction error.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bracket<const NX: usize, const NU: usize, const R: usize> {
