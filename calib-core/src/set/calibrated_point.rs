@@ -31,7 +31,6 @@ use crate::proof::chebyshev::{minimax_point, normalised_misfit};
 use crate::proof::consistency::least_squares_point;
 use crate::set::least_squares::{least_squares_in_set, SHRINK};
 use crate::{is_consistent_point, CertifiedSet, Interval, VectorModel};
-use std::cmp::Ordering;
 
 /// How the calibrated point is chosen (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -220,9 +219,8 @@ where
         .map(|j| region[j].sup() - from[j])
         .chain([spread.max(1e-300)])
         .collect();
-    // `from` outside the box, or a NaN: no program.
-    let ordered =
-        |(l, h): (&f64, &f64)| matches!(l.partial_cmp(h), Some(Ordering::Less | Ordering::Equal));
+    // `from` outside the box, a NaN or an unbounded range: no program.
+    let ordered = |(l, h): (&f64, &f64)| l.is_finite() && h.is_finite() && l <= h;
     if !lo.iter().zip(&hi).all(ordered) {
         return None;
     }

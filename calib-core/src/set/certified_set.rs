@@ -620,6 +620,10 @@ impl<const NX: usize, const NM: usize> SetQuery<'_, NX, NM> {
             // The multipliers prove the polyhedron empty: no solution in this piece.
             return (f64::NEG_INFINITY, None);
         }
+        if !lower.is_finite() {
+            // No safe bound (a failed program): nothing is proved of this piece.
+            return (f64::INFINITY, None);
+        }
         let upper = (Interval::point(-lower) + fixed).sup();
         let argmax = (status == LpStatus::Optimal)
             .then(|| core::array::from_fn(|j| piece.centre[j] + self.primal[j]));
@@ -818,7 +822,14 @@ where
                     let s = objective.slopes(piece.bounds());
                     let (lin, arg) = q.piece_max(i, &s, &c);
                     let g = objective.value(&c.map(Interval::point)).sup();
-                    let total = (Interval::point(g) + Interval::point(lin)).sup();
+                    let total = if lin == f64::NEG_INFINITY {
+                        // The piece is proved empty: it raises nothing.
+                        f64::NEG_INFINITY
+                    } else if !(g.is_finite() && lin.is_finite()) {
+                        f64::INFINITY
+                    } else {
+                        (Interval::point(g) + Interval::point(lin)).sup()
+                    };
                     (if total.is_nan() { f64::INFINITY } else { total }, arg, s)
                 })
                 .collect()

@@ -60,6 +60,8 @@ pub struct SetAccuracy<
     pushes: Mutex<CertifiedSet<NX, NMS>>,
     /// `θ̂`.
     nominal: [f64; NX],
+    /// The set's outer box.
+    outer: [Interval; NX],
     /// The set's outer box, with `θ̂`.
     hull: [Interval; NX],
     /// `max |θ_j - θ̂_j|` over the set's outer box, rounded up.
@@ -85,8 +87,9 @@ const HINT_INPUTS: usize = 24;
 /// derivative models are ~21 KB each, and its evaluator holds a few hundred).
 const MODEL_STACK_BYTES: usize = 256 << 20;
 
-/// The value behind `m`, locked (a worker that panicked holding it left it whole: the catalogue
-/// and the set only ever grow by complete points).
+/// The value behind `m`, locked. A worker that panicked holding it may have left it part-way
+/// through a change (a push, a refinement), but every piece and point it holds is still
+/// certified, and the panic reaches the caller before anything is written.
 fn locked<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }
@@ -136,6 +139,7 @@ where
             pushes: Mutex::new(set.clone()),
             set,
             nominal,
+            outer,
             hull,
             reach,
             parallelotope,
@@ -426,12 +430,17 @@ where
             let down = lps.max_linear(slot + 1, &s.map(|v| -v), about);
             (up.is_finite() && down.is_finite() && -down <= up).then(|| Interval::new(-down, up))
         };
-        if let Some(forms) = model.linear_enclosures(&self.hull, &m) {
-            let mid = self.hull.map(|v| v.mid());
+        if let Some(forms) = model.linear_enclosures(&self.outer, &m) {
+            let mid = self.outer.map(|v| v.mid());
             for (r, f) in forms.iter().enumerate() {
+                // A failed affine form (e.g. a reciprocal over a range holding 0): no bound.
+                let finite = |v: &f64| v.is_finite();
+                if !(finite(&f.c) && finite(&f.e) && f.gx.iter().chain(&f.gm).all(finite)) {
+                    continue;
+                }
                 // θ_j - mid_j = rad_j ε_j: the coefficient of (θ_j - mid_j) is g_j / rad_j.
                 let slopes: [Interval; NX] = core::array::from_fn(|j| {
-                    let rad = self.hull[j].rad();
+                    let rad = self.outer[j].rad();
                     if f.gx[j] == 0.0 || rad == 0.0 {
                         Interval::ZERO
                     } else {
@@ -507,6 +516,9 @@ where
         about: &[f64; NX],
         found: &mut Vec<[f64; NX]>,
     ) -> Option<Interval> {
+        if !s.iter().all(|v| v.is_bounded() && !v.is_empty()) {
+            return None;
+        }
         let mid = s.map(|v| v.mid());
         // s·(θ - about) <= mid·(θ - about) + Σ_j |s_j - mid_j| max|θ_j - about_j|.
         let slack = (0..NX)
@@ -523,6 +535,9 @@ where
         let up = self.prediction.max_over_set(&mut set, &mid)?;
         let down = self.prediction.max_over_set(&mut set, &mid.map(|v| -v))?;
         found.extend(up.argmax.into_iter().chain(down.argmax));
+        if !(up.upper.is_finite() && down.upper.is_finite() && slack.is_finite()) {
+            return None;
+        }
         let hi = (Interval::point(up.upper) - centre + Interval::point(slack)).sup();
         let lo = (-Interval::point(down.upper) - centre - Interval::point(slack)).inf();
         (lo.is_finite() && hi.is_finite() && lo <= hi).then(|| Interval::new(lo, hi))

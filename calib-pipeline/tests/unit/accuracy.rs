@@ -301,3 +301,54 @@ fn predictions_hold_every_consistent_geometry_and_their_attained_ends_are_real()
         "outer / attained: median {median}, largest {largest}"
     );
 }
+
+/// A prediction whose enclosures fail where an input box holds 0: `x_k / u_k`.
+#[interval_model]
+fn ratio<S: Scalar>(x: &[S; 4], m: &[S; 4]) -> [S; 2] {
+    [x[0] / m[0], x[1] / m[1]]
+}
+
+/// The ratio as a prediction over the planar arm's set.
+struct Over;
+
+impl Prediction<4, 4, 4, 2, 2> for Over {
+    type Model = Ratio;
+
+    fn model(&self) -> &Ratio {
+        &Ratio
+    }
+
+    fn second_order(
+        &self,
+        x: &[Jet<Quadratic<2>, 4>; 4],
+        m: &[Jet<Quadratic<2>, 4>; 4],
+    ) -> [Jet<Quadratic<2>, 4>; 2] {
+        ratio(x, m)
+    }
+
+    fn push(&self, set: &mut CertifiedSet<4, 4>, direction: &[f64; 4]) -> bool {
+        set.extreme_point(&PlanarTip, direction).is_some()
+    }
+}
+
+#[test]
+fn a_prediction_whose_enclosure_fails_is_not_made_and_nothing_panics() {
+    let mut rng = StdRng::seed_from_u64(7);
+    let (_, set) = calibrated(&mut rng);
+    let domain = [Interval::new(-1.0, 2.0), Interval::new(-1.0, 2.0)];
+    let engine =
+        SetAccuracy::new(&Over, set, [1.0, 0.8, 0.0, 0.0], domain, [0.0; 2]).expect("a set");
+    let mut lps = engine.programs();
+    // Over inputs holding 0 the ratio has no enclosure: no prediction, no panic.
+    let through_zero = [Interval::new(-1.0, 1.0), Interval::new(-1.0, 1.0)];
+    assert_eq!(engine.predict(&through_zero, false, &mut lps), None);
+    // Away from 0 it holds every catalogued geometry's ratio.
+    let u = [Interval::new(1.5, 1.5), Interval::new(2.0, 2.0)];
+    let p = engine.predict(&u, false, &mut lps).expect("a prediction");
+    for g in engine.catalogue() {
+        for (k, q) in [1.5, 2.0].iter().enumerate() {
+            let v = g[k] / q;
+            assert!(p.outer[k].inf() - 1e-12 <= v && v <= p.outer[k].sup() + 1e-12);
+        }
+    }
+}
