@@ -15,9 +15,9 @@ use calib_pipeline::is_fixed;
 use calib_pipeline::verdict::{self, ConfigurationNames, Standing};
 use std::fmt::Write as _;
 
-/// Everything the arm's certificate states.
+/// Everything the arm's calibration certificate states: the HTML page `arm certify --report` writes.
 #[derive(Clone, Debug)]
-pub struct ArmCertificate<'a> {
+pub struct ArmReportPage<'a> {
     /// What was calibrated ("6-axis arm, 50 configurations").
     pub title: String,
     /// The command line that produced the run.
@@ -43,7 +43,7 @@ pub struct ArmCertificate<'a> {
     pub error_scale: Vec<String>,
 }
 
-impl ArmCertificate<'_> {
+impl ArmReportPage<'_> {
     /// The page, as one HTML document.
     pub fn to_html(&self) -> String {
         let mut h = page_start(&self.title, &self.date);

@@ -55,9 +55,9 @@ pub struct LegEntry<'a> {
     pub identifiability: &'a [String],
 }
 
-/// Everything the certificate states.
+/// Everything the calibration certificate states: the HTML page `gough certify --report` writes.
 #[derive(Clone, Debug)]
-pub struct Certificate<'a> {
+pub struct ReportPage<'a> {
     /// What was calibrated ("hexapod, 21 configurations").
     pub title: String,
     /// The command line that produced the run.
@@ -82,7 +82,7 @@ pub struct Certificate<'a> {
     pub sections: Vec<Section>,
 }
 
-impl Certificate<'_> {
+impl ReportPage<'_> {
     /// The page, as one HTML document.
     pub fn to_html(&self) -> Result<String, PlotError> {
         let mut h = page_start(&self.title, &self.date);

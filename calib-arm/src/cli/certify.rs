@@ -10,7 +10,7 @@ use calib_arm::error_scale::{search, search_pose, ScaleBounds};
 use calib_arm::files::{parse_pose_uncertainty, parse_robot};
 use calib_arm::joint_space::read_task;
 use calib_arm::pose::{certify_pose, require_pose_inputs, PoseReading, PoseUncertainty};
-use calib_arm::report_page::ArmCertificate;
+use calib_arm::report_page::ArmReportPage;
 use calib_arm::simulate::Uncertainty;
 use calib_core::Status;
 use calib_pipeline::cli::{ErrorScaleArgs, ErrorScaleMode, OutlierArgs};
@@ -190,7 +190,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("wrote {}", path.display());
     }
     if let Some(path) = &a.report {
-        let page = ArmCertificate {
+        let page = ArmReportPage {
             title: format!(
                 "{}-axis arm, {} configurations{}",
                 arm.joints.len(),

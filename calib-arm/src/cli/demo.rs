@@ -3,7 +3,7 @@
 use super::output::{print_identifiability, print_outcome, spinner, write_certificate, write_json};
 use calib_arm::certification::ArmRun;
 use calib_arm::certification::{arm_settings, certify_arm, RunOptions};
-use calib_arm::report_page::ArmCertificate;
+use calib_arm::report_page::ArmReportPage;
 use calib_arm::simulate::Simulation;
 use calib_arm::simulate::{simulate, Uncertainty};
 use calib_arm::write::{measurements_csv, robot_toml, uncertainty_toml, write_data_set};
@@ -114,10 +114,10 @@ fn certificate<'a>(
     sim: &'a Simulation,
     run: &'a ArmRun,
     names: ConfigurationNames<'a>,
-) -> ArmCertificate<'a> {
+) -> ArmReportPage<'a> {
     let joints = arm.joints.len();
     let generated = |what: &str| format!("{what} (built-in arm, simulated, seed {})", a.seed);
-    ArmCertificate {
+    ArmReportPage {
         title: format!(
             "built-in {joints}-axis arm, {} simulated configurations",
             a.configs

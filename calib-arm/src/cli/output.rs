@@ -2,7 +2,7 @@
 //! the parameters, and the JSON report.
 
 use calib_arm::certification::{json_report, units_of, ArmRun};
-use calib_arm::report_page::ArmCertificate;
+use calib_arm::report_page::ArmReportPage;
 use calib_core::{Interval, Status};
 use calib_pipeline::html::outward;
 use calib_pipeline::verdict::{self, ConfigurationNames};
@@ -167,7 +167,7 @@ pub fn file_name(path: &Path) -> String {
 }
 
 /// Writes the certificate page (atomically) and says where.
-pub fn write_certificate(path: &Path, page: &ArmCertificate<'_>) -> Result<(), String> {
+pub fn write_certificate(path: &Path, page: &ArmReportPage<'_>) -> Result<(), String> {
     write_atomically(path, &page.to_html())
         .map_err(|e| format!("{}: cannot write the certificate: {e}", path.display()))?;
     println!("certificate written to {}", path.display());

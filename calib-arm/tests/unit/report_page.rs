@@ -47,7 +47,7 @@ fn run(fit: f64) -> ArmRun {
 
 fn page(run: &ArmRun) -> String {
     let lines: Vec<usize> = (2..12).collect();
-    ArmCertificate {
+    ArmReportPage {
         title: "3-axis <arm>".into(),
         command: "arm certify".into(),
         date: "2026-11-24T00:00:00Z".into(),

@@ -15,7 +15,7 @@ use calib_gough::lsq::fit_legs;
 use calib_gough::measurement::Uncertainty;
 use calib_gough::plot;
 use calib_gough::report::{ratios, table, write_atomically};
-use calib_gough::report_page::{self, Certificate, LegEntry};
+use calib_gough::report_page::{self, LegEntry, ReportPage};
 use calib_gough::verdict::{self, ConfigurationNames};
 use calib_gough::workspace::read_workspace;
 use calib_gough::PARAMETER_NAMES;
@@ -398,7 +398,7 @@ fn write_certificate(
         file("measurements", &a.files.measurements, &input.data_text),
         file("error bounds", &a.uncertainty, &input.u_text),
     ];
-    let page = Certificate {
+    let page = ReportPage {
         title: format!(
             "{}-leg parallel robot, {} configurations",
             robot.len(),

@@ -5,9 +5,7 @@ use calib_gough::certification::LegResult;
 use calib_gough::lsq::fit_leg;
 use calib_gough::plot::{self, Layer, PlotError, Points};
 use calib_gough::report::{ratios, write_atomically};
-use calib_gough::report_page::{
-    error_bounds, Certificate, Figure, Input, LegEntry, Section, Table,
-};
+use calib_gough::report_page::{error_bounds, Figure, Input, LegEntry, ReportPage, Section, Table};
 use calib_gough::simulate::data_set_files;
 use calib_gough::verdict::{self, ConfigurationNames, Standing};
 use calib_gough::{
@@ -465,7 +463,7 @@ fn certificate(
         .collect();
     let lines: Vec<usize> = (2..CONFIGS + 2).collect();
     let settings = Settings::default();
-    let page = Certificate {
+    let page = ReportPage {
         title: format!(
             "the paper's experiment: leg 1 of the built-in hexapod, {CONFIGS} simulated configurations"
         ),
