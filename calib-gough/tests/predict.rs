@@ -16,14 +16,7 @@ use calib_gough::{builtin_hexapod, leg_boxes, simulate, GoughLeg, Uncertainty};
 fn held_out_readings_lie_in_their_certified_predictions() {
     let truth = builtin_hexapod();
     let sim = simulate(&truth, 45, 4, Uncertainty::PAPER, 1.0, 0.1);
-    let nominal: Vec<calib_gough::files::LegSpec> = sim
-        .nominal
-        .iter()
-        .map(|l| calib_gough::files::LegSpec {
-            nominal: *l,
-            radius: [0.1; 7],
-        })
-        .collect();
+    let nominal = crate::support::priors(&sim.nominal);
     let (cal, held) = sim.measured.split_at(21);
     let results = certify_legs(
         &nominal,

@@ -175,14 +175,7 @@ fn sample21_every_geometry_handed_out_fits_the_stated_bounds() {
 fn simulated_every_geometry_handed_out_fits_the_stated_bounds() {
     for seed in [3, 17] {
         let sim = simulate(&builtin_hexapod(), 15, seed, Uncertainty::PAPER, 1.0, 0.1);
-        let robot: Vec<LegSpec> = sim
-            .nominal
-            .iter()
-            .map(|&nominal| LegSpec {
-                nominal,
-                radius: [0.1; 7],
-            })
-            .collect();
+        let robot = crate::support::priors(&sim.nominal);
         let geometries = handed_out(&robot, &sim.measured, &sim.uncertainty);
         let bad = misfits(&geometries, &sim.measured, &sim.uncertainty);
         assert!(

@@ -97,3 +97,15 @@ pub fn random_workspace(
         stroke: rng.random_bool(0.5).then_some([0.0, 15.0]),
     }
 }
+
+/// The prior a test calibrates from: each leg of `nominal` ± 0.1 cm (the simulator's design
+/// values, as `gough design` plans without a robot file).
+pub fn priors(nominal: &[calib_gough::geometry::Leg]) -> Vec<calib_gough::files::LegSpec> {
+    nominal
+        .iter()
+        .map(|&nominal| calib_gough::files::LegSpec {
+            nominal,
+            radius: [0.1; 7],
+        })
+        .collect()
+}

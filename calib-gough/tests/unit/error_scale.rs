@@ -3,7 +3,6 @@
 use calib_core::{Settings, Status};
 use calib_gough::certification::leg_prior;
 use calib_gough::error_scale::*;
-use calib_gough::files::LegSpec;
 use calib_gough::measurement::{leg_boxes, Uncertainty};
 use calib_gough::simulate::{builtin_hexapod, simulate};
 use calib_gough::GoughLeg;
@@ -29,14 +28,7 @@ fn only_the_chosen_bounds_scale() {
 fn the_bracket_holds_the_truth_within_two_per_cent() {
     // Noise within the paper's bounds, declared four times too tight: the truth fits at × 4.
     let sim = simulate(&builtin_hexapod(), 21, 3, Uncertainty::PAPER, 1.0, 0.1);
-    let robot: Vec<LegSpec> = sim
-        .nominal
-        .iter()
-        .map(|&nominal| LegSpec {
-            nominal,
-            radius: [0.1; 7],
-        })
-        .collect();
+    let robot = crate::support::priors(&sim.nominal);
     let u = ScaleBounds::All.scale(&Uncertainty::PAPER, 0.25);
     let legs: Vec<usize> = (0..6).collect();
     let found = search(&robot, &legs, &sim.measured, &u, ScaleBounds::All, |_| {});

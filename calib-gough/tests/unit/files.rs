@@ -162,19 +162,12 @@ fn non_finite_numbers_are_refused_with_line_and_field() {
 fn stored_sets_keep_the_measurements_as_stated_and_their_kind() {
     use calib_gough::calibrated::{calibrated_robot, robot_toml};
     use calib_gough::certification::{certify_legs, CertifyOptions};
-    use calib_gough::files::{leg_sets, parse_robot_file, LegSpec};
+    use calib_gough::files::{leg_sets, parse_robot_file};
     use calib_gough::{
         builtin_hexapod, leg_boxes, simulate, Configuration, LegModel, Orientation, Uncertainty,
     };
     let sim = simulate(&builtin_hexapod(), 12, 4, Uncertainty::PAPER, 1.0, 0.1);
-    let robot: Vec<LegSpec> = sim
-        .nominal
-        .iter()
-        .map(|&nominal| LegSpec {
-            nominal,
-            radius: [0.1; 7],
-        })
-        .collect();
+    let robot = crate::support::priors(&sim.nominal);
     let rodrigues: Vec<Configuration> = sim
         .measured
         .iter()
