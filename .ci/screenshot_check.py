@@ -2,13 +2,17 @@
 
 Checks: enough ink (non-white pixels), enough distinct colours (text anti-aliasing, figures), and
 the solid colours of the page's own styling: the green "consistent" badge, and on the certify page
-the red "proved empty" badge.
+the red "proved empty" badge; on the accuracy page (no verdict), the brackets' blue bars.
 """
 import sys
 
 from PIL import Image
 
-BADGES = {"consistent": (0x2A, 0x7D, 0x2A), "proved empty": (0xB5, 0x2A, 0x2A)}
+BADGES = {
+    "consistent": (0x2A, 0x7D, 0x2A),
+    "proved empty": (0xB5, 0x2A, 0x2A),
+    "bracket bars": (0x4A, 0x78, 0xC2),
+}
 
 
 def near(a, b, tol=6):
@@ -28,7 +32,10 @@ def main(path, name):
         problems.append(f"only {ink:.2%} of the pixels are not white")
     if colours < 50:
         problems.append(f"only {colours} distinct colours")
-    wanted = ["consistent"] + (["proved empty"] if name == "certificate" else [])
+    if name == "accuracy":
+        wanted = ["bracket bars"]
+    else:
+        wanted = ["consistent"] + (["proved empty"] if name == "certificate" else [])
     for badge in wanted:
         count = sum(1 for p in pixels if near(p, BADGES[badge]))
         if count < 100:

@@ -70,5 +70,6 @@ fi
 # joint around where the calibrated model errs most), before and after, and the proved factor.
 printf 'q1 = [-185, -175]\nq2 = [-3, 7]\nq3 = [40, 50]\nq4 = [-147, -137]\nq5 = [-93, -83]\nq6 = [25, 35]\n' > cell.toml
 "$arm" accuracy --robot calibrated.toml --before robot.toml --joints cell.toml \
-                --uncertainty uncertainty.toml --max-set-boxes 30 --max-boxes 2000 --json accuracy.json
+                --uncertainty uncertainty.toml --max-set-boxes 30 --max-boxes 2000 --json accuracy.json \
+                --report accuracy.html
 echo "tutorial done in $work"

@@ -632,6 +632,8 @@ fn the_calibrated_arm_contains_the_certified_box_and_its_accuracy_is_bracketed()
             "3000",
             "--json",
             &p(json),
+            "--report",
+            &p("accuracy.html"),
         ])
     };
     let o = accuracy("joints.toml", "accuracy.json");
@@ -658,6 +660,7 @@ fn the_calibrated_arm_contains_the_certified_box_and_its_accuracy_is_bracketed()
     let factor = a["before"]["lower"].as_f64().expect("lower")
         / a["position"]["upper"].as_f64().expect("upper");
     assert_eq!(a["improvement"].as_f64(), Some(factor), "{a}");
+    accuracy_page_states(&p("accuracy.html"), &a, &p("joints.toml"));
     // Predictions over the set: the true tracked point (truth.json, the simulator's geometry)
     // lies in every certified range, every measured point in its range with the error bounds.
     let predict = |measurements: &str| {
@@ -914,4 +917,54 @@ fn a_vendor_file_with_a_non_finite_number_is_refused_and_nothing_is_written() {
         .collect();
     files.sort();
     assert_eq!(files, ["good.toml", "good.urdf", "inf.yaml", "nan.urdf"]);
+}
+
+/// The accuracy certificate (`arm accuracy --report`) is one well-formed page that states the
+/// JSON's brackets (to the printed digits), the worst configurations, the proved improvement, a
+/// figure, and the joint space file's SHA-256.
+fn accuracy_page_states(page: &str, a: &Value, joints: &str) {
+    let page = std::fs::read_to_string(page).expect("the accuracy certificate");
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..Default::default()
+    };
+    let doc = roxmltree::Document::parse_with_options(&page, options).expect("well-formed XML");
+    let row = |first: &str| -> Vec<String> {
+        doc.descendants()
+            .filter(|n| n.has_tag_name("tr"))
+            .map(|r| {
+                r.children()
+                    .filter(|c| c.has_tag_name("td"))
+                    .map(|c| c.text().unwrap_or_default().to_string())
+                    .collect::<Vec<_>>()
+            })
+            .find(|cells| cells.first().map(String::as_str) == Some(first))
+            .unwrap_or_else(|| panic!("no row {first}"))
+    };
+    for (name, key) in [
+        ("after calibration", "position"),
+        ("before calibration", "before"),
+    ] {
+        let cells = row(name);
+        let printed = |i: usize| cells[i].parse::<f64>().expect("a number");
+        let (upper, lower) = (
+            a[key]["upper"].as_f64().expect("upper"),
+            a[key]["lower"].as_f64().expect("lower"),
+        );
+        assert!(
+            (printed(1) - upper).abs() <= 5e-5,
+            "{name}: {cells:?} against {upper}"
+        );
+        assert!(
+            (printed(2) - lower).abs() <= 5e-5,
+            "{name}: {cells:?} against {lower}"
+        );
+    }
+    let sha = calib_pipeline::html::sha256_hex(&std::fs::read(joints).expect("joints"));
+    assert!(page.contains(&format!("SHA-256 {sha}")));
+    assert!(page.contains("Calibration reduced the worst tool-point error at least"));
+    assert_eq!(
+        doc.descendants().filter(|n| n.has_tag_name("svg")).count(),
+        1
+    );
 }

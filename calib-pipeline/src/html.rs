@@ -10,9 +10,11 @@
 //! ([`inward`]: every printed inner bound is still attained by a certified consistent parameter
 //! vector).
 
+use crate::error::DataError;
 use calib_core::{Interval, Status};
 use sha2::{Digest, Sha256};
 use std::fmt::Write as _;
+use std::path::Path;
 
 /// One input of a run, identified by its SHA-256.
 #[derive(Clone, Debug, PartialEq)]
@@ -254,6 +256,144 @@ pub fn section(h: &mut String, s: &Section) {
         figure(h, f);
     }
     h.push_str("</section>\n");
+}
+
+/// A page of its own for one section (an accuracy certificate): `title`, the section, then the
+/// input files, each named by its role and path with its SHA-256, the software and the command
+/// line. The files are read here; one that cannot be read is an error naming it.
+pub fn section_page(
+    title: &str,
+    section: &Section,
+    files: &[(&str, &Path)],
+) -> Result<String, DataError> {
+    let mut h = page_start(title, &now());
+    self::section(&mut h, section);
+    let mut rows = Vec::new();
+    for (role, path) in files {
+        let bytes = std::fs::read(path)
+            .map_err(|e| DataError::new(path, None, None, format!("cannot read: {e}")))?;
+        rows.push((
+            format!("{role}: {}", path.display()),
+            format!("SHA-256 {}", sha256_hex(&bytes)),
+        ));
+    }
+    rows.push(("software".into(), format!("certicalib {VERSION}")));
+    rows.push(("command".into(), command_line()));
+    h.push_str("<section id=\"inputs\">\n<h2>Inputs</h2>\n");
+    pairs(&mut h, &["input", "identity"], &rows);
+    h.push_str("</section>\n");
+    h.push_str(PAGE_END);
+    Ok(h)
+}
+
+/// One bracket of a worst error, for [`brackets_figure`]: the error is proved at most `upper`
+/// and attained at `lower`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BracketBar {
+    /// What the bracket is of ("after", "before", "leg 3").
+    pub label: String,
+    /// The attained lower bound.
+    pub lower: f64,
+    /// The proved upper bound (`+∞` or NaN when none was proved: drawn as an open bar).
+    pub upper: f64,
+}
+
+/// Brackets as horizontal bars on one axis from 0: solid up to the attained lower bound (errors
+/// that certainly occur), light from there to the proved upper bound (where the worst error
+/// lies), an open arrow where no upper bound was proved. `unit` labels the axis.
+pub fn brackets_figure(bars: &[BracketBar], unit: &str, caption: &str) -> Figure {
+    let (left, width, row) = (110.0, 520.0, 26.0);
+    let proved = |b: &BracketBar| b.upper.is_finite().then_some(b.upper);
+    let top = bars
+        .iter()
+        .filter_map(|b| proved(b).or(Some(b.lower)))
+        .filter(|v| v.is_finite())
+        .fold(0.0_f64, f64::max);
+    let scale_max = if top > 0.0 { nice_ceiling(top) } else { 1.0 };
+    let at = |v: f64| left + width * (v / scale_max).clamp(0.0, 1.0);
+    let height = row * bars.len() as f64 + 40.0;
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{height}\" \
+         viewBox=\"0 0 {w} {height}\" font-family=\"sans-serif\" font-size=\"11\">\n",
+        w = left + width + 30.0
+    );
+    for (k, b) in bars.iter().enumerate() {
+        let y = 6.0 + row * k as f64;
+        let lower = if b.lower.is_finite() { b.lower } else { 0.0 };
+        let _ = writeln!(
+            s,
+            "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text>",
+            left - 6.0,
+            y + 13.0,
+            escape(&b.label)
+        );
+        match proved(b) {
+            Some(upper) => {
+                let _ = writeln!(
+                    s,
+                    "<rect x=\"{:.2}\" y=\"{y:.1}\" width=\"{:.2}\" height=\"18\" fill=\"#c9d8f0\" \
+                     stroke=\"#4a78c2\"/>",
+                    at(lower),
+                    (at(upper) - at(lower)).max(0.8)
+                );
+            }
+            None => {
+                let _ = writeln!(
+                    s,
+                    "<path d=\"M{:.2} {y:.1} H{:.2} l8 9 l-8 9 H{:.2} Z\" fill=\"none\" \
+                     stroke=\"#c22\" stroke-dasharray=\"4 3\"/>",
+                    at(lower),
+                    left + width,
+                    at(lower)
+                );
+            }
+        }
+        let _ = writeln!(
+            s,
+            "<rect x=\"{left}\" y=\"{y:.1}\" width=\"{:.2}\" height=\"18\" fill=\"#4a78c2\"/>",
+            at(lower) - left
+        );
+    }
+    let axis = 6.0 + row * bars.len() as f64 + 4.0;
+    let _ = writeln!(
+        s,
+        "<line x1=\"{left}\" y1=\"{axis:.1}\" x2=\"{:.1}\" y2=\"{axis:.1}\" stroke=\"#333\"/>",
+        left + width
+    );
+    for i in 0..=4 {
+        let v = scale_max * f64::from(i) / 4.0;
+        let x = at(v);
+        let _ = writeln!(
+            s,
+            "<line x1=\"{x:.1}\" y1=\"{axis:.1}\" x2=\"{x:.1}\" y2=\"{:.1}\" stroke=\"#333\"/>\n\
+             <text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>",
+            axis + 4.0,
+            axis + 16.0,
+            escape(&format!("{}", (v * 1e6).round() / 1e6))
+        );
+    }
+    let _ = writeln!(
+        s,
+        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text>",
+        left + width,
+        axis + 30.0,
+        escape(unit)
+    );
+    s.push_str("</svg>\n");
+    Figure {
+        caption: caption.to_string(),
+        svg: s,
+    }
+}
+
+/// The smallest of 1, 2, 2.5 or 5 times a power of ten at least `v` (> 0): an axis's end.
+fn nice_ceiling(v: f64) -> f64 {
+    let p = 10f64.powf(v.log10().floor());
+    [1.0, 2.0, 2.5, 5.0, 10.0]
+        .iter()
+        .map(|m| m * p)
+        .find(|&c| c >= v)
+        .unwrap_or(10.0 * p)
 }
 
 /// What a run was made from, for the "Inputs and settings" section.

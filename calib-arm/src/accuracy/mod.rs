@@ -36,6 +36,7 @@ use serde_json::json;
 #[doc(hidden)]
 pub mod directions;
 pub mod over_set;
+mod section;
 use std::cell::Cell;
 use std::time::Instant;
 

@@ -7,7 +7,7 @@ use calib_arm::files::{read_calibrated, read_robot, read_uncertainty};
 use calib_arm::joint_space::{read_joint_space, JointSpace};
 use calib_arm::params;
 use calib_arm::simulate::JOINT_LIMIT_DEG;
-use calib_pipeline::write_atomically;
+use calib_pipeline::{html, write_atomically};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -44,6 +44,12 @@ pub struct Args {
     /// Write the JSON report to this file.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
+    /// Write the accuracy certificate to this file: one self-contained HTML page (figure inline,
+    /// nothing fetched; print it to PDF) with the brackets before and after calibration, the
+    /// proved improvement, the configurations where the worst errors are reached, and the input
+    /// files' SHA-256.
+    #[arg(long, value_name = "FILE")]
+    report: Option<PathBuf>,
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
@@ -104,7 +110,31 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
         println!("wrote {}", path.display());
     }
+    if let Some(path) = &a.report {
+        write_atomically(path, &page(&report, &a)?)
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
     Ok(0)
+}
+
+/// The accuracy certificate page: the section, then the input files with their SHA-256.
+fn page(report: &ToolAccuracyReport, a: &Args) -> Result<String, Box<dyn std::error::Error>> {
+    let mut files = vec![("robot file", a.robot.as_path())];
+    for (role, path) in [
+        ("joint space", &a.joints),
+        ("robot before calibration", &a.before),
+        ("error bounds", &a.uncertainty),
+    ] {
+        if let Some(path) = path {
+            files.push((role, path.as_path()));
+        }
+    }
+    Ok(html::section_page(
+        "accuracy of a calibrated serial arm",
+        &report.section(),
+        &files,
+    )?)
 }
 
 fn print_report(r: &ToolAccuracyReport, a: &Args) {

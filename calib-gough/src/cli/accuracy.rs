@@ -151,32 +151,21 @@ pub(crate) fn with_spinner<T>(pose_seconds: f64, before: bool, work: impl FnOnce
 
 /// The accuracy certificate page: the section, then the inputs with their SHA-256.
 fn page(report: &AccuracyReport, a: &Args) -> Result<String, Box<dyn std::error::Error>> {
-    let date = html::now();
-    let mut h = html::page_start("accuracy of a calibrated 6-leg parallel robot", &date);
-    html::section(&mut h, &report.section());
-    let mut rows = Vec::new();
-    for (role, path) in [
-        ("robot file", Some(&a.robot)),
-        ("workspace", Some(&a.workspace)),
-        ("robot before calibration", a.before.as_ref()),
-        ("error bounds", a.uncertainty.as_ref()),
-    ] {
-        if let Some(path) = path {
-            let bytes =
-                std::fs::read(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-            rows.push((
-                format!("{role}: {}", path.display()),
-                format!("SHA-256 {}", html::sha256_hex(&bytes)),
-            ));
-        }
+    let mut files = vec![
+        ("robot file", a.robot.as_path()),
+        ("workspace", a.workspace.as_path()),
+    ];
+    if let Some(path) = &a.before {
+        files.push(("robot before calibration", path));
     }
-    rows.push(("software".into(), format!("certicalib {}", html::VERSION)));
-    rows.push(("command".into(), html::command_line()));
-    h.push_str("<section id=\"inputs\">\n<h2>Inputs</h2>\n");
-    html::pairs(&mut h, &["input", "identity"], &rows);
-    h.push_str("</section>\n");
-    h.push_str(html::PAGE_END);
-    Ok(h)
+    if let Some(path) = &a.uncertainty {
+        files.push(("error bounds", path));
+    }
+    Ok(html::section_page(
+        "accuracy of a calibrated 6-leg parallel robot",
+        &report.section(),
+        &files,
+    )?)
 }
 
 fn describe(w: &Workspace) -> String {
