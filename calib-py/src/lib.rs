@@ -873,7 +873,7 @@ fn design(
 /// Brackets the leg-length errors of a robot file over a workspace, as `gough accuracy` does;
 /// returns the JSON of `gough accuracy --json`.
 #[pyfunction]
-#[pyo3(signature = (robot, workspace, before=None, uncertainty=None, tolerance=0.04, max_boxes=300_000, pose_seconds=30.0, max_set_boxes=1000))]
+#[pyo3(signature = (robot, workspace, before=None, uncertainty=None, tolerance=0.04, max_boxes=300_000, pose_seconds=30.0, max_set_boxes=1000, report=None))]
 #[allow(clippy::too_many_arguments)]
 fn accuracy(
     py: Python<'_>,
@@ -885,10 +885,17 @@ fn accuracy(
     max_boxes: usize,
     pose_seconds: f64,
     max_set_boxes: usize,
+    report: Option<PathBuf>,
 ) -> PyResult<String> {
     use calib_gough::accuracy::{accuracy_report, AccuracyProblem, AccuracySettings};
     let file = calib_gough::files::read_robot_file(&robot).map_err(value_error)?;
     let sets = calib_gough::files::leg_sets(&robot, &file).map_err(value_error)?;
+    let inputs = accuracy_inputs(&[
+        ("robot file", Some(&robot)),
+        ("workspace", Some(&workspace)),
+        ("robot before calibration", before.as_ref()),
+        ("error bounds", uncertainty.as_ref()),
+    ]);
     let workspace = calib_gough::workspace::read_workspace(&workspace).map_err(value_error)?;
     let before = before
         .map(|p| read_robot(&p))
@@ -916,6 +923,7 @@ fn accuracy(
         pose_seconds,
         ..AccuracySettings::default()
     };
+    let page = report;
     let report = py.detach(|| {
         accuracy_report(
             &AccuracyProblem::over_sets(&file.legs, &sets, &workspace),
@@ -925,10 +933,41 @@ fn accuracy(
                 .as_ref(),
             actuator,
             &settings,
-            false,
+            page.is_some(),
         )
     });
+    if let Some(path) = &page {
+        write_accuracy_page(
+            path,
+            "accuracy of a calibrated 6-leg parallel robot",
+            &report.section(),
+            &inputs,
+        )?;
+    }
     Ok(report.json().to_string())
+}
+
+/// The accuracy certificate's inputs that were given: `(role, path)`.
+fn accuracy_inputs(files: &[(&'static str, Option<&PathBuf>)]) -> Vec<(&'static str, PathBuf)> {
+    files
+        .iter()
+        .filter_map(|(role, path)| path.map(|p| (*role, p.clone())))
+        .collect()
+}
+
+/// Writes an accuracy certificate page (`--report` of the `accuracy` commands) to `path`,
+/// through a temporary file.
+fn write_accuracy_page(
+    path: &std::path::Path,
+    title: &str,
+    section: &calib_pipeline::html::Section,
+    inputs: &[(&'static str, PathBuf)],
+) -> PyResult<()> {
+    let files: Vec<(&str, &std::path::Path)> =
+        inputs.iter().map(|(r, p)| (*r, p.as_path())).collect();
+    let page = calib_pipeline::html::section_page(title, section, &files).map_err(value_error)?;
+    calib_pipeline::write_atomically(path, &page)
+        .map_err(|e| value_error(format!("{}: cannot write: {e}", path.display())))
 }
 
 /// Brackets the tool-point error of an arm's robot file over a joint box, as `arm accuracy`
@@ -936,7 +975,7 @@ fn accuracy(
 /// `before`, the uncalibrated robot over its boxes and the improvement as a proved factor);
 /// returns the JSON of `arm accuracy --json`.
 #[pyfunction]
-#[pyo3(signature = (robot, joints=None, before=None, uncertainty=None, tolerance=0.04, max_boxes=20_000, max_set_boxes=300))]
+#[pyo3(signature = (robot, joints=None, before=None, uncertainty=None, tolerance=0.04, max_boxes=20_000, max_set_boxes=300, report=None))]
 #[allow(clippy::too_many_arguments)]
 fn arm_accuracy(
     py: Python<'_>,
@@ -947,6 +986,7 @@ fn arm_accuracy(
     tolerance: f64,
     max_boxes: usize,
     max_set_boxes: usize,
+    report: Option<PathBuf>,
 ) -> PyResult<String> {
     use calib_arm::accuracy::{tool_accuracy, ToolAccuracySettings};
     use calib_arm::joint_space::{read_joint_space, JointSpace};
@@ -956,6 +996,12 @@ fn arm_accuracy(
         )));
     }
     let (arm, set) = calib_arm::files::read_calibrated(&robot).map_err(value_error)?;
+    let inputs = accuracy_inputs(&[
+        ("robot file", Some(&robot)),
+        ("joint space", joints.as_ref()),
+        ("robot before calibration", before.as_ref()),
+        ("error bounds", uncertainty.as_ref()),
+    ]);
     let n = arm.joints.len();
     let before = before
         .map(|p| calib_arm::files::read_robot(&p))
@@ -975,9 +1021,18 @@ fn arm_accuracy(
         max_boxes,
         max_set_boxes,
     };
+    let page = report;
     let report = py
         .detach(|| tool_accuracy(&arm, set, before.as_ref(), space, joint_deg, &settings))
         .map_err(value_error)?;
+    if let Some(path) = &page {
+        write_accuracy_page(
+            path,
+            "accuracy of a calibrated serial arm",
+            &report.section(),
+            &inputs,
+        )?;
+    }
     let units: Vec<calib_arm::params::Unit> = calib_arm::params::names(n)
         .into_iter()
         .map(|(_, u)| u)

@@ -1,6 +1,6 @@
 """The Python package's serial arm against the arm CLI: the same JSON report, the truth inside the
 certified box, outliers found with max_outliers="auto", ValueError naming the file on bad input."""
-
+import hashlib
 import json
 import subprocess
 from pathlib import Path
@@ -112,8 +112,9 @@ def test_accuracy_arm_is_the_cli_report_over_the_certified_set(tmp_path):
     assert certicalib.certify_arm(robot, meas, unc, write_calibrated=cal).status == "consistent"
     cell = tmp_path / "cell.toml"
     cell.write_text("q1 = [10, 20]\nq2 = [-30, -20]\nq3 = [40, 50]\n")
+    page = tmp_path / "accuracy.html"
     mine = certicalib.accuracy_arm(cal, joints=cell, before=robot, uncertainty=unc,
-                                   max_set_boxes=20, max_boxes=500)
+                                   max_set_boxes=20, max_boxes=500, report=page)
     out = tmp_path / "accuracy.json"
     subprocess.run([repo_binary("arm"), "accuracy", "--robot", str(cal), "--joints", str(cell),
                     "--before", str(robot), "--uncertainty", str(unc), "--max-set-boxes", "20",
@@ -128,6 +129,11 @@ def test_accuracy_arm_is_the_cli_report_over_the_certified_set(tmp_path):
     assert after["over"] == "certified set"
     assert 0 < after["lower"] <= after["upper"]
     assert mine["before"]["lower"] > 0 and mine["improvement"] is not None
+    # The certificate states the brackets it returned and identifies the joint space file.
+    html = page.read_text()
+    assert "What calibration bought" in html
+    assert f"{after['upper']:.4f}" in html and f"{after['lower']:.4f}" in html
+    assert hashlib.sha256(cell.read_bytes()).hexdigest() in html
 
 
 def test_write_calibrated_for_a_task_gives_the_cli_file(tmp_path):

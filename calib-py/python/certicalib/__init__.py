@@ -400,7 +400,7 @@ def design(out: PathLike, *, robot: Optional[PathLike] = None,
 def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike] = None,
              uncertainty: Optional[PathLike] = None, tolerance: float = 0.04,
              max_boxes: int = 300_000, pose_seconds: float = 30.0,
-             max_set_boxes: int = 1000) -> Dict[str, Any]:
+             max_set_boxes: int = 1000, report: Optional[PathLike] = None) -> Dict[str, Any]:
     r"""Bracket, per leg, how far the leg length the controller commands (from ``robot``'s values)
     can be from the length the real leg needs, over every pose of ``workspace`` (a
     ``workspace.toml``) and every geometry in ``robot``'s boxes — as ``gough accuracy`` does.
@@ -416,7 +416,8 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
     factors, ``None`` where not proved). ``tolerance`` stops every bracket at ``upper <= (1 + tolerance) lower``;
     ``max_boxes`` bounds each leg-length bracket's boxes of poses, ``pose_seconds`` the time spent
     per robot on the pose errors' upper bounds (they stay proved, only less tight),
-    ``max_set_boxes`` each leg's boxes of poses over a certified set.
+    ``max_set_boxes`` each leg's boxes of poses over a certified set. ``report``: also write the
+    accuracy certificate there (what ``gough accuracy --report`` writes: one HTML page).
 
     >>> import os, tempfile
     >>> d = tempfile.mkdtemp()
@@ -434,13 +435,13 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
         return None if p is None else os.fspath(p)
     return json.loads(_native.accuracy(os.fspath(robot), os.fspath(workspace), opt(before),
                                        opt(uncertainty), float(tolerance), int(max_boxes),
-                                       float(pose_seconds), int(max_set_boxes)))
+                                       float(pose_seconds), int(max_set_boxes), opt(report)))
 
 
 def accuracy_arm(robot: PathLike, *, joints: Optional[PathLike] = None,
                  before: Optional[PathLike] = None, uncertainty: Optional[PathLike] = None,
                  tolerance: float = 0.04, max_boxes: int = 20_000,
-                 max_set_boxes: int = 300) -> Dict[str, Any]:
+                 max_set_boxes: int = 300, report: Optional[PathLike] = None) -> Dict[str, Any]:
     r"""Bracket how far an arm's tool point can be from where the controller computes it (from
     ``robot``'s values), over every configuration of ``joints`` (a ``joints.toml``: ``q1 = [lo,
     hi]``, … degrees; default ±170° per joint), every geometry of ``robot``'s certified set (its
@@ -450,7 +451,8 @@ def accuracy_arm(robot: PathLike, *, joints: Optional[PathLike] = None,
     dict: ``position`` and ``before`` (each ``upper``, ``lower``, ``ratio``, ``over``, ``worst``
     with ``joints_deg`` and ``theta``), ``improvement``. ``tolerance`` stops a bracket at
     ``upper <= (1 + tolerance) lower``; ``max_boxes`` and ``max_set_boxes`` bound the joint boxes
-    over a box and over a certified set.
+    over a box and over a certified set. ``report``: also write the accuracy certificate there
+    (what ``arm accuracy --report`` writes: one HTML page).
 
     >>> import os, tempfile
     >>> d = tempfile.mkdtemp()
@@ -465,7 +467,7 @@ def accuracy_arm(robot: PathLike, *, joints: Optional[PathLike] = None,
         return None if p is None else os.fspath(p)
     return json.loads(_native.arm_accuracy(os.fspath(robot), opt(joints), opt(before),
                                            opt(uncertainty), float(tolerance), int(max_boxes),
-                                           int(max_set_boxes)))
+                                           int(max_set_boxes), opt(report)))
 
 
 class ArmReport:

@@ -31,7 +31,7 @@ def lsq(robot: _Path, measurements: _Path) -> str: ...
 def accuracy(
     robot: _Path, workspace: _Path, before: Optional[_Path] = ..., uncertainty: Optional[_Path] = ...,
     tolerance: float = ..., max_boxes: int = ..., pose_seconds: float = ...,
-    max_set_boxes: int = ...,
+    max_set_boxes: int = ..., report: Optional[_Path] = ...,
 ) -> str: ...
 def design(
     out: _Path, robot: Optional[_Path] = ..., uncertainty: Optional[_Path] = ...,
@@ -54,6 +54,11 @@ def arm_certify_files(robot: _Path, measurements: _Path, uncertainty: _Path, opt
 def arm_simulate(
     out: _Path, configs: int = ..., seed: int = ..., robot: Optional[_Path] = ...,
     outliers: Sequence[Tuple[int, float]] = ...,
+) -> str: ...
+def arm_accuracy(
+    robot: _Path, joints: Optional[_Path] = ..., before: Optional[_Path] = ...,
+    uncertainty: Optional[_Path] = ..., tolerance: float = ..., max_boxes: int = ...,
+    max_set_boxes: int = ..., report: Optional[_Path] = ...,
 ) -> str: ...
 
 class _Columns(TypedDict):
