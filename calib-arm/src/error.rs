@@ -10,11 +10,10 @@ use crate::files::JOINTS;
 
 /// An error of calib-arm's library functions (outside `predict`): a malformed input file, an
 /// option value they do not accept, an arm or data set the model does not take, a joint space or
-/// joint error the accuracy problem does not take, an empty certified set, a file that cannot be
-/// written,
-/// inputs missing for 6-DoF measurements, a certification with no calibrated geometry to hand
-/// out, a registration or a vendor chain that cannot be made, or an option's text that names
-/// none of its values.
+/// joint error the accuracy problem does not take, an empty certified set, inputs missing for
+/// 6-DoF measurements, a certification with no calibrated geometry to hand out, a registration
+/// or a vendor chain that cannot be made, an option's text that names none of its values, or a
+/// file (a report, a certificate page) that cannot be written.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum ArmError {
