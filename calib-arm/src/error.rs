@@ -8,11 +8,12 @@ use calib_pipeline::{DataError, OptionError};
 use crate::certification::MAX_JOINTS;
 use crate::files::JOINTS;
 
-/// An error of calib-arm's library functions (outside `accuracy` and `predict`): a malformed
-/// input file, an option value they do not accept, an arm or data set the model does not take,
-/// inputs missing for 6-DoF measurements, a certification with no calibrated geometry to hand
-/// out, a registration or a vendor chain that cannot be made, or an option's text that names
-/// none of its values.
+/// An error of calib-arm's library functions (outside `predict`): a malformed input file, an
+/// option value they do not accept, an arm or data set the model does not take, a joint space or
+/// joint error the accuracy problem does not take, an empty certified set, inputs missing for
+/// 6-DoF measurements, a certification with no calibrated geometry to hand out, a registration
+/// or a vendor chain that cannot be made, an option's text that names none of its values, or a
+/// file (a report, a certificate page) that cannot be written.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum ArmError {
@@ -28,6 +29,40 @@ pub enum ArmError {
     /// An arm whose nominal tracked point cannot be computed (more joints than the model).
     #[error("arms with 3 to {MAX_JOINTS} joints are supported")]
     UnsupportedArm,
+    /// A joint space with another number of ranges than the arm has joints.
+    #[error("the joint space has {ranges} ranges; the arm has {joints} joints")]
+    JointSpaceRanges {
+        /// The joint space's ranges.
+        ranges: usize,
+        /// The arm's joints.
+        joints: usize,
+    },
+    /// A joint error (degrees) that is not a finite value `>= 0`.
+    #[error("joint error {0}: expected a finite value >= 0")]
+    JointError(f64),
+    /// An accuracy problem over a certified set that is empty.
+    #[error("the certified set is empty")]
+    EmptySet,
+    /// A file that cannot be written (why: the I/O error's message, as `ArmError` is `Clone`
+    /// and `PartialEq` and `std::io::Error` is neither).
+    #[error("{}: cannot write: {reason}", .path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
+    /// A certificate page that cannot be written (why, as for [`ArmError::Write`]).
+    #[error("{}: cannot write the certificate: {reason}", .path.display())]
+    WriteCertificate {
+        /// The page's file.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
+    /// A report whose JSON text cannot be read back to merge entries into (why).
+    #[error("the JSON report: {0}")]
+    JsonReport(String),
     /// A configuration with another number of joint readings than the arm has joints.
     #[error("a configuration has {readings} joint readings; the arm has {joints} joints")]
     JointReadings {

@@ -182,7 +182,9 @@ fn a_cell_of_every_joint_is_bracketed_within_five_percent() {
 #[test]
 fn a_joint_space_of_the_wrong_size_is_refused() {
     let arm = builtin_arm();
-    let e = ToolAccuracyProblem::new(&arm, &JointSpace::simulator(5), 0.0).unwrap_err();
+    let e = ToolAccuracyProblem::new(&arm, &JointSpace::simulator(5), 0.0)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("5 ranges") && e.contains("6 joints"), "{e}");
     assert!(ToolAccuracyProblem::new(&arm, &JointSpace::simulator(6), f64::NAN).is_err());
 }

@@ -28,6 +28,9 @@ pub enum GoughError {
         /// The robot's number of legs.
         legs: usize,
     },
+    /// `--pose-seconds` is not a finite number of seconds above 0.
+    #[error("--pose-seconds: expected a number of seconds > 0, found {0}")]
+    PoseSeconds(f64),
     /// `--pave` is not a relative width in (0, 1).
     #[error("--pave: expected a relative width in (0, 1), found {0}")]
     Pave(f64),

@@ -29,6 +29,7 @@ use crate::model::{arm7_point, Arm7Point};
 use crate::params::{self, Unit};
 use crate::robot::Arm;
 use crate::units::{deg_to_rad, rad_to_deg, to_deg, to_rad};
+use crate::ArmError;
 use calib_core::{maximize, Interval, MaximumSettings, Objective, VectorModel};
 use directions::{max_over_directions, DirectionCache, Sensitivities};
 use serde_json::json;
@@ -168,23 +169,19 @@ impl ToolAccuracyProblem {
     /// The problem for `arm` (nominal ± radius per parameter) on `space`, with every joint
     /// reaching its command within `joint_deg` degrees. An error when the joint space does not
     /// have one range per joint or the arm has more joints than the model.
-    pub fn new(arm: &Arm, space: &JointSpace, joint_deg: f64) -> Result<Self, String> {
+    pub fn new(arm: &Arm, space: &JointSpace, joint_deg: f64) -> Result<Self, ArmError> {
         let joints = arm.joints.len();
         if !(3..=MAX_JOINTS).contains(&joints) {
-            return Err(format!(
-                "arms with 3 to {MAX_JOINTS} joints are supported, not {joints}"
-            ));
+            return Err(ArmError::Joints(joints));
         }
         if space.ranges_deg.len() != joints {
-            return Err(format!(
-                "the joint space has {} ranges; the arm has {joints} joints",
-                space.ranges_deg.len()
-            ));
+            return Err(ArmError::JointSpaceRanges {
+                ranges: space.ranges_deg.len(),
+                joints,
+            });
         }
         if !(joint_deg.is_finite() && joint_deg >= 0.0) {
-            return Err(format!(
-                "joint error {joint_deg}: expected a finite value >= 0"
-            ));
+            return Err(ArmError::JointError(joint_deg));
         }
         let units: Vec<Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
         let index = padded_index(joints);
@@ -571,7 +568,7 @@ pub fn tool_accuracy(
     space: JointSpace,
     joint_deg: f64,
     settings: &ToolAccuracySettings,
-) -> Result<ToolAccuracyReport, String> {
+) -> Result<ToolAccuracyReport, ArmError> {
     let over_set = set.is_some();
     let after_problem = match set {
         Some(set) => After::Set(Box::new(over_set::SetToolAccuracy::new(

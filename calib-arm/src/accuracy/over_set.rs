@@ -11,7 +11,7 @@ use crate::joint_space::JointSpace;
 use crate::model::arm7_point;
 use crate::robot::Arm;
 use crate::units::{deg_to_rad, rad_to_deg, to_deg};
-use crate::Arm7Point;
+use crate::{Arm7Point, ArmError};
 use calib_core::{CertifiedSet, Interval, Jet, Quadratic};
 use calib_pipeline::accuracy::{
     bracket_over_set, BracketSettings, Instance, Prediction, SetAccuracy,
@@ -53,11 +53,9 @@ pub(crate) fn tool_point_engine(
     set: ArmSet,
     domain: [Interval; MAX_JOINTS],
     joint_deg: f64,
-) -> Result<ToolPointEngine, String> {
+) -> Result<ToolPointEngine, ArmError> {
     if !(joint_deg.is_finite() && joint_deg >= 0.0) {
-        return Err(format!(
-            "joint error {joint_deg}: expected a finite value >= 0"
-        ));
+        return Err(ArmError::JointError(joint_deg));
     }
     let joints = arm.joints.len();
     let mut nominal = [0.0; NX];
@@ -70,8 +68,7 @@ pub(crate) fn tool_point_engine(
     }
     let joint_rad = deg_to_rad(Interval::point(joint_deg)).sup();
     let input_error = core::array::from_fn(|i| if i < joints { joint_rad } else { 0.0 });
-    SetAccuracy::new(&ToolPoint, set, nominal, domain, input_error)
-        .ok_or_else(|| "the certified set is empty".to_string())
+    SetAccuracy::new(&ToolPoint, set, nominal, domain, input_error).ok_or(ArmError::EmptySet)
 }
 
 /// The joints `[lo, hi]` (degrees) in radians, enclosed.
@@ -95,13 +92,18 @@ pub struct SetToolAccuracy {
 impl SetToolAccuracy {
     /// The problem for the calibrated `arm` (its values: what the controller computes with) over
     /// its certified `set`, on `space`, every joint within `joint_deg` of its command.
-    pub fn new(arm: &Arm, set: ArmSet, space: &JointSpace, joint_deg: f64) -> Result<Self, String> {
+    pub fn new(
+        arm: &Arm,
+        set: ArmSet,
+        space: &JointSpace,
+        joint_deg: f64,
+    ) -> Result<Self, ArmError> {
         let joints = arm.joints.len();
         if space.ranges_deg.len() != joints {
-            return Err(format!(
-                "the joint space has {} ranges; the arm has {joints} joints",
-                space.ranges_deg.len()
-            ));
+            return Err(ArmError::JointSpaceRanges {
+                ranges: space.ranges_deg.len(),
+                joints,
+            });
         }
         let mut domain = [Interval::ZERO; MAX_JOINTS];
         for (i, &[lo, hi]) in space.ranges_deg.iter().enumerate() {

@@ -3,6 +3,7 @@
 
 use calib_arm::certification::{json_report, units_of, ArmRun};
 use calib_arm::report_page::ArmReportPage;
+use calib_arm::ArmError;
 use calib_core::{Interval, Status};
 use calib_pipeline::html::outward;
 use calib_pipeline::verdict::{self, ConfigurationNames};
@@ -132,17 +133,20 @@ pub fn write_json(
     names: &ConfigurationNames<'_>,
     max_outliers: usize,
     extra: serde_json::Map<String, serde_json::Value>,
-) -> Result<(), String> {
+) -> Result<(), ArmError> {
     let mut text = json_report(run, names, max_outliers);
     if !extra.is_empty() {
         let mut v: serde_json::Value =
-            serde_json::from_str(&text).map_err(|e| format!("the JSON report: {e}"))?;
+            serde_json::from_str(&text).map_err(|e| ArmError::JsonReport(e.to_string()))?;
         for (key, value) in extra {
             v[key] = value;
         }
         text = format!("{v:#}\n");
     }
-    write_atomically(path, &text).map_err(|e| format!("{}: cannot write: {e}", path.display()))
+    write_atomically(path, &text).map_err(|e| ArmError::Write {
+        path: path.to_path_buf(),
+        reason: e.to_string(),
+    })
 }
 
 /// A spinner on a terminal while the kernel works (indicatif draws nothing when stderr is not a
@@ -167,9 +171,11 @@ pub fn file_name(path: &Path) -> String {
 }
 
 /// Writes the certificate page (atomically) and says where.
-pub fn write_certificate(path: &Path, page: &ArmReportPage<'_>) -> Result<(), String> {
-    write_atomically(path, &page.to_html())
-        .map_err(|e| format!("{}: cannot write the certificate: {e}", path.display()))?;
+pub fn write_certificate(path: &Path, page: &ArmReportPage<'_>) -> Result<(), ArmError> {
+    write_atomically(path, &page.to_html()).map_err(|e| ArmError::WriteCertificate {
+        path: path.to_path_buf(),
+        reason: e.to_string(),
+    })?;
     println!("certificate written to {}", path.display());
     Ok(())
 }

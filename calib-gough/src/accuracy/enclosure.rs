@@ -685,19 +685,55 @@ fn set_error_bounds(
     nominal: &[f64; 7],
     enough: f64,
 ) -> Interval {
-    let point = |v: [f64; 7]| v.map(Interval::point);
-    let up = |v: f64, w: f64| (Interval::point(v) + Interval::point(w)).sup();
-    // max |v·δ| over the set (one piece).
-    let mut reach_of = |v: [f64; 7]| -> f64 {
-        if v.iter().all(|x| *x == 0.0) {
-            return 0.0;
-        }
-        let plus = coarse.max_linear(&point(v), nominal).upper;
-        let minus = coarse.max_linear(&point(v.map(|x| -x)), nominal).upper;
-        plus.max(minus).max(0.0)
-    };
-    // The pose's second-order terms, one by one: by their coefficients' magnitudes over the
-    // set's box where that is small, else by the set.
+    let second = second_order_bound(g, delta, coarse, nominal);
+    let centre = g.map(|f| f.centre());
+    let linear: [[f64; 7]; 6] = core::array::from_fn(|k| g.map(|f| f.linear()[k]));
+    let reach: [f64; 6] = core::array::from_fn(|k| reach_over_set(coarse, linear[k], nominal));
+    let cheap = one_piece_bounds(&centre, &reach, rest + second, coarse, nominal);
+    if cheap.mag() <= enough {
+        return cheap;
+    }
+    let fine = vertex_bounds(&centre, &linear, &reach, rest + second, q, nominal);
+    let tight = fine.intersection(cheap);
+    if tight.is_empty() {
+        fine
+    } else {
+        tight
+    }
+}
+
+/// `v + w`, rounded up.
+fn sum_up(v: f64, w: f64) -> f64 {
+    (Interval::point(v) + Interval::point(w)).sup()
+}
+
+/// `[lo, hi]` (in either order), or every number when either is NaN or infinite.
+fn ordered_bounds(hi: f64, lo: f64) -> Interval {
+    if hi.is_nan() || lo.is_nan() || !hi.is_finite() || !lo.is_finite() {
+        Interval::ENTIRE
+    } else {
+        Interval::new(lo.min(hi), hi.max(lo))
+    }
+}
+
+/// `max |v·δ|` over the set, with its one-piece query `coarse` (0 for `v = 0`).
+fn reach_over_set(coarse: &mut SetQuery<'_, 7, 8>, v: [f64; 7], nominal: &[f64; 7]) -> f64 {
+    if v.iter().all(|x| *x == 0.0) {
+        return 0.0;
+    }
+    let plus = coarse.max_linear(&thin(&v), nominal).upper;
+    let minus = coarse.max_linear(&thin(&v.map(|x| -x)), nominal).upper;
+    plus.max(minus).max(0.0)
+}
+
+/// A bound of the pose's second-order terms of `g`, one by one: by their coefficients'
+/// magnitudes over the set's box (reach `delta`) where that is small, else by the set.
+fn second_order_bound(
+    g: &[SlopeForm; 7],
+    delta: &[f64; 7],
+    coarse: &mut SetQuery<'_, 7, 8>,
+    nominal: &[f64; 7],
+) -> Interval {
     let quadratic: Vec<[f64; 7]> = (0..6)
         .flat_map(|k| (k..6).map(move |l| (k, l)))
         .map(|(k, l)| g.map(|f| f.quadratic(k, l)))
@@ -706,7 +742,7 @@ fn set_error_bounds(
         .iter()
         .map(|v| {
             (0..7).fold(0.0, |s, j| {
-                up(
+                sum_up(
                     s,
                     (Interval::point(v[j].abs()) * Interval::point(delta[j])).sup(),
                 )
@@ -717,35 +753,51 @@ fn set_error_bounds(
     let mut second = Interval::ZERO;
     for (v, c) in quadratic.iter().zip(&crude) {
         let term = if *c > crude_total / 32.0 {
-            reach_of(*v).min(*c)
+            reach_over_set(coarse, *v, nominal).min(*c)
         } else {
             *c
         };
         second += Interval::point(term);
     }
-    let c = g.map(|f| f.centre());
-    let a: [[f64; 7]; 6] = core::array::from_fn(|k| g.map(|f| f.linear()[k]));
-    let reach: [f64; 6] = core::array::from_fn(|k| reach_of(a[k]));
-    let both = |hi: f64, lo: f64| {
-        if hi.is_nan() || lo.is_nan() || !hi.is_finite() || !lo.is_finite() {
-            Interval::ENTIRE
-        } else {
-            Interval::new(lo.min(hi), hi.max(lo))
-        }
-    };
-    // The cheap bound: one piece, every pose coordinate on its own.
+    second
+}
+
+/// The cheap bounds: the centre's slopes `centre` over the set in one piece, every pose
+/// coordinate on its own (its `reach`), plus the terms `fixed` (the geometry's and the second
+/// order's).
+fn one_piece_bounds(
+    centre: &[f64; 7],
+    reach: &[f64; 6],
+    fixed: Interval,
+    coarse: &mut SetQuery<'_, 7, 8>,
+    nominal: &[f64; 7],
+) -> Interval {
     let all = reach
         .iter()
-        .fold(rest + second, |s, r| s + Interval::point(*r))
+        .fold(fixed, |s, r| s + Interval::point(*r))
         .sup();
-    let cheap = both(
-        up(coarse.max_linear(&point(c), nominal).upper, all),
-        -up(coarse.max_linear(&point(c.map(|v| -v)), nominal).upper, all),
-    );
-    if cheap.mag() <= enough {
-        return cheap;
-    }
-    // The coordinates with the largest linear terms get the vertices.
+    ordered_bounds(
+        sum_up(coarse.max_linear(&thin(centre), nominal).upper, all),
+        -sum_up(
+            coarse.max_linear(&thin(&centre.map(|v| -v)), nominal).upper,
+            all,
+        ),
+    )
+}
+
+/// The fine bounds: the coordinates with the largest linear terms (`reach`, at most
+/// [`MAX_VERTEX_COORDINATES`]) at each vertex of the pose box, the slopes `centre ± linear`
+/// over the set with its fine query `q`; the other coordinates on their own, plus the terms
+/// `fixed`.
+fn vertex_bounds(
+    centre: &[f64; 7],
+    linear: &[[f64; 7]; 6],
+    reach: &[f64; 6],
+    fixed: Interval,
+    q: &mut SetQuery<'_, 7, 8>,
+    nominal: &[f64; 7],
+) -> Interval {
+    let (c, a) = (centre, linear);
     let total: f64 = reach.iter().sum();
     let mut vertex: Vec<usize> = (0..6).filter(|&k| reach[k] > total / 64.0).collect();
     vertex.sort_by(|&p, &r| reach[r].total_cmp(&reach[p]));
@@ -753,11 +805,11 @@ fn set_error_bounds(
     let others = (0..6)
         .filter(|k| !vertex.contains(k))
         .fold(Interval::ZERO, |s, k| s + Interval::point(reach[k]));
-    let slack = (rest + second + others).sup();
+    let slack = (fixed + others).sup();
     let mut bound = |sign: f64| -> f64 {
         let mut best = f64::NEG_INFINITY;
         for pattern in 0..1u32 << vertex.len() {
-            let mut w = c;
+            let mut w = *c;
             for (bit, &k) in vertex.iter().enumerate() {
                 let s = if pattern >> bit & 1 == 1 { 1.0 } else { -1.0 };
                 for j in 0..7 {
@@ -773,15 +825,9 @@ fn set_error_bounds(
             });
             best = best.max(q.max_linear(&slopes, nominal).upper);
         }
-        up(best, slack)
+        sum_up(best, slack)
     };
-    let fine = both(bound(1.0), -bound(-1.0));
-    let tight = fine.intersection(cheap);
-    if tight.is_empty() {
-        fine
-    } else {
-        tight
-    }
+    ordered_bounds(bound(1.0), -bound(-1.0))
 }
 
 /// An explicit worst-case instance of a leg: a pose of the workspace and a true geometry (proved

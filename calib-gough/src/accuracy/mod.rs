@@ -616,7 +616,22 @@ impl AccuracyReport {
     /// The certificate's section: the brackets per leg (with the uncalibrated robot's and the
     /// proved improvement when known) and the worst instance, in words.
     pub fn section(&self) -> calib_pipeline::html::Section {
-        let w = &self.workspace;
+        let mut tables = vec![self.leg_table()];
+        if let Some(pose) = &self.after.pose {
+            tables.push(self.pose_table(pose));
+        }
+        calib_pipeline::html::Section {
+            heading: "Accuracy over the workspace".to_string(),
+            paragraphs: self.paragraphs(),
+            tables,
+            figures: self.error_map().into_iter().collect(),
+        }
+    }
+
+    /// The certificate's table of the leg-length brackets: per leg its lower and upper bounds
+    /// and their ratio, with the uncalibrated robot's upper bound and the proved improvement
+    /// when known.
+    fn leg_table(&self) -> (String, calib_pipeline::html::Table) {
         let mut header: Vec<String> = ["leg", "lower (cm)", "upper (cm)", "upper/lower"]
             .map(String::from)
             .to_vec();
@@ -643,32 +658,17 @@ impl AccuracyReport {
                 row
             })
             .collect();
-        let geometries = match pose_over(&self.over_set) {
-            "certified set" => {
-                "for every geometry the measurements allow (the certified set: not its box, \
-                 whose corners the data rule out)"
-            }
-            "box" => "for every geometry in the robot file's boxes (the file has no certified set)",
-            _ => "for every geometry of the certified set (legs without one: of their boxes)",
-        };
-        let mut paragraphs = vec![format!(
-            "Over the workspace (platform centre x in [{}, {}], y in [{}, {}], z in [{}, {}] cm, \
-             rotation up to {}° about any axis{}), {geometries}, the length the controller \
-             commands (from the calibrated values) differs from the length the real leg needs \
-             by at most the upper bound — proved over the whole workspace — and by at least the \
-             lower bound, attained at an explicit pose and a geometry proved consistent with the \
-             measurements.",
-            w.x[0],
-            w.x[1],
-            w.y[0],
-            w.y[1],
-            w.z[0],
-            w.z[1],
-            w.tilt_deg,
-            w.stroke.map_or(String::new(), |[lo, hi]| format!(
-                ", leg readings in [{lo}, {hi}] cm"
-            ))
-        )];
+        (
+            "Leg-length error per leg: the truth lies between lower and upper.".to_string(),
+            calib_pipeline::html::Table { header, rows },
+        )
+    }
+
+    /// The certificate's words: what the leg-length brackets mean over the workspace and the
+    /// geometries, the reach with the actuators' error, what the pose brackets mean, and the
+    /// proved improvement.
+    fn paragraphs(&self) -> Vec<String> {
+        let mut paragraphs = vec![self.workspace_paragraph()];
         if let (Some(len), Some(reach)) = (self.actuator, self.reach()) {
             paragraphs.push(format!(
                 "With the actuators' error (± {len} cm), a leg's reached length is within \
@@ -688,39 +688,58 @@ impl AccuracyReport {
         if let Some(words) = self.pose_improvement().and_then(improvement_words) {
             paragraphs.push(format!("Calibration {words}."));
         }
-        let mut tables = vec![(
-            "Leg-length error per leg: the truth lies between lower and upper.".to_string(),
-            calib_pipeline::html::Table { header, rows },
-        )];
-        if let Some(pose) = &self.after.pose {
-            tables.push(self.pose_table(pose));
-        }
-        calib_pipeline::html::Section {
-            heading: "Accuracy over the workspace".to_string(),
-            paragraphs,
-            tables,
-            figures: self
-                .map
-                .as_ref()
-                .and_then(|m| {
-                    crate::plot::heat_maps(
-                        m,
-                        "Certified upper bound of the worst leg's error",
-                        "cm",
-                    )
-                    .ok()
-                })
-                .map(|svg| calib_pipeline::html::Figure {
-                    caption: "Where the leg-length error can be large: per cell of x–y and slab \
-                              of heights, the proved upper bound of the worst leg's error over \
-                              every rotation of the workspace (a coarse branch and bound per \
-                              cell; white: no pose of the workspace)."
-                        .to_string(),
-                    svg,
-                })
-                .into_iter()
-                .collect(),
-        }
+        paragraphs
+    }
+
+    /// What the leg-length brackets mean: over which workspace and which geometries the upper
+    /// bound is proved and the lower bound attained.
+    fn workspace_paragraph(&self) -> String {
+        let w = &self.workspace;
+        let geometries = match pose_over(&self.over_set) {
+            "certified set" => {
+                "for every geometry the measurements allow (the certified set: not its box, \
+                 whose corners the data rule out)"
+            }
+            "box" => "for every geometry in the robot file's boxes (the file has no certified set)",
+            _ => "for every geometry of the certified set (legs without one: of their boxes)",
+        };
+        format!(
+            "Over the workspace (platform centre x in [{}, {}], y in [{}, {}], z in [{}, {}] cm, \
+             rotation up to {}° about any axis{}), {geometries}, the length the controller \
+             commands (from the calibrated values) differs from the length the real leg needs \
+             by at most the upper bound — proved over the whole workspace — and by at least the \
+             lower bound, attained at an explicit pose and a geometry proved consistent with the \
+             measurements.",
+            w.x[0],
+            w.x[1],
+            w.y[0],
+            w.y[1],
+            w.z[0],
+            w.z[1],
+            w.tilt_deg,
+            w.stroke.map_or(String::new(), |[lo, hi]| format!(
+                ", leg readings in [{lo}, {hi}] cm"
+            ))
+        )
+    }
+
+    /// The certificate's map of where the leg-length error can be large, when one was made (and
+    /// could be drawn).
+    fn error_map(&self) -> Option<calib_pipeline::html::Figure> {
+        let svg = crate::plot::heat_maps(
+            self.map.as_ref()?,
+            "Certified upper bound of the worst leg's error",
+            "cm",
+        )
+        .ok()?;
+        Some(calib_pipeline::html::Figure {
+            caption: "Where the leg-length error can be large: per cell of x–y and slab \
+                      of heights, the proved upper bound of the worst leg's error over \
+                      every rotation of the workspace (a coarse branch and bound per \
+                      cell; white: no pose of the workspace)."
+                .to_string(),
+            svg,
+        })
     }
 }
 

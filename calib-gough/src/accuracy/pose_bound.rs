@@ -512,19 +512,35 @@ impl Chart {
     /// by `C` as one matrix: the legs' changes move together with the pose, and the box of
     /// `K` keeps that.
     pub fn piece(&self, p: &[Interval; 6], rho: &[f64; 6], h: &[f64; 6]) -> Option<Piece> {
-        let mut y: [Interval; 6] = core::array::from_fn(|i| {
+        let y: [Interval; 6] = core::array::from_fn(|i| {
             (p[i] + Interval::new(-rho[i], rho[i])).intersection(Interval::new(-h[i], h[i]))
         });
         if y.iter().any(|v| v.is_empty()) {
             return None;
         }
         // Without a floating-point solution or preconditioner, `Y₀` itself encloses them.
-        let unrefined = Piece { y, split: None };
+        let Some((centre, preconditioner)) = self.centre_solution(p) else {
+            return Some(Piece { y, split: None });
+        };
+        let krawczyk = Krawczyk::new(self, p, &centre, &preconditioner);
+        let y = krawczyk.contract(y, p)?;
+        // The same enclosure with the pose's part kept apart and mapped to the moves as one
+        // matrix: how the reached move itself shifts with the pose.
+        let core = krawczyk.without_pose(&y);
+        let shift = krawczyk.pose_shift();
+        let split =
+            (!enclosure_failed(&core) && !enclosure_failed(&shift)).then_some((core, shift));
+        Some(Piece { y, split })
+    }
+
+    /// `ỹ` and `C` of [`Chart::piece`]: three floating-point Newton steps for
+    /// `G(X_c, M ỹ, θ_c) = mid p` from `mid p`, and the inverse of the last Jacobian
+    /// `A = ∇_δ G · M`. `None` when a step or the inverse fails or is not finite.
+    fn centre_solution(&self, p: &[Interval; 6]) -> Option<([f64; 6], Matrix6<f64>)> {
         let (centres, mf) = (&self.centres, &self.m_float);
         let to_delta = |y: &[f64; 6]| -> [f64; 6] {
             core::array::from_fn(|r| (0..6).map(|c| mf[r][c] * y[c]).sum())
         };
-        // Floating-point Newton for G(X_c, M ỹ, θ_c) = mid p, from mid p.
         let mut yt: [f64; 6] = p.map(|v| v.mid());
         let mut a = Matrix6::zeros();
         for _ in 0..3 {
@@ -537,101 +553,16 @@ impl Chart {
                     a[(i, c)] = (0..6).map(|k| row[k] * mf[k][c]).sum();
                 }
             }
-            let Some(step) = a.lu().solve(&g) else {
-                return Some(unrefined);
-            };
+            let step = a.lu().solve(&g)?;
             for c in 0..6 {
                 yt[c] -= step[c];
             }
         }
-        let Some(cm) = a.try_inverse() else {
-            return Some(unrefined);
-        };
+        let cm = a.try_inverse()?;
         if !yt.iter().chain(cm.iter()).all(|v| v.is_finite()) {
-            return Some(unrefined);
+            return None;
         }
-        let c: [[Interval; 6]; 6] =
-            core::array::from_fn(|r| core::array::from_fn(|i| Interval::point(cm[(r, i)])));
-        let yti = yt.map(Interval::point);
-        let dt = self.delta(&yti);
-        // e_i ∋ G_i(X, M ỹ, θ*) - s_i without the pose's part; x_part[i][k] = ∂G_i/∂X_k.
-        let mut e = [Interval::ZERO; 6];
-        let mut x_part = [[Interval::ZERO; 6]; 6];
-        for i in 0..6 {
-            let m = &self.inputs[i];
-            let mc = centres[i].map(Interval::point);
-            let gm = ReachedChange.jacobian_m_interval(&dt, m);
-            let mut v = ReachedChange.residual_interval(&dt, &mc) - p[i];
-            for k in 6..12 {
-                v += gm[k] * (m[k] - mc[k]);
-            }
-            e[i] = v;
-            x_part[i] = core::array::from_fn(|k| gm[k]);
-        }
-        // The pose's part, C ∇_X G (X - X_c), as one matrix.
-        let dx: [Interval; 6] =
-            core::array::from_fn(|k| self.inputs[0][k] - self.inputs[0][k].mid());
-        let pose_term: [Interval; 6] = core::array::from_fn(|r| {
-            (0..6).fold(Interval::ZERO, |s, k| {
-                let ck = (0..6).fold(Interval::ZERO, |s, i| s + c[r][i] * x_part[i][k]);
-                s + ck * dx[k]
-            })
-        });
-        // K(Y) without the pose's part: ỹ - C e + (I - C A(Y)) (Y - ỹ).
-        let core = |y: &[Interval; 6]| -> [Interval; 6] {
-            let d = self.delta(y);
-            let slope: [[Interval; 6]; 6] = core::array::from_fn(|i| {
-                let grad = ReachedChange.jacobian_x_interval(&d, &self.inputs[i]);
-                core::array::from_fn(|col| {
-                    (0..6).fold(Interval::ZERO, |s, k| s + grad[k] * self.m[k][col])
-                })
-            });
-            core::array::from_fn(|r| {
-                let mut k = yti[r];
-                for i in 0..6 {
-                    k -= c[r][i] * e[i];
-                }
-                for col in 0..6 {
-                    let ca = (0..6).fold(Interval::ZERO, |s, i| s + c[r][i] * slope[i][col]);
-                    let id = Interval::point(if r == col { 1.0 } else { 0.0 });
-                    k += (id - ca) * (y[col] - yti[col]);
-                }
-                k
-            })
-        };
-        let failed = |v: &[Interval; 6]| v.iter().any(|k| k.inf().is_nan() || k.sup().is_nan());
-        for _ in 0..KRAWCZYK_STEPS {
-            let core = core(&y);
-            let k: [Interval; 6] = core::array::from_fn(|r| core[r] - pose_term[r]);
-            // A failed enclosure (NaN) proves nothing: the box is kept as it is.
-            if failed(&k) {
-                break;
-            }
-            let next: [Interval; 6] = core::array::from_fn(|r| y[r].intersection(k[r]));
-            // Empty: no solution in the box, which holds them all.
-            if next.iter().any(|v| v.is_empty()) {
-                return None;
-            }
-            let gain: f64 = (0..6).map(|c| y[c].wid() - next[c].wid()).sum();
-            y = next;
-            if gain < KRAWCZYK_STALL * p.iter().map(|v| v.wid()).sum::<f64>() {
-                break;
-            }
-        }
-        // The same enclosure with the pose's part kept apart and mapped to the moves as one
-        // matrix, -(M C ∇_X G)(X - X_c): how the reached move itself shifts with the pose.
-        let core = core(&y);
-        let mc: [[Interval; 6]; 6] = core::array::from_fn(|r| {
-            core::array::from_fn(|i| (0..6).fold(Interval::ZERO, |s, k| s + self.m[r][k] * c[k][i]))
-        });
-        let shift: [Interval; 6] = core::array::from_fn(|r| {
-            (0..6).fold(Interval::ZERO, |s, k| {
-                let rk = (0..6).fold(Interval::ZERO, |s, i| s + mc[r][i] * x_part[i][k]);
-                s - rk * dx[k]
-            })
-        });
-        let split = (!failed(&core) && !failed(&shift)).then_some((core, shift));
-        Some(Piece { y, split })
+        Some((yt, cm))
     }
 
     /// Upper bounds of both errors over a [`Piece`]: the smaller of [`Chart::vertex_value`]
@@ -700,6 +631,142 @@ impl Chart {
             [acc[0].max(q.item.1[0]), acc[1].max(q.item.1[1])]
         });
         (bound, examined)
+    }
+}
+
+/// Whether an enclosure failed (a NaN bound): it proves nothing.
+fn enclosure_failed(v: &[Interval; 6]) -> bool {
+    v.iter().any(|k| k.inf().is_nan() || k.sup().is_nan())
+}
+
+/// The Krawczyk operator of [`Chart::piece`] for one box `p` of leg changes, at the centre `ỹ`
+/// with the preconditioner `C`: `G(X, M ỹ, θ*)` centred in the pose and geometry, the pose's
+/// part kept as one matrix.
+struct Krawczyk<'a> {
+    chart: &'a Chart,
+    /// `C ≈ A(ỹ)⁻¹`, entries as thin intervals.
+    c: [[Interval; 6]; 6],
+    /// `ỹ`, as thin intervals.
+    centre: [Interval; 6],
+    /// Per leg, `e_i ∋ G_i(X, M ỹ, θ*) - s_i` without the pose's part.
+    e: [Interval; 6],
+    /// Per leg, `∂G_i/∂X_k` at `M ỹ` over the box of poses.
+    x_part: [[Interval; 6]; 6],
+    /// The box of poses about its centre, `X - X_c`.
+    dx: [Interval; 6],
+}
+
+impl<'a> Krawczyk<'a> {
+    /// The operator of `chart` for the box `p` of leg changes, at `centre` (`ỹ`) with
+    /// `preconditioner` (`C`).
+    fn new(
+        chart: &'a Chart,
+        p: &[Interval; 6],
+        centre: &[f64; 6],
+        preconditioner: &Matrix6<f64>,
+    ) -> Self {
+        let c: [[Interval; 6]; 6] = core::array::from_fn(|r| {
+            core::array::from_fn(|i| Interval::point(preconditioner[(r, i)]))
+        });
+        let yti = centre.map(Interval::point);
+        let dt = chart.delta(&yti);
+        let mut e = [Interval::ZERO; 6];
+        let mut x_part = [[Interval::ZERO; 6]; 6];
+        for i in 0..6 {
+            let m = &chart.inputs[i];
+            let mc = chart.centres[i].map(Interval::point);
+            let gm = ReachedChange.jacobian_m_interval(&dt, m);
+            let mut v = ReachedChange.residual_interval(&dt, &mc) - p[i];
+            for k in 6..12 {
+                v += gm[k] * (m[k] - mc[k]);
+            }
+            e[i] = v;
+            x_part[i] = core::array::from_fn(|k| gm[k]);
+        }
+        let dx: [Interval; 6] =
+            core::array::from_fn(|k| chart.inputs[0][k] - chart.inputs[0][k].mid());
+        Krawczyk {
+            chart,
+            c,
+            centre: yti,
+            e,
+            x_part,
+            dx,
+        }
+    }
+
+    /// The pose's part, `C ∇_X G (X - X_c)`, as one matrix.
+    fn pose_term(&self) -> [Interval; 6] {
+        let (c, x_part, dx) = (&self.c, &self.x_part, &self.dx);
+        core::array::from_fn(|r| {
+            (0..6).fold(Interval::ZERO, |s, k| {
+                let ck = (0..6).fold(Interval::ZERO, |s, i| s + c[r][i] * x_part[i][k]);
+                s + ck * dx[k]
+            })
+        })
+    }
+
+    /// `K(Y)` without the pose's part: `ỹ - C e + (I - C A(Y)) (Y - ỹ)`.
+    fn without_pose(&self, y: &[Interval; 6]) -> [Interval; 6] {
+        let (chart, c, e, yti) = (self.chart, &self.c, &self.e, &self.centre);
+        let d = chart.delta(y);
+        let slope: [[Interval; 6]; 6] = core::array::from_fn(|i| {
+            let grad = ReachedChange.jacobian_x_interval(&d, &chart.inputs[i]);
+            core::array::from_fn(|col| {
+                (0..6).fold(Interval::ZERO, |s, k| s + grad[k] * chart.m[k][col])
+            })
+        });
+        core::array::from_fn(|r| {
+            let mut k = yti[r];
+            for i in 0..6 {
+                k -= c[r][i] * e[i];
+            }
+            for col in 0..6 {
+                let ca = (0..6).fold(Interval::ZERO, |s, i| s + c[r][i] * slope[i][col]);
+                let id = Interval::point(if r == col { 1.0 } else { 0.0 });
+                k += (id - ca) * (y[col] - yti[col]);
+            }
+            k
+        })
+    }
+
+    /// Krawczyk steps `Y ← Y ∩ K(Y)` from `y` (at most [`KRAWCZYK_STEPS`], until the widths of
+    /// `Y` fall by less than [`KRAWCZYK_STALL`] of those of `p`, or an enclosure fails and the
+    /// box is kept as it is). `None` when `Y` becomes empty: no solution in the box, which
+    /// holds them all.
+    fn contract(&self, mut y: [Interval; 6], p: &[Interval; 6]) -> Option<[Interval; 6]> {
+        let pose_term = self.pose_term();
+        for _ in 0..KRAWCZYK_STEPS {
+            let core = self.without_pose(&y);
+            let k: [Interval; 6] = core::array::from_fn(|r| core[r] - pose_term[r]);
+            if enclosure_failed(&k) {
+                break;
+            }
+            let next: [Interval; 6] = core::array::from_fn(|r| y[r].intersection(k[r]));
+            if next.iter().any(|v| v.is_empty()) {
+                return None;
+            }
+            let gain: f64 = (0..6).map(|c| y[c].wid() - next[c].wid()).sum();
+            y = next;
+            if gain < KRAWCZYK_STALL * p.iter().map(|v| v.wid()).sum::<f64>() {
+                break;
+            }
+        }
+        Some(y)
+    }
+
+    /// How the reached move shifts with the pose: `-(M C ∇_X G)(X - X_c)`.
+    fn pose_shift(&self) -> [Interval; 6] {
+        let (m, c, x_part, dx) = (&self.chart.m, &self.c, &self.x_part, &self.dx);
+        let mc: [[Interval; 6]; 6] = core::array::from_fn(|r| {
+            core::array::from_fn(|i| (0..6).fold(Interval::ZERO, |s, k| s + m[r][k] * c[k][i]))
+        });
+        core::array::from_fn(|r| {
+            (0..6).fold(Interval::ZERO, |s, k| {
+                let rk = (0..6).fold(Interval::ZERO, |s, i| s + mc[r][i] * x_part[i][k]);
+                s - rk * dx[k]
+            })
+        })
     }
 }
 
@@ -835,166 +902,241 @@ pub fn pose_error_bounds(
     settings: &PoseBoundSettings,
 ) -> PoseErrorBounds {
     let start = std::time::Instant::now();
-    let target = lower.map(|l| {
-        if l > 0.0 {
-            l * (1.0 + settings.rel_tol)
-        } else {
-            f64::INFINITY
-        }
-    });
-    let domain = problem.domain();
-    // A task: a box of poses, the paving it starts from, its key before and its round; `share`:
-    // the most boxes of moves it may examine.
-    let evaluate = |(x, parent, before, round): Task, share: usize| {
-        let budget = (settings.max_move_boxes << round).min(share);
-        let (b, n, paved) = bound_pose_box(
-            problem,
-            &x,
-            eps,
-            target,
-            budget,
-            settings,
-            parent.as_deref(),
-        );
-        (x, b, n, paved, before, round)
-    };
-    let mut heap: BinaryHeap<Ranked<Queued>> = BinaryHeap::new();
-    let (mut pose_boxes, mut move_boxes) = (0, 0);
-    // A paving's pieces are kept only for boxes still to be refined or split (an unproved box's
-    // too: its halves continue its closing).
-    let enqueue = |heap: &mut BinaryHeap<_>, (x, b, _, paved, before, round): Evaluated| match b {
-        BoxBound::Empty => {}
-        BoxBound::Bound(v) => {
-            let key = key(v, target);
-            let paved = paved.filter(|_| key > 1.0).map(Arc::new);
-            heap.push(Ranked {
-                key,
-                item: Queued {
-                    x,
-                    bound: b,
-                    paved,
-                    gain: 1.0 - key / before,
-                    round,
-                },
-            })
-        }
-        BoxBound::Unproved => heap.push(Ranked {
-            key: f64::INFINITY,
-            item: Queued {
-                x,
-                bound: b,
-                paved: paved.map(Arc::new),
-                gain: 0.0,
-                round,
-            },
-        }),
-    };
-    let first = evaluate((domain, None, f64::INFINITY, 0), settings.max_move_boxes);
-    pose_boxes += 1;
-    move_boxes += first.2;
-    let mut empty_share = 0.0;
-    if first.1 == BoxBound::Empty {
-        empty_share += share_of(&first.0, &domain);
-    }
-    enqueue(&mut heap, first);
+    let search = PoseSearch::new(problem, eps, lower, settings);
+    let mut queue = PoseQueue::default();
+    let whole = (search.domain, None, f64::INFINITY, 0);
+    queue.record(search.evaluate(whole, settings.max_move_boxes), &search);
     let batch = 2 * rayon::current_num_threads().max(1);
-    let mut unproved_at = None;
-    let mut unprovable = false;
     // The seconds also set a budget of boxes of moves, counted, so that a search the paving of
     // the moves keeps busy ends at the same place on every run of a machine.
     let move_budget = settings.max_seconds * MOVE_BOXES_PER_SECOND;
-    while pose_boxes < settings.max_pose_boxes
-        && (move_boxes as f64) < move_budget
+    while queue.pose_boxes < settings.max_pose_boxes
+        && (queue.move_boxes as f64) < move_budget
         && start.elapsed().as_secs_f64() < settings.max_seconds
     {
+        let tasks = queue.next_tasks(batch, &search);
+        // Once a box is named unproved no bound is claimed, so the boxes popped in this batch
+        // need not be evaluated.
+        if tasks.is_empty() || queue.unproved_at.is_some() {
+            break;
+        }
+        let share = move_share(move_budget, queue.move_boxes, tasks.len(), settings);
+        let results: Vec<Evaluated> = tasks
+            .into_par_iter()
+            .map(|t| search.evaluate(t, share))
+            .collect();
+        for r in results {
+            queue.record(r, &search);
+        }
+    }
+    queue.into_bounds(&search.domain, start)
+}
+
+/// What every evaluation of a box of poses in [`pose_error_bounds`] shares: the problem, the
+/// actuator error, the targets the bounds are refined towards, the settings and the workspace's
+/// box of poses.
+struct PoseSearch<'a> {
+    problem: &'a AccuracyProblem,
+    eps: f64,
+    /// `lower · (1 + rel_tol)` per error; `+∞` (nothing asked) where nothing is attained.
+    target: [f64; 2],
+    settings: &'a PoseBoundSettings,
+    domain: PoseBox,
+}
+
+impl<'a> PoseSearch<'a> {
+    /// The search of `problem` with actuator errors within `± eps`, towards `lower` (the errors
+    /// attained) within `settings.rel_tol`.
+    fn new(
+        problem: &'a AccuracyProblem,
+        eps: f64,
+        lower: [f64; 2],
+        settings: &'a PoseBoundSettings,
+    ) -> Self {
+        let target = lower.map(|l| {
+            if l > 0.0 {
+                l * (1.0 + settings.rel_tol)
+            } else {
+                f64::INFINITY
+            }
+        });
+        PoseSearch {
+            problem,
+            eps,
+            target,
+            settings,
+            domain: problem.domain(),
+        }
+    }
+
+    /// Evaluates a [`Task`] (a box of poses, the paving it starts from, its key before and its
+    /// round), examining at most `share` boxes of moves.
+    fn evaluate(&self, (x, parent, before, round): Task, share: usize) -> Evaluated {
+        let budget = (self.settings.max_move_boxes << round).min(share);
+        let (b, n, paved) = bound_pose_box(
+            self.problem,
+            &x,
+            self.eps,
+            self.target,
+            budget,
+            self.settings,
+            parent.as_deref(),
+        );
+        (x, b, n, paved, before, round)
+    }
+}
+
+/// The boxes of poses of [`pose_error_bounds`] still to be refined or split, largest key first,
+/// and what the search has counted and found so far.
+#[derive(Default)]
+struct PoseQueue {
+    heap: BinaryHeap<Ranked<Queued>>,
+    /// New boxes of poses evaluated (a refinement is not a new box).
+    pose_boxes: usize,
+    /// Boxes of moves examined.
+    move_boxes: usize,
+    /// The share of the workspace's volume proved to hold no pose.
+    empty_share: f64,
+    /// A box whose bounds could not be proved, once one is named.
+    unproved_at: Option<PoseBox>,
+    /// Whether that box is as fine as the search goes (no split would prove it).
+    unprovable: bool,
+}
+
+impl PoseQueue {
+    /// Counts an evaluated box and queues it. A paving's pieces are kept only for boxes still
+    /// to be refined or split (an unproved box's too: its halves continue its closing).
+    fn record(&mut self, evaluated: Evaluated, search: &PoseSearch<'_>) {
+        let (x, b, n, paved, before, round) = evaluated;
+        // A box refined is not a new box.
+        if round == 0 {
+            self.pose_boxes += 1;
+        }
+        self.move_boxes += n;
+        if b == BoxBound::Empty {
+            self.empty_share += share_of(&x, &search.domain);
+        }
+        match b {
+            BoxBound::Empty => {}
+            BoxBound::Bound(v) => {
+                let key = key(v, search.target);
+                let paved = paved.filter(|_| key > 1.0).map(Arc::new);
+                self.heap.push(Ranked {
+                    key,
+                    item: Queued {
+                        x,
+                        bound: b,
+                        paved,
+                        gain: 1.0 - key / before,
+                        round,
+                    },
+                })
+            }
+            BoxBound::Unproved => self.heap.push(Ranked {
+                key: f64::INFINITY,
+                item: Queued {
+                    x,
+                    bound: b,
+                    paved: paved.map(Arc::new),
+                    gain: 0.0,
+                    round,
+                },
+            }),
+        }
+    }
+
+    /// Up to `batch` tasks from the boxes with the largest keys above 1: a box whose paving is
+    /// still gaining is refined on its own (twice the boxes of moves), any other is split and
+    /// its halves start from its pieces. A box that cannot be split (or, unproved, is as fine as
+    /// the search goes) stays in the queue and ends the batch; an unproved one is named.
+    fn next_tasks(&mut self, batch: usize, search: &PoseSearch<'_>) -> Vec<Task> {
+        let (domain, finest_pose) = (&search.domain, search.settings.finest_pose);
         let mut tasks: Vec<Task> = Vec::new();
         while tasks.len() < batch {
-            let Some(top) = heap.pop() else { break };
+            let Some(top) = self.heap.pop() else { break };
             if top.key <= 1.0 {
-                heap.push(top);
+                self.heap.push(top);
                 break;
             }
             let q = &top.item;
-            // A paving still gaining continues on its own box (twice the boxes of moves);
-            // else the box of poses is split and its halves start from its pieces.
             if q.paved.is_some() && q.gain >= REFINE_GAIN && q.round < REFINE_ROUNDS {
                 tasks.push((q.x, q.paved.clone(), top.key, q.round + 1));
                 continue;
             }
-            let fine = (0..6).all(|c| q.x[c].wid() <= settings.finest_pose * domain[c].wid());
-            match split_widest(&q.x, &domain) {
+            let fine = (0..6).all(|c| q.x[c].wid() <= finest_pose * domain[c].wid());
+            match split_widest(&q.x, domain) {
                 Some((l, r)) if !(fine && q.bound == BoxBound::Unproved) => {
                     tasks.push((l, q.paved.clone(), top.key, 0));
                     tasks.push((r, q.paved.clone(), top.key, 0));
                 }
                 _ => {
                     if q.bound == BoxBound::Unproved {
-                        unproved_at = Some(q.x);
-                        unprovable = true;
+                        self.unproved_at = Some(q.x);
+                        self.unprovable = true;
                     }
-                    heap.push(top);
+                    self.heap.push(top);
                     break;
                 }
             }
         }
-        // Once a box is named unproved no bound is claimed, so the boxes popped in this batch
-        // need not be evaluated.
-        if tasks.is_empty() || unproved_at.is_some() {
-            break;
-        }
-        // A refinement keeps within an equal share of what is left of the counted budget (at
-        // least a first evaluation's), so that the search ends near `max_seconds`.
-        let left = (move_budget - move_boxes as f64).max(0.0) / tasks.len() as f64;
-        let share = if left.is_finite() {
-            (left as usize).max(settings.max_move_boxes)
-        } else {
-            usize::MAX
-        };
-        let results: Vec<Evaluated> = tasks.into_par_iter().map(|t| evaluate(t, share)).collect();
-        for r in results {
-            // A box refined is not a new box.
-            if r.5 == 0 {
-                pose_boxes += 1;
-            }
-            move_boxes += r.2;
-            if r.1 == BoxBound::Empty {
-                empty_share += share_of(&r.0, &domain);
-            }
-            enqueue(&mut heap, r);
-        }
+        tasks
     }
-    if unproved_at.is_none() {
-        unproved_at = heap
+
+    /// The bounds the search ends with: the largest left in the queue, claimed only when no box
+    /// is unproved, and the share of the workspace `domain` settled.
+    fn into_bounds(mut self, domain: &PoseBox, start: std::time::Instant) -> PoseErrorBounds {
+        if self.unproved_at.is_none() {
+            self.unproved_at = self
+                .heap
+                .iter()
+                .find(|q| q.item.bound == BoxBound::Unproved)
+                .map(|q| q.item.x);
+        }
+        let converged = self.unproved_at.is_none() && self.heap.peek().is_none_or(|q| q.key <= 1.0);
+        let mut worst = [0.0f64; 2];
+        for q in &self.heap {
+            if let BoxBound::Bound(v) = q.item.bound {
+                worst = [worst[0].max(v[0]), worst[1].max(v[1])];
+            }
+        }
+        let proved = self.unproved_at.is_none();
+        let bounded_share: f64 = self
+            .heap
             .iter()
-            .find(|q| q.item.bound == BoxBound::Unproved)
-            .map(|q| q.item.x);
-    }
-    let converged = unproved_at.is_none() && heap.peek().is_none_or(|q| q.key <= 1.0);
-    let mut worst = [0.0f64; 2];
-    for q in &heap {
-        if let BoxBound::Bound(v) = q.item.bound {
-            worst = [worst[0].max(v[0]), worst[1].max(v[1])];
+            .filter(|q| matches!(q.item.bound, BoxBound::Bound(_)))
+            .map(|q| share_of(&q.item.x, domain))
+            .sum();
+        PoseErrorBounds {
+            position: proved.then_some(worst[0]),
+            orientation_deg: proved.then_some(worst[1]),
+            unproved_at: self.unproved_at,
+            unprovable: self.unprovable,
+            settled_share: if proved {
+                1.0
+            } else {
+                (bounded_share + self.empty_share).min(1.0)
+            },
+            pose_boxes: self.pose_boxes,
+            move_boxes: self.move_boxes,
+            converged,
+            seconds: start.elapsed().as_secs_f64(),
         }
     }
-    let proved = unproved_at.is_none();
-    let bounded_share: f64 = heap
-        .iter()
-        .filter(|q| matches!(q.item.bound, BoxBound::Bound(_)))
-        .map(|q| share_of(&q.item.x, &domain))
-        .sum();
-    PoseErrorBounds {
-        position: proved.then_some(worst[0]),
-        orientation_deg: proved.then_some(worst[1]),
-        unproved_at,
-        unprovable,
-        settled_share: if proved {
-            1.0
-        } else {
-            (bounded_share + empty_share).min(1.0)
-        },
-        pose_boxes,
-        move_boxes,
-        converged,
-        seconds: start.elapsed().as_secs_f64(),
+}
+
+/// The boxes of moves each of `tasks` tasks may examine: an equal share of what is left of the
+/// counted `move_budget` after `move_boxes`, at least a first evaluation's, so that the search
+/// ends near `max_seconds`.
+fn move_share(
+    move_budget: f64,
+    move_boxes: usize,
+    tasks: usize,
+    settings: &PoseBoundSettings,
+) -> usize {
+    let left = (move_budget - move_boxes as f64).max(0.0) / tasks as f64;
+    if left.is_finite() {
+        (left as usize).max(settings.max_move_boxes)
+    } else {
+        usize::MAX
     }
 }

@@ -7,6 +7,7 @@ use calib_gough::accuracy::{
 use calib_gough::files::{leg_sets, read_robot, read_robot_file, read_uncertainty};
 use calib_gough::report::write_atomically;
 use calib_gough::workspace::{read_workspace, Workspace};
+use calib_gough::GoughError;
 use calib_pipeline::html;
 use std::path::PathBuf;
 
@@ -61,13 +62,11 @@ pub struct Args {
 
 /// `--pose-seconds` (of `accuracy` and `certify`), refused unless a finite number of seconds
 /// above 0.
-pub fn checked_pose_seconds(seconds: f64) -> Result<f64, String> {
+pub fn checked_pose_seconds(seconds: f64) -> Result<f64, GoughError> {
     if seconds > 0.0 && seconds.is_finite() {
         Ok(seconds)
     } else {
-        Err(format!(
-            "--pose-seconds: expected a number of seconds > 0, found {seconds}"
-        ))
+        Err(GoughError::PoseSeconds(seconds))
     }
 }
 

@@ -409,77 +409,104 @@ where
         lps: &mut SlotQueries<'_, NX, NMS>,
     ) -> Option<Predicted<NX, R>> {
         let widened = self.widened(u, errors);
-        let model = self.prediction.model();
         let m = slot(&widened, Interval::ZERO);
-        let mut found = Vec::new();
         let mut outer = [Interval::ENTIRE; R];
-        let mut narrow = |r: usize, v: Interval| {
-            if v.is_bounded() && !v.is_empty() {
-                let both = outer[r].intersection(v);
-                // Both hold every prediction: disjoint only by a fault, then the wider.
-                outer[r] = if both.is_empty() {
-                    outer[r].hull(v)
-                } else {
-                    both
-                };
-            }
-        };
-        // The main term `s·(θ - about)` over the set, both sides: `[-down, up]`.
-        let mut over_set = |slot: usize, s: &[Interval; NX], about: &[f64; NX]| {
-            let up = lps.max_linear(slot, s, about);
-            let down = lps.max_linear(slot + 1, &s.map(|v| -v), about);
-            (up.is_finite() && down.is_finite() && -down <= up).then(|| Interval::new(-down, up))
-        };
-        if let Some(forms) = model.linear_enclosures(&self.outer, &m) {
-            let mid = self.outer.map(|v| v.mid());
-            for (r, f) in forms.iter().enumerate() {
-                // A failed affine form (e.g. a reciprocal over a range holding 0): no bound.
-                let finite = |v: &f64| v.is_finite();
-                if !(finite(&f.c) && finite(&f.e) && f.gx.iter().chain(&f.gm).all(finite)) {
-                    continue;
-                }
-                // θ_j - mid_j = rad_j ε_j: the coefficient of (θ_j - mid_j) is g_j / rad_j.
-                let slopes: [Interval; NX] = core::array::from_fn(|j| {
-                    let rad = self.outer[j].rad();
-                    if f.gx[j] == 0.0 || rad == 0.0 {
-                        Interval::ZERO
-                    } else {
-                        Interval::point(f.gx[j]) / Interval::point(rad)
-                    }
-                });
-                let rest =
-                    f.gm.iter()
-                        .fold(Interval::point(f.e), |s, g| s + Interval::point(g.abs()));
-                let rest = Interval::new(-rest.sup(), rest.sup());
-                if let Some(main) = over_set(2 * r, &slopes, &mid) {
-                    narrow(r, Interval::point(f.c) + main + rest);
-                }
-                if let Some(main) = self.refined(&slopes, &mid, &mut found) {
-                    narrow(r, Interval::point(f.c) + main + rest);
-                }
-            }
-        }
-        let spread: [Interval; NX] =
-            core::array::from_fn(|j| self.hull[j] - Interval::point(self.nominal[j]));
-        if let Some(k) = self.prediction.curvature(&spread, &widened) {
-            let at = model.evaluate_rows_interval(&self.nominal.map(Interval::point), &m);
-            for r in 0..R {
-                if let Some(main) = over_set(2 * (R + r), &at[r].dx, &self.nominal) {
-                    narrow(r, at[r].value + main + k[r]);
-                }
-                if let Some(main) = self.refined(&at[r].dx, &self.nominal, &mut found) {
-                    narrow(r, at[r].value + main + k[r]);
-                }
-            }
-        }
+        let mut found = Vec::new();
+        self.narrow_by_affine_forms(&m, lps, &mut outer, &mut found);
+        self.narrow_by_curvature(&widened, &m, lps, &mut outer, &mut found);
         if !outer.iter().all(|v| v.is_bounded() && !v.is_empty()) {
             return None;
         }
-        // Inward: some certified geometry gives at most `lo`, another at least `hi`.
+        Some(Predicted {
+            outer,
+            attained: self.attained(u, &found),
+        })
+    }
+
+    /// The first enclosure of [`SetAccuracy::predict`]: per coordinate, the affine form of `g`
+    /// over the set's outer box and the inputs `m` (its measurement slot), its parameters' part
+    /// bounded over the set by linear programs and, where the prediction refines, by a refined
+    /// maximum (whose certified maximisers go to `found`); `outer` is narrowed to each.
+    fn narrow_by_affine_forms(
+        &self,
+        m: &[Interval; NP],
+        lps: &mut SlotQueries<'_, NX, NMS>,
+        outer: &mut [Interval; R],
+        found: &mut Vec<[f64; NX]>,
+    ) {
+        let Some(forms) = self.prediction.model().linear_enclosures(&self.outer, m) else {
+            return;
+        };
+        let mid = self.outer.map(|v| v.mid());
+        for (r, f) in forms.iter().enumerate() {
+            // A failed affine form (e.g. a reciprocal over a range holding 0): no bound.
+            let finite = |v: &f64| v.is_finite();
+            if !(finite(&f.c) && finite(&f.e) && f.gx.iter().chain(&f.gm).all(finite)) {
+                continue;
+            }
+            // θ_j - mid_j = rad_j ε_j: the coefficient of (θ_j - mid_j) is g_j / rad_j.
+            let slopes: [Interval; NX] = core::array::from_fn(|j| {
+                let rad = self.outer[j].rad();
+                if f.gx[j] == 0.0 || rad == 0.0 {
+                    Interval::ZERO
+                } else {
+                    Interval::point(f.gx[j]) / Interval::point(rad)
+                }
+            });
+            let rest =
+                f.gm.iter()
+                    .fold(Interval::point(f.e), |s, g| s + Interval::point(g.abs()));
+            let rest = Interval::new(-rest.sup(), rest.sup());
+            if let Some(main) = main_term_over_set(lps, 2 * r, &slopes, &mid) {
+                narrow(&mut outer[r], Interval::point(f.c) + main + rest);
+            }
+            if let Some(main) = self.refined(&slopes, &mid, found) {
+                narrow(&mut outer[r], Interval::point(f.c) + main + rest);
+            }
+        }
+    }
+
+    /// The second enclosure of [`SetAccuracy::predict`]: per coordinate, `g(u; θ̂)` plus the
+    /// gradient's part over the set (by linear programs and, where the prediction refines, a
+    /// refined maximum whose certified maximisers go to `found`) plus the prediction's
+    /// curvature enclosure over the inputs `widened` (`m`: their measurement slot); `outer` is
+    /// narrowed to each.
+    fn narrow_by_curvature(
+        &self,
+        widened: &[Interval; NU],
+        m: &[Interval; NP],
+        lps: &mut SlotQueries<'_, NX, NMS>,
+        outer: &mut [Interval; R],
+        found: &mut Vec<[f64; NX]>,
+    ) {
+        let spread: [Interval; NX] =
+            core::array::from_fn(|j| self.hull[j] - Interval::point(self.nominal[j]));
+        let Some(k) = self.prediction.curvature(&spread, widened) else {
+            return;
+        };
+        let at = self
+            .prediction
+            .model()
+            .evaluate_rows_interval(&self.nominal.map(Interval::point), m);
+        for r in 0..R {
+            if let Some(main) = main_term_over_set(lps, 2 * (R + r), &at[r].dx, &self.nominal) {
+                narrow(&mut outer[r], at[r].value + main + k[r]);
+            }
+            if let Some(main) = self.refined(&at[r].dx, &self.nominal, found) {
+                narrow(&mut outer[r], at[r].value + main + k[r]);
+            }
+        }
+    }
+
+    /// Inward, per coordinate: the range certified geometries (the catalogue's and those in
+    /// `found`) reach at the inputs `u`: some gives at most its lower end, another at least its
+    /// upper end. `None` where they do not reach a range.
+    fn attained(&self, u: &[Interval; NU], found: &[[f64; NX]]) -> [Option<Attained<NX>>; R] {
+        let model = self.prediction.model();
         let at = slot(u, Interval::ZERO);
         let mut lowest: [Option<(f64, [f64; NX])>; R] = [None; R];
         let mut highest: [Option<(f64, [f64; NX])>; R] = [None; R];
-        for theta in locked(&self.catalogue).iter().chain(&found) {
+        for theta in locked(&self.catalogue).iter().chain(found) {
             let g = model.residuals_interval(&theta.map(Interval::point), &at);
             for r in 0..R {
                 if !g[r].is_bounded() || g[r].is_empty() {
@@ -493,16 +520,13 @@ where
                 }
             }
         }
-        Some(Predicted {
-            outer,
-            attained: core::array::from_fn(|r| match (lowest[r], highest[r]) {
-                (Some((lo, a)), Some((hi, b))) if lo <= hi => Some(Attained {
-                    range: Interval::new(lo, hi),
-                    lowest: a,
-                    highest: b,
-                }),
-                _ => None,
+        core::array::from_fn(|r| match (lowest[r], highest[r]) {
+            (Some((lo, a)), Some((hi, b))) if lo <= hi => Some(Attained {
+                range: Interval::new(lo, hi),
+                lowest: a,
+                highest: b,
             }),
+            _ => None,
         })
     }
 
@@ -864,6 +888,28 @@ impl<const NX: usize> Slopes<NX> {
 /// At most this many inputs' linear terms go to the vertices of their cube (`2^n` linear
 /// programs per component and sign).
 const VERTEX_INPUTS: usize = 3;
+
+/// Narrows `outer` to the enclosure `v` where that is bounded: both hold every prediction, so
+/// they are disjoint only by a fault, and then the wider (their hull) is kept.
+fn narrow(outer: &mut Interval, v: Interval) {
+    if v.is_bounded() && !v.is_empty() {
+        let both = outer.intersection(v);
+        *outer = if both.is_empty() { outer.hull(v) } else { both };
+    }
+}
+
+/// The main term `s·(θ - about)` over the set, both sides, `[-down, up]`, by the linear
+/// programs of `slot` (up) and `slot + 1` (down). `None` when a side failed or they cross.
+fn main_term_over_set<const NX: usize, const NMS: usize>(
+    lps: &mut SlotQueries<'_, NX, NMS>,
+    slot: usize,
+    s: &[Interval; NX],
+    about: &[f64; NX],
+) -> Option<Interval> {
+    let up = lps.max_linear(slot, s, about);
+    let down = lps.max_linear(slot + 1, &s.map(|v| -v), about);
+    (up.is_finite() && down.is_finite() && -down <= up).then(|| Interval::new(-down, up))
+}
 
 /// Each component's terms bounded apart, by two programs each over the set
 /// ([`Prediction::TERMS_BY_PROGRAMS`]): where that is below the parallelotope's bound, it
