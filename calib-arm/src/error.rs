@@ -92,6 +92,13 @@ pub enum ArmError {
         /// The robot file.
         PathBuf,
     ),
+    /// Measured orientations checked against a robot file without the tool frame's rotation
+    /// (`arm predict --orientation-columns` on a positions-only calibration).
+    #[error("{}: [tool] has no rpy_deg: checking measured orientations needs the tool frame's rotation (a 6-DoF calibration: `arm certify --orientation-columns … --write-calibrated`)", .0.display())]
+    PredictionLacksToolRotation(
+        /// The robot file.
+        PathBuf,
+    ),
     /// 6-DoF measurements with an uncertainty file without the orientations' bound.
     #[error("{}: no orient_deg: 6-DoF measurements need the orientation's error bound (degrees, the half-width of each measured Euler angle)", .0.display())]
     UncertaintyLacksOrientBound(

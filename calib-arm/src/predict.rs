@@ -274,16 +274,11 @@ impl OrientationResiduals {
         robot: &std::path::Path,
         readings: &[crate::simulate::Reading],
         euler_xyz_deg: &[[f64; 3]],
-    ) -> Result<Self, String> {
+    ) -> Result<Self, crate::ArmError> {
         use crate::pose::orientation::{orientation_errors_deg, tool_rotation};
-        let tool = arm.tool_rotation.ok_or_else(|| {
-            format!(
-                "{}: [tool] has no rpy_deg: checking measured orientations needs the tool \
-                 frame's rotation (a 6-DoF calibration: `arm certify --orientation-columns … \
-                 --write-calibrated`)",
-                robot.display()
-            )
-        })?;
+        let tool = arm
+            .tool_rotation
+            .ok_or_else(|| crate::ArmError::PredictionLacksToolRotation(robot.to_path_buf()))?;
         let per_row_deg =
             orientation_errors_deg(arm, &tool_rotation(tool.rpy_deg), readings, euler_xyz_deg);
         let n = per_row_deg.len().max(1) as f64;
