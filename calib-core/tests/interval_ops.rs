@@ -370,3 +370,73 @@ fn hull_and_intersection_are_set_operations() {
         }
     }
 }
+
+/// The quotient's ends by the definition: the least and greatest of the four corner quotients,
+/// each rounded outward (a zero numerator gives an exact zero), NaN corners dropped.
+fn division_by_corners(x: Interval, y: Interval) -> (f64, f64) {
+    let down = |a: f64, b: f64| if a == 0.0 { 0.0 } else { (a / b).next_down() };
+    let up = |a: f64, b: f64| if a == 0.0 { 0.0 } else { (a / b).next_up() };
+    let corners = [
+        (x.inf(), y.inf()),
+        (x.inf(), y.sup()),
+        (x.sup(), y.inf()),
+        (x.sup(), y.sup()),
+    ];
+    (
+        corners
+            .iter()
+            .map(|&(a, b)| down(a, b))
+            .fold(f64::NAN, f64::min),
+        corners
+            .iter()
+            .map(|&(a, b)| up(a, b))
+            .fold(f64::NAN, f64::max),
+    )
+}
+
+#[test]
+fn division_by_a_divisor_of_one_sign_gives_the_corner_bounds() {
+    let mut rng = StdRng::seed_from_u64(41);
+    let infinite = |rng: &mut StdRng, v: f64| {
+        if rng.random_range(0..8) == 0 {
+            v.signum() * f64::INFINITY
+        } else {
+            v
+        }
+    };
+    for _ in 0..50_000 {
+        let x = interval(&mut rng);
+        let x = Interval::new(
+            infinite(&mut rng, x.inf()).min(x.sup()),
+            infinite(&mut rng, x.sup()).max(x.inf()),
+        );
+        let y = interval(&mut rng);
+        if y.inf() <= 0.0 && y.sup() >= 0.0 {
+            continue;
+        }
+        let y = if rng.random_range(0..8) == 0 && y.inf() > 0.0 {
+            Interval::new(y.inf(), f64::INFINITY)
+        } else if rng.random_range(0..8) == 0 && y.sup() < 0.0 {
+            Interval::new(f64::NEG_INFINITY, y.sup())
+        } else {
+            y
+        };
+        let q = x / y;
+        let (lo, hi) = division_by_corners(x, y);
+        // The same ends, but where a corner quotient is zero only by underflow or by `x / ∞`:
+        // the corners round that zero outward by one ulp, where the numerator's sign already
+        // proves the quotient's (e.g. `[0, 5e-324] / 535` has lower end 0, not -5e-324).
+        let near_zero = |v: f64| v.abs() <= 5e-324;
+        let same = |a: f64, b: f64| a == b || (near_zero(a) && near_zero(b));
+        assert!(
+            lo <= q.inf() && q.sup() <= hi && same(q.inf(), lo) && same(q.sup(), hi),
+            "{x:?} / {y:?} = {q:?}, corners give [{lo}, {hi}]"
+        );
+        // Sound: ends and random members divide into the quotient.
+        for u in members(&mut rng, x).into_iter().filter(|v| v.is_finite()) {
+            for v in members(&mut rng, y).into_iter().filter(|v| v.is_finite()) {
+                assert!(encloses(q, &(rat(u) / rat(v))), "{u} / {v} outside {q:?}");
+            }
+        }
+    }
+}

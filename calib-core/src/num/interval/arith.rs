@@ -89,6 +89,26 @@ impl Div for Interval {
         }
         let (a, b, c, d) = (self.lo, self.hi, rhs.lo, rhs.hi);
         if c > 0.0 || d < 0.0 {
+            // The quotient is monotone in each operand on a divisor of one sign, so each end is
+            // one corner: the numerator's end over the divisor's end that the signs pick. Two
+            // divisions instead of four corners and the same bounds, except where a corner is
+            // zero only by underflow or `x / ∞`: the numerator's sign keeps that end at 0, where
+            // the four corners rounded it out to the next subnormal. A NaN corner (∞/∞, only for
+            // an operand that is a single infinite point) falls back to all four.
+            let (lo, hi) = if c > 0.0 {
+                (
+                    div_down(a, if a >= 0.0 { d } else { c }),
+                    div_up(b, if b >= 0.0 { c } else { d }),
+                )
+            } else {
+                (
+                    div_down(b, if b >= 0.0 { d } else { c }),
+                    div_up(a, if a >= 0.0 { c } else { d }),
+                )
+            };
+            if !(lo.is_nan() || hi.is_nan()) {
+                return Interval::from_bounds_unchecked(lo, hi);
+            }
             let lo = div_down(a, c)
                 .min(div_down(a, d))
                 .min(div_down(b, c))
