@@ -8,7 +8,7 @@ use calib_pipeline::{DataError, OptionError};
 use crate::certification::MAX_JOINTS;
 use crate::files::JOINTS;
 
-/// An error of calib-arm's library functions (outside `predict`): a malformed input file, an
+/// An error of calib-arm's library functions: a malformed input file, an
 /// option value they do not accept, an arm or data set the model does not take, a joint space or
 /// joint error the accuracy problem does not take, an empty certified set, inputs missing for
 /// 6-DoF measurements, a certification with no calibrated geometry to hand out, a registration

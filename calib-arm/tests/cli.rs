@@ -951,18 +951,31 @@ fn accuracy_page_states(page: &str, a: &Value, joints: &str) {
             a[key]["upper"].as_f64().expect("upper"),
             a[key]["lower"].as_f64().expect("lower"),
         );
+        // Printed to 1e-5, the upper bound rounded up and the lower one down: still bounds.
         assert!(
-            (printed(1) - upper).abs() <= 5e-5,
+            upper <= printed(1) && printed(1) <= upper + 1e-5,
             "{name}: {cells:?} against {upper}"
         );
         assert!(
-            (printed(2) - lower).abs() <= 5e-5,
+            lower - 1e-5 <= printed(2) && printed(2) <= lower,
             "{name}: {cells:?} against {lower}"
         );
     }
     let sha = calib_pipeline::html::sha256_hex(&std::fs::read(joints).expect("joints"));
     assert!(page.contains(&format!("SHA-256 {sha}")));
     assert!(page.contains("Calibration reduced the worst tool-point error at least"));
+    // The proved factor is printed rounded down.
+    let factor = a["improvement"].as_f64().expect("improvement");
+    let printed = page
+        .split("worst tool-point error at least ")
+        .nth(1)
+        .and_then(|t| t.split("-fold").next())
+        .and_then(|t| t.parse::<f64>().ok())
+        .expect("a printed factor");
+    assert!(
+        printed <= factor && factor - printed < 0.01 + 1e-12,
+        "{printed} for {factor}"
+    );
     assert_eq!(
         doc.descendants().filter(|n| n.has_tag_name("svg")).count(),
         1

@@ -128,13 +128,20 @@ pub const DECIMALS: usize = 5;
 /// `<= v` (or `>= v`) exactly, checked on the parsed text.
 #[doc(hidden)]
 pub fn rounded(v: f64, down: bool) -> String {
+    rounded_to(v, DECIMALS, down)
+}
+
+/// `v` printed with `decimals` decimals, rounded down (`down`) or up: the printed number is
+/// `<= v` (or `>= v`) exactly, checked on the parsed text. What a proved factor ("at least
+/// 1.12-fold") or a proved bound prints.
+pub fn rounded_to(v: f64, decimals: usize, down: bool) -> String {
     if !v.is_finite() {
         return format!("{v}");
     }
-    let step = 10f64.powi(-(DECIMALS as i32));
+    let step = 10f64.powi(-(decimals as i32));
     let mut x = v;
     for _ in 0..8 {
-        let s = format!("{x:.DECIMALS$}");
+        let s = format!("{x:.decimals$}");
         let p: f64 = s.parse().unwrap_or(v);
         let ok = if down { p <= v } else { p >= v };
         if ok {
@@ -309,7 +316,11 @@ pub fn brackets_figure(bars: &[BracketBar], unit: &str, caption: &str) -> Figure
         .filter_map(|b| proved(b).or(Some(b.lower)))
         .filter(|v| v.is_finite())
         .fold(0.0_f64, f64::max);
-    let scale_max = if top > 0.0 { nice_ceiling(top) } else { 1.0 };
+    let scale_max = if top >= f64::MIN_POSITIVE {
+        nice_ceiling(top)
+    } else {
+        1.0
+    };
     let at = |v: f64| left + width * (v / scale_max).clamp(0.0, 1.0);
     let height = row * bars.len() as f64 + 40.0;
     let mut s = format!(
@@ -369,7 +380,7 @@ pub fn brackets_figure(bars: &[BracketBar], unit: &str, caption: &str) -> Figure
              <text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>",
             axis + 4.0,
             axis + 16.0,
-            escape(&format!("{}", (v * 1e6).round() / 1e6))
+            escape(&tick_label(v))
         );
     }
     let _ = writeln!(
@@ -386,14 +397,27 @@ pub fn brackets_figure(bars: &[BracketBar], unit: &str, caption: &str) -> Figure
     }
 }
 
-/// The smallest of 1, 2, 2.5 or 5 times a power of ten at least `v` (> 0): an axis's end.
+/// The smallest of 1, 2, 2.5 or 5 times a power of ten at least `v` (> 0): an axis's end; `v`
+/// itself where that is not a finite number at least `v` (subnormal or huge values).
 fn nice_ceiling(v: f64) -> f64 {
     let p = 10f64.powf(v.log10().floor());
-    [1.0, 2.0, 2.5, 5.0, 10.0]
+    let nice = [1.0, 2.0, 2.5, 5.0, 10.0]
         .iter()
         .map(|m| m * p)
         .find(|&c| c >= v)
-        .unwrap_or(10.0 * p)
+        .unwrap_or(10.0 * p);
+    if nice.is_finite() && nice >= v && nice > 0.0 {
+        nice
+    } else {
+        v
+    }
+}
+
+/// An axis tick's label: `v` to twelve significant digits, in plain decimals.
+fn tick_label(v: f64) -> String {
+    format!("{v:.11e}")
+        .parse::<f64>()
+        .map_or(format!("{v}"), |t| format!("{t}"))
 }
 
 /// What a run was made from, for the "Inputs and settings" section.

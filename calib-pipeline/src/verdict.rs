@@ -306,15 +306,18 @@ pub fn auto_outliers(q: usize, status: Status) -> String {
 /// one's upper bound) of `what` (e.g. "the worst tool-point error") in words: a reduction only
 /// when the factor exceeds 1.
 pub fn improvement(what: &str, factor: f64) -> String {
+    // Printed rounded down, below the quotient's rounding too: "at least" stays true.
+    let at_least = crate::html::rounded_to(factor.next_down(), 2, true);
     if factor > 1.0 {
         format!(
-            "calibration reduced {what} at least {factor:.2}-fold (proved: before's lower bound \
+            "calibration reduced {what} at least {at_least}-fold (proved: before's lower bound \
              over after's upper bound)"
         )
     } else {
         format!(
-            "no improvement of {what} is proved: before's lower bound is {factor:.2} times \
-             after's upper bound (the brackets overlap; tighten them, or calibration did not help)"
+            "no improvement of {what} is proved: before's lower bound is {:.2} times \
+             after's upper bound (the brackets overlap; tighten them, or calibration did not help)",
+            factor
         )
     }
 }

@@ -2,7 +2,7 @@
 //! words, two tables and a figure, over the joint space the user gave.
 
 use super::{ToolAccuracyReport, ToolBracket};
-use calib_pipeline::html::{brackets_figure, BracketBar, Section, Table};
+use calib_pipeline::html::{brackets_figure, rounded, BracketBar, Section, Table};
 
 impl ToolAccuracyReport {
     /// The certificate's section: the brackets of the worst tool-point error after calibration
@@ -83,8 +83,8 @@ impl ToolAccuracyReport {
     fn bracket_table(&self) -> (String, Table) {
         let header = [
             "robot",
-            "upper (proved), mm",
-            "lower (attained), mm",
+            "upper (proved, rounded up), mm",
+            "lower (attained, rounded down), mm",
             "upper/lower",
             "boxes",
             "seconds",
@@ -96,8 +96,8 @@ impl ToolAccuracyReport {
             .map(|(name, b)| {
                 vec![
                     name.to_string(),
-                    finite_or(b.upper, "not proved", |v| format!("{v:.4}")),
-                    format!("{:.4}", b.lower),
+                    finite_or(b.upper, "not proved", |v| rounded(v, false)),
+                    rounded(b.lower, true),
                     finite_or(b.ratio(), "—", |v| format!("{v:.3}")),
                     b.boxes.to_string(),
                     format!("{:.2}", b.seconds),
@@ -144,7 +144,7 @@ impl ToolAccuracyReport {
 fn ranges(r: &[[f64; 2]]) -> String {
     r.iter()
         .enumerate()
-        .map(|(k, [lo, hi])| format!("q{} [{lo:.1}, {hi:.1}]", k + 1))
+        .map(|(k, [lo, hi])| format!("q{} [{lo}, {hi}]", k + 1))
         .collect::<Vec<_>>()
         .join(", ")
 }

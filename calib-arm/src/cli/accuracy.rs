@@ -167,10 +167,10 @@ fn print_report(r: &ToolAccuracyReport, a: &Args) {
     );
     let row = |name: &str, b: &ToolBracket| {
         println!(
-            "  {:<8} {:>14.4} {:>16.4} {:>7.3} {:>9} {:>8.2}{}",
+            "  {:<8} {:>14} {:>16} {:>7.3} {:>9} {:>8.2}{}",
             name,
-            b.upper,
-            b.lower,
+            html::rounded_to(b.upper, 4, false),
+            html::rounded_to(b.lower, 4, true),
             b.ratio(),
             b.boxes,
             b.seconds,

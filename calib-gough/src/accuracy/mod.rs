@@ -382,8 +382,10 @@ pub fn improvement_words([position, orientation]: [Option<f64>; 2]) -> Option<St
     let parts: Vec<String> = [(position, "position"), (orientation, "orientation")]
         .into_iter()
         .filter_map(|(f, name)| {
-            f.filter(|f| *f > 1.0)
-                .map(|f| format!("worst {name} error at least {f:.1}-fold"))
+            f.filter(|f| *f > 1.0).map(|f| {
+                let at_least = calib_pipeline::html::rounded_to(f.next_down(), 1, true);
+                format!("worst {name} error at least {at_least}-fold")
+            })
         })
         .collect();
     (!parts.is_empty()).then(|| {
@@ -646,14 +648,17 @@ impl AccuracyReport {
             .map(|(i, b)| {
                 let mut row = vec![
                     (i + 1).to_string(),
-                    format!("{:.5}", b.lower),
-                    format!("{:.5}", b.upper),
+                    calib_pipeline::html::rounded(b.lower, true),
+                    calib_pipeline::html::rounded(b.upper, false),
                     format!("{:.3}", b.ratio()),
                 ];
                 if let Some(before) = &self.before {
                     let p = &before.leg_length[i];
-                    row.push(format!("{:.5}", p.upper));
-                    row.push(format!("{:.1}×", improvement(p, b)));
+                    row.push(calib_pipeline::html::rounded(p.upper, false));
+                    row.push(format!(
+                        "{}×",
+                        calib_pipeline::html::rounded_to(improvement(p, b).next_down(), 1, true)
+                    ));
                 }
                 row
             })

@@ -218,16 +218,20 @@ pub fn print_report(r: &AccuracyReport, robot: &str, workspace: &str) {
     println!("{header}");
     for (i, b) in r.after.leg_length.iter().enumerate() {
         let mut row = format!(
-            "{:<5}{:>10.5}{:>10.5}{:>8.3}{:>15}",
+            "{:<5}{:>10}{:>10}{:>8.3}{:>15}",
             i + 1,
-            b.lower,
-            b.upper,
+            html::rounded(b.lower, true),
+            html::rounded(b.upper, false),
             b.ratio(),
             over_words(r.over_set.get(i).copied().unwrap_or(false))
         );
         if let Some(before) = &r.before {
             let p = &before.leg_length[i];
-            row += &format!("{:>16.5}{:>13.1}×", p.upper, improvement(p, b));
+            row += &format!(
+                "{:>16}{:>13}×",
+                html::rounded(p.upper, false),
+                html::rounded_to(improvement(p, b).next_down(), 1, true)
+            );
         }
         if !b.converged {
             row += "  (budget spent; the bracket holds)";

@@ -7,8 +7,15 @@ use calib_pipeline::Outcome;
 
 #[test]
 fn factors_below_one_are_not_improvements() {
+    // "At least" is printed rounded down, below the quotient's own rounding: 19.8193 / 17.5423
+    // is 1.1298 (not "1.13"), and the double nearest 23.9 lies below 23.9.
+    assert!(improvement("the error", 19.8193 / 17.5423)
+        .starts_with("calibration reduced the error at least 1.12-fold"));
     assert!(
-        improvement("the error", 23.9).starts_with("calibration reduced the error at least 23.90")
+        improvement("the error", 23.9).starts_with("calibration reduced the error at least 23.89")
+    );
+    assert!(
+        improvement("the error", 24.0).starts_with("calibration reduced the error at least 23.99")
     );
     let none = improvement("the error", 0.99);
     assert!(

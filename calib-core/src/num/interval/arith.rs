@@ -91,10 +91,11 @@ impl Div for Interval {
         if c > 0.0 || d < 0.0 {
             // The quotient is monotone in each operand on a divisor of one sign, so each end is
             // one corner: the numerator's end over the divisor's end that the signs pick. Two
-            // divisions instead of four corners and the same bounds, except where a corner is
-            // zero only by underflow or `x / ∞`: the numerator's sign keeps that end at 0, where
-            // the four corners rounded it out to the next subnormal. A NaN corner (∞/∞, only for
-            // an operand that is a single infinite point) falls back to all four.
+            // divisions instead of four corners and the same bounds, except where the numerator's
+            // chosen end is ±0 and another corner was zero only by underflow or `x / ∞`: that end
+            // is now the exact 0, where the four corners rounded it out to the next subnormal. A
+            // NaN corner (∞/∞) cannot arise from intervals with finite or half-line ends; the four
+            // corners remain the fallback should one.
             let (lo, hi) = if c > 0.0 {
                 (
                     div_down(a, if a >= 0.0 { d } else { c }),
