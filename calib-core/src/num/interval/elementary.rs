@@ -118,13 +118,17 @@ impl Interval {
         if !self.is_bounded() || self.mag() > LARGE_ARGUMENT {
             return unit;
         }
-        let (fa, fb) = (f(self.lo), f(self.hi));
+        // A point argument (a measured value at a box's corner, a certified point) needs one
+        // evaluation, and both extremum tests share `x / pi`: the same bounds for less work.
+        let fa = f(self.lo);
+        let fb = if self.hi == self.lo { fa } else { f(self.hi) };
         let mut lo = down2(fa.min(fb)).max(-1.0);
         let mut hi = up2(fa.max(fb)).min(1.0);
-        if may_contain_point(self, max_at, 2.0) {
+        let turns = self / Interval::PI;
+        if may_contain_turn(turns, max_at, 2.0) {
             hi = 1.0;
         }
-        if may_contain_point(self, min_at, 2.0) {
+        if may_contain_turn(turns, min_at, 2.0) {
             lo = -1.0;
         }
         Interval::from_bounds_unchecked(lo, hi)
@@ -134,7 +138,12 @@ impl Interval {
 /// Whether `x` may contain a point `(offset + k * period) * pi` for an integer `k` (conservative:
 /// `true` whenever it cannot be excluded).
 fn may_contain_point(x: Interval, offset: f64, period: f64) -> bool {
+    may_contain_turn(x / Interval::PI, offset, period)
+}
+
+/// [`may_contain_point`] from `turns`, an enclosure of `x / pi`.
+fn may_contain_turn(turns: Interval, offset: f64, period: f64) -> bool {
     // k in (x / pi - offset) / period, enclosed with outward rounding.
-    let k = (x / Interval::PI - Interval::point(offset)) / Interval::point(period);
+    let k = (turns - Interval::point(offset)) / Interval::point(period);
     k.sup().floor() >= k.inf().ceil()
 }
