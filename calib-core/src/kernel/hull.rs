@@ -218,6 +218,7 @@ pub fn hull_with<M, const NX: usize, const NM: usize, const NR: usize>(
 where
     M: VectorModel<NX, NM, NR> + Sync,
 {
+    let start = Instant::now();
     let mut out = hull_core(model, x0, measurements, settings, engine);
     if out.status == Status::Empty && settings.max_outliers == 0 && settings.conflict_sets {
         // The conflict set, with the prover that gave the verdict: the contraction alone when it
@@ -236,17 +237,52 @@ where
         } else if x1_empty {
             first.conflict
         } else {
-            let mut quick = settings
-                .clone()
-                .with_hull_budget(settings.hull_max_boxes.min(2000), None);
-            quick.inner_bounds = false;
-            Some(conflict_set(measurements.len(), &[], |kept| {
-                let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
-                hull_core(model, x0, &subset, &quick, engine).status == Status::Empty
-            }))
+            conflict_within_budget(model, x0, measurements, settings, engine, start)
         };
     }
     out
+}
+
+/// The conflict set of measurements the hull proved inconsistent, by the deletion filter with a
+/// hull per subset (a bounded budget each), within what is left of the run's time budget
+/// ([`Settings::hull_max_seconds`], counted from `start`): `None` when the search could not finish
+/// in it (a set it stopped in would not be minimal: mostly noise to the user).
+fn conflict_within_budget<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    x0: &[Interval; NX],
+    measurements: &[[Interval; NM]],
+    settings: &Settings,
+    engine: &(dyn Fn() -> Box<dyn LpBackend> + Sync),
+    start: Instant,
+) -> Option<Vec<usize>>
+where
+    M: VectorModel<NX, NM, NR> + Sync,
+{
+    let left = || {
+        settings
+            .hull_max_seconds
+            .map(|s| s - start.elapsed().as_secs_f64())
+    };
+    let mut stopped = false;
+    let set = conflict_set(measurements.len(), &[], |kept| {
+        let seconds = left();
+        if stopped || seconds.is_some_and(|s| s <= 0.0) {
+            stopped = true;
+            return false;
+        }
+        let mut quick = settings
+            .clone()
+            .with_hull_budget(settings.hull_max_boxes.min(2000), seconds);
+        quick.inner_bounds = false;
+        let subset: Vec<[Interval; NM]> = kept.iter().map(|&k| measurements[k]).collect();
+        let hull = hull_core(model, x0, &subset, &quick, engine);
+        if hull.status != Status::Empty && left().is_some_and(|s| s <= 0.0) {
+            // Undecided because the time ran out, not shown consistent: the search stops.
+            stopped = true;
+        }
+        hull.status == Status::Empty
+    });
+    (!stopped).then_some(set)
 }
 
 /// [`hull_with`] without the conflict search, in its steps: the measurement subsets (one without
