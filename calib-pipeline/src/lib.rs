@@ -34,7 +34,7 @@ pub use outlier_budget::{smallest_consistent, OutlierBudget};
 #[doc(hidden)] // for the package's tests (tests/unit)
 pub use output::is_closed_output;
 pub use output::{
-    check_hull_options, exit_quietly_when_output_closes, main_with, write_atomically,
-    CLOSED_OUTPUT_STATUS,
+    check_hull_options, check_outputs, exit_quietly_when_output_closes, main_with,
+    write_atomically, CLOSED_OUTPUT_STATUS,
 };
 pub use table::{parse_named_columns, parse_number_table, Dialect, NumberTable};

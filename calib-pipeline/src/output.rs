@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use crate::OptionError;
+use crate::{DataError, OptionError};
 
 /// Writes `text` to `path` atomically: to a temporary file beside it, then renamed (a reader sees
 /// the old file or the whole new one, never a part).
@@ -21,6 +21,34 @@ pub fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
     std::fs::rename(&tmp, path).inspect_err(|_| {
         let _ = std::fs::remove_file(&tmp);
     })
+}
+
+/// Checks, before any work, that every output file asked for can be written where it is asked
+/// for: its directory exists and it is not itself a directory. A run of minutes should not end in
+/// "cannot write". Each output is `(what it is, its path if asked for)`; the error names both
+/// (`c.html: cannot write the certificate: the directory out does not exist`).
+pub fn check_outputs(outputs: &[(&str, Option<&Path>)]) -> Result<(), DataError> {
+    for (what, path) in outputs {
+        let Some(path) = path else { continue };
+        let dir = path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let why = if !dir.is_dir() {
+            format!("the directory {} does not exist", dir.display())
+        } else if path.is_dir() {
+            "it is a directory".to_string()
+        } else {
+            continue;
+        };
+        return Err(DataError::new(
+            path,
+            None,
+            None,
+            format!("cannot write {what}: {why}"),
+        ));
+    }
+    Ok(())
 }
 
 /// The exit status after standard output was closed under the program (128 + SIGPIPE: what a

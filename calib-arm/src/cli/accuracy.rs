@@ -53,6 +53,10 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    calib_pipeline::check_outputs(&[
+        ("the JSON report", a.json.as_deref()),
+        ("the certificate", a.report.as_deref()),
+    ])?;
     if !(a.tolerance.is_finite() && a.tolerance > 0.0) {
         return Err(format!("--tolerance {}: expected a number > 0", a.tolerance).into());
     }

@@ -138,6 +138,11 @@ fn parse_choice(s: &str) -> Result<PointChoice, String> {
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    calib_pipeline::check_outputs(&[
+        ("the JSON report", a.json.as_deref()),
+        ("the certificate", a.report.as_deref()),
+        ("the calibrated robot file", a.write_calibrated.as_deref()),
+    ])?;
     let mut input = Files::read(&a)?;
     // The task is read before any work: a bad file is named at once, nothing written.
     let task = a

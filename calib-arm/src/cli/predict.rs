@@ -39,6 +39,10 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    calib_pipeline::check_outputs(&[
+        ("the predictions (CSV)", a.out.as_deref()),
+        ("the JSON report", a.json.as_deref()),
+    ])?;
     if a.measurements.is_none() {
         a.columns.positions_only("predict --joints")?;
     }

@@ -71,6 +71,10 @@ pub fn checked_pose_seconds(seconds: f64) -> Result<f64, GoughError> {
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    calib_pipeline::check_outputs(&[
+        ("the JSON report", a.json.as_deref()),
+        ("the certificate", a.report.as_deref()),
+    ])?;
     let file = read_robot_file(&a.robot)?;
     let sets = leg_sets(&a.robot, &file)?;
     let workspace = read_workspace(&a.workspace)?;

@@ -137,6 +137,11 @@ fn error_scale(
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    calib_pipeline::check_outputs(&[
+        ("the JSON report", a.json.as_deref()),
+        ("the certificate", a.report.as_deref()),
+        ("the calibrated robot file", a.write_calibrated.as_deref()),
+    ])?;
     let input = Files::read(&a)?;
     let (robot, data) = (&input.robot, &input.data);
     let options = a.options();

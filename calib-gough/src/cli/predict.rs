@@ -34,6 +34,10 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
+    calib_pipeline::check_outputs(&[
+        ("the predictions (CSV)", a.out.as_deref()),
+        ("the JSON report", a.json.as_deref()),
+    ])?;
     let file = read_robot_file(&a.robot)?;
     let sets = leg_sets(&a.robot, &file)?;
     let u = read_uncertainty(&a.uncertainty)?;

@@ -45,3 +45,35 @@ fn writes_whole_files_and_leaves_no_temporary_behind() {
     assert!(write_atomically(&dir.join("missing/report.json"), "x").is_err());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn outputs_are_checked_before_any_work_and_the_error_names_the_file() {
+    let dir = std::env::temp_dir().join(format!("calib-outputs-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let fine = dir.join("report.json");
+    let missing = dir.join("no-such-dir").join("c.html");
+    assert!(
+        calib_pipeline::check_outputs(&[("the JSON report", Some(&fine)), ("x", None)]).is_ok()
+    );
+    let e = calib_pipeline::check_outputs(&[
+        ("the JSON report", Some(&fine)),
+        ("the certificate", Some(&missing)),
+    ])
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("c.html: cannot write the certificate: the directory")
+            && e.contains("no-such-dir"),
+        "{e}"
+    );
+    let e = calib_pipeline::check_outputs(&[("the JSON report", Some(&dir))])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("cannot write the JSON report: it is a directory"),
+        "{e}"
+    );
+    // Nothing was created.
+    assert!(!fine.exists() && !missing.parent().unwrap().exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
