@@ -723,6 +723,15 @@ fn write_calibrated_and_workspace_give_a_controller_file_and_its_accuracy() {
     let rects = svg.matches("<rect").count();
     assert!((12..27).contains(&rects), "{rects} rectangles in the map");
     assert!(page.contains("SHA-256") && page.contains("improvement"));
+    // After the map, the legs' brackets on one axis: one solid bar per leg.
+    let second = &page[page.rfind("<svg").unwrap()..page.rfind("</svg>").unwrap() + 6];
+    assert_eq!(page.matches("<svg").count(), 2);
+    let bars = roxmltree::Document::parse(second).expect("a well-formed figure");
+    let solid = bars
+        .descendants()
+        .filter(|n| n.has_tag_name("rect") && n.attribute("stroke").is_none())
+        .count();
+    assert_eq!(solid, 6, "{second}");
     let j: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     for leg in j["leg_length"].as_array().unwrap() {

@@ -626,8 +626,34 @@ impl AccuracyReport {
             heading: "Accuracy over the workspace".to_string(),
             paragraphs: self.paragraphs(),
             tables,
-            figures: self.error_map().into_iter().collect(),
+            figures: self
+                .error_map()
+                .into_iter()
+                .chain([self.leg_brackets()])
+                .collect(),
         }
+    }
+
+    /// The certificate's figure of the legs' brackets after calibration, on one axis.
+    fn leg_brackets(&self) -> calib_pipeline::html::Figure {
+        let bars: Vec<calib_pipeline::html::BracketBar> = self
+            .after
+            .leg_length
+            .iter()
+            .enumerate()
+            .map(|(i, b)| calib_pipeline::html::BracketBar {
+                label: format!("leg {}", i + 1),
+                lower: b.lower,
+                upper: b.upper,
+            })
+            .collect();
+        calib_pipeline::html::brackets_figure(
+            &bars,
+            "cm",
+            "Each leg's worst length error after calibration: solid up to what an explicit pose \
+             and geometry reach (attained), light from there to the proved upper bound; the worst \
+             error lies in the light part.",
+        )
     }
 
     /// The certificate's table of the leg-length brackets: per leg its lower and upper bounds
