@@ -130,14 +130,17 @@ pub fn calibrated_arm(
             expected: index.len(),
         });
     }
-    let witness = set
-        .points()
-        .first()
-        .map(|p| p.x)
-        .ok_or(ArmError::Undecided)?;
+    // Where the rule's predictions are linearised (a target, not a proof): a certified point, or
+    // the set's centre when none was kept (a carried-over set's points are proved in another
+    // model, and one at the edge of a bound may not be proved again here).
+    let witness = match set.points().first() {
+        Some(p) => p.x,
+        None => set.outer().ok_or(ArmError::Undecided)?.map(|v| v.mid()),
+    };
     let preds = predictions(choice, joints_deg, &witness);
     let point =
         calibrated_point(&Arm7Point, &mut set, rule(choice, &preds)).ok_or(ArmError::Undecided)?;
+
     // The point as the file writes it, proved again as a controller reads it back; else the
     // deepest point, which keeps the most room.
     let kept = set.subset_measurements(point.subset);

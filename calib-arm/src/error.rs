@@ -43,6 +43,20 @@ pub enum ArmError {
     /// An accuracy problem over a certified set that is empty.
     #[error("the certified set is empty")]
     EmptySet,
+    /// A robot file whose joint parameters' box and carried certified set (`[certified_set]` or
+    /// `[carried_set]`) share no vector: the file was edited, or its box and set come from
+    /// different calibrations.
+    #[error(
+        "the robot file's joint parameters lie outside its certified set's box: was the file \
+         edited? Recalibrate, or re-register from the calibrated file (`arm register --robot`)"
+    )]
+    CarriedSetOutsidePrior,
+    /// A certified set carried over to a 6-DoF certification (only point measurements take one).
+    #[error(
+        "carrying a certified set over to 6-DoF measurements is not supported: certify without \
+         --orientation-columns, or from a robot file without a certified set"
+    )]
+    CarryWithPose,
     /// A file that cannot be written (why: the I/O error's message, as `ArmError` is `Clone`
     /// and `PartialEq` and `std::io::Error` is neither).
     #[error("{}: cannot write: {reason}", .path.display())]

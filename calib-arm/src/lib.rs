@@ -16,6 +16,7 @@
 
 pub mod accuracy;
 pub mod calibrated;
+pub mod carry;
 pub mod certification;
 pub mod design;
 mod error;

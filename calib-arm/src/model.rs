@@ -35,11 +35,33 @@ macro_rules! serial_arm_model {
         joints_from_flange = [$(($t:literal, $d:literal, $a:literal, $al:literal, $b:literal, $q:literal)),+ $(,)?],
         base = [$bx:literal, $by:literal, $bz:literal, $rx:literal, $ry:literal, $rz:literal],
         point = [$px:literal, $py:literal, $pz:literal]
+        $(, earlier_frame = (
+            flag = $f:literal,
+            base = [$ebx:literal, $eby:literal, $ebz:literal, $erx:literal, $ery:literal, $erz:literal],
+            tool = [$etx:literal, $ety:literal, $etz:literal]
+        ))?
     ) => {
         $(#[$doc])*
         #[calib_core::interval_model(curvature)]
         pub fn $name<S: calib_core::Scalar>(x: &[S; $nx], m: &[S; $nm]) -> [S; 3] {
             let v = [x[$tx], x[$ty], x[$tz]];
+            let base = [x[$bx], x[$by], x[$bz], x[$rx], x[$ry], x[$rz]];
+            $(
+                // A row of the earlier frame (flag 1) takes that frame's base and tool: with the
+                // flag a point 0 or 1, `a (1 - f) + b f` is `a` or `b` exactly, in intervals too.
+                let (now, then) = (1.0 - m[$f], m[$f]);
+                let [vx, vy, vz] = v;
+                let v = [vx * now + x[$etx] * then, vy * now + x[$ety] * then, vz * now + x[$etz] * then];
+                let [b0, b1, b2, b3, b4, b5] = base;
+                let base = [
+                    b0 * now + x[$ebx] * then,
+                    b1 * now + x[$eby] * then,
+                    b2 * now + x[$ebz] * then,
+                    b3 * now + x[$erx] * then,
+                    b4 * now + x[$ery] * then,
+                    b5 * now + x[$erz] * then,
+                ];
+            )?
             $(
                 // A_i(q) v = Rz(theta + q) Tz(d) Tx(a) Rx(alpha) Ry(beta) v
                 let v = {
@@ -55,17 +77,18 @@ macro_rules! serial_arm_model {
                 };
             )+
             let [vx, vy, vz] = v;
+            let [base_x, base_y, base_z, base_rx, base_ry, base_rz] = base;
             // Rx(base_rx), Ry(base_ry), Rz(base_rz), then the translation.
-            let (cx, sx) = (x[$rx].cos(), x[$rx].sin());
+            let (cx, sx) = (base_rx.cos(), base_rx.sin());
             let (y1, z1) = (vy * cx - vz * sx, vy * sx + vz * cx);
-            let (cy, sy) = (x[$ry].cos(), x[$ry].sin());
+            let (cy, sy) = (base_ry.cos(), base_ry.sin());
             let (x2, z2) = (vx * cy + z1 * sy, z1 * cy - vx * sy);
-            let (cz, sz) = (x[$rz].cos(), x[$rz].sin());
+            let (cz, sz) = (base_rz.cos(), base_rz.sin());
             let (x3, y3) = (x2 * cz - y1 * sz, x2 * sz + y1 * cz);
             [
-                x[$bx] + x3 - m[$px],
-                x[$by] + y3 - m[$py],
-                x[$bz] + z2 - m[$pz],
+                base_x + x3 - m[$px],
+                base_y + y3 - m[$py],
+                base_z + z2 - m[$pz],
             ]
         }
     };
@@ -88,6 +111,28 @@ serial_arm_model!(
     ],
     base = [35, 36, 37, 38, 39, 40],
     point = [7, 8, 9]
+);
+
+serial_arm_model!(
+    /// [`arm7_point`] for rows from two tracker frames: parameters 44–49 are the earlier frame's
+    /// base and 50–52 its tool point, and measured quantity 10 says which frame a row is in (0:
+    /// this one, 1: the earlier one, always a point). See [`crate::carry`].
+    arm7_point_two_frames,
+    nx = 53,
+    nm = 11,
+    tool = [41, 42, 43],
+    joints_from_flange = [
+        (30, 31, 32, 33, 34, 6),
+        (25, 26, 27, 28, 29, 5),
+        (20, 21, 22, 23, 24, 4),
+        (15, 16, 17, 18, 19, 3),
+        (10, 11, 12, 13, 14, 2),
+        (5, 6, 7, 8, 9, 1),
+        (0, 1, 2, 3, 4, 0)
+    ],
+    base = [35, 36, 37, 38, 39, 40],
+    point = [7, 8, 9],
+    earlier_frame = (flag = 10, base = [44, 45, 46, 47, 48, 49], tool = [50, 51, 52])
 );
 
 /// The tracked point `p(x, q)` of an arm with `q.len()` joints (3 to 7) in floating point, from

@@ -49,7 +49,7 @@ pub(crate) fn random_arm(joints: usize, rng: &mut StdRng) -> Arm {
 }
 
 /// Truth in model units (radians).
-fn truth_in_model_units(arm: &Arm, truth: &[f64]) -> Vec<f64> {
+pub(crate) fn truth_in_model_units(arm: &Arm, truth: &[f64]) -> Vec<f64> {
     params::names(arm.joints.len())
         .iter()
         .zip(truth)

@@ -10,6 +10,7 @@ mod core_support;
 mod scratch_dir;
 
 mod accuracy;
+mod carry;
 mod cli;
 mod design;
 mod files;
