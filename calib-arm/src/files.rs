@@ -25,6 +25,7 @@ struct RobotFile {
     base: BaseEntry,
     tool: ToolEntry,
     certified_set: Option<StoredSet>,
+    carried_set: Option<StoredSet>,
     least_squares: Option<LeastSquaresEntry>,
 }
 
@@ -153,14 +154,50 @@ pub fn read_robot(file: &Path) -> Result<Arm, DataError> {
 /// --write-calibrated`): the arm, and its set rebuilt (`None` in a file without one). The
 /// stored measurement boxes, cover and points are checked (errors name the field), the
 /// polyhedra recomputed by the Newton step's relaxation and the points proved consistent again.
+/// A `[carried_set]` (another tracker frame's, see [`parse_carried`]) is not read.
 pub fn read_calibrated(file: &Path) -> Result<(Arm, Option<ArmSet>), DataError> {
     let text = read_text(file)?;
     let (arm, parsed) = parse_robot_file(file, &text)?;
-    let Some(stored) = parsed.certified_set else {
-        return Ok((arm, None));
-    };
+    let set = parsed
+        .certified_set
+        .map(|stored| restore_set(file, &arm, &stored, "certified_set"))
+        .transpose()?;
+    Ok((arm, set))
+}
+
+/// Parses a robot file for `arm certify`: the arm, and the certified set it carries over to the
+/// new measurements ([`crate::carry`]): its `[carried_set]` (what `arm register` copies from a
+/// calibrated file, in that calibration's tracker frame) or its `[certified_set]`; `None` when
+/// it has neither. Checked as [`read_calibrated`] checks a set.
+pub fn parse_carried(file: &Path, text: &str) -> Result<(Arm, Option<ArmSet>), DataError> {
+    let (arm, parsed) = parse_robot_file(file, text)?;
+    let (stored, table) =
+        match (parsed.carried_set, parsed.certified_set) {
+            (Some(_), Some(_)) => return Err(DataError::new(
+                file,
+                None,
+                Some("carried_set"),
+                "a robot file holds a [certified_set] (its own) or a [carried_set] (an earlier \
+                 frame's, written by `arm register`), not both",
+            )),
+            (Some(s), None) => (s, "carried_set"),
+            (None, Some(s)) => (s, "certified_set"),
+            (None, None) => return Ok((arm, None)),
+        };
+    let set = restore_set(file, &arm, &stored, table)?;
+    Ok((arm, Some(set)))
+}
+
+/// The stored set of the robot file's table `table` as a certified set in the padded model
+/// (module [`calib_pipeline::stored_set`]), checked; errors name `table.field`.
+fn restore_set(
+    file: &Path,
+    arm: &Arm,
+    stored: &StoredSet,
+    table: &str,
+) -> Result<ArmSet, DataError> {
     let joints = arm.joints.len();
-    let x0 = padded_box(&arm);
+    let x0 = padded_box(arm);
     let restored = stored
         .restore::<NX, NM>(
             &padded_index(joints),
@@ -168,7 +205,7 @@ pub fn read_calibrated(file: &Path) -> Result<(Arm, Option<ArmSet>), DataError> 
             &x0,
             &[Interval::ZERO; NM],
         )
-        .map_err(|(f, m)| DataError::new(file, None, Some(&format!("certified_set.{f}")), m))?;
+        .map_err(|(f, m)| DataError::new(file, None, Some(&format!("{table}.{f}")), m))?;
     let set = ArmSet::new(
         &Arm7Point,
         &restored.cover,
@@ -180,12 +217,20 @@ pub fn read_calibrated(file: &Path) -> Result<(Arm, Option<ArmSet>), DataError> 
         return Err(DataError::new(
             file,
             None,
-            Some("certified_set.points"),
+            Some(&format!("{table}.points")),
             "the stored set holds no parameter vector proved consistent with its measurements \
              (was the file edited?): recalibrate with `arm certify --write-calibrated`",
         ));
     }
-    Ok((arm, Some(set)))
+    Ok(set)
+}
+
+/// Parses a robot file with the set it carries as its text stores it (its `[certified_set]`,
+/// else its `[carried_set]`; `None` when it has neither): what `arm register` copies on as the
+/// registered file's `[carried_set]`, for `arm certify` ([`parse_carried`]).
+pub fn parse_robot_and_set(file: &Path, text: &str) -> Result<(Arm, Option<StoredSet>), DataError> {
+    let (arm, parsed) = parse_robot_file(file, text)?;
+    Ok((arm, parsed.certified_set.or(parsed.carried_set)))
 }
 
 /// Parses `robot.toml`: one `[[joint]]` table per joint, base to flange, with `theta_deg, d, a,

@@ -981,3 +981,67 @@ fn accuracy_page_states(page: &str, a: &Value, joints: &str) {
         1
     );
 }
+
+#[test]
+fn a_calibration_registered_in_a_new_cell_carries_its_set_into_certify() {
+    let dir = tempdir("carry");
+    simulated(&dir, 12, &[]);
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let calibrated = p("calibrated.toml");
+    let o = certify(&dir, &["--rows", "1-6", "--write-calibrated", &calibrated]);
+    assert!(o.status.success(), "{}", text(&o));
+    let (data, here) = (p("measurements.csv"), p("here.toml"));
+    let o = arm(&[
+        "register",
+        "--robot",
+        &calibrated,
+        "--measurements",
+        &data,
+        "--rows",
+        "7-12",
+        "--out",
+        &here,
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let written = std::fs::read_to_string(&here).expect("here.toml");
+    assert!(written.contains("\n[carried_set]\n") && !written.contains("[certified_set]"));
+    let json = p("carried.json");
+    let (u, robot) = (p("uncertainty.toml"), here.clone());
+    let o = arm(&[
+        "certify",
+        "--robot",
+        &robot,
+        "--measurements",
+        &data,
+        "--uncertainty",
+        &u,
+        "--rows",
+        "7-12",
+        "--json",
+        &json,
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(
+        text(&o).contains("carried over: the 6 configurations"),
+        "{}",
+        text(&o)
+    );
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("json")).expect("valid");
+    assert_eq!(report["carried_over"]["configurations"], 6);
+    assert_eq!(report["status"], "consistent");
+    // `predict` reads no carried set (its base is another frame's): the file predicts as any
+    // registered file does.
+    let o = arm(&[
+        "predict",
+        "--robot",
+        &here,
+        "--measurements",
+        &data,
+        "--uncertainty",
+        &u,
+        "--rows",
+        "1-3",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+}

@@ -83,8 +83,12 @@ impl StoredSet {
             t,
             "\n# The certified set: every parameter vector consistent with the measurements below \
              lies in one of\n# `boxes` (and satisfies the linear inequalities the Newton step \
-             derives on it); `points` are\n# proved consistent. Read by `accuracy` and `predict` \
-             to bound errors over the set, not its box.\n[{name}]"
+             derives on it); `points` are\n# proved consistent.{}\n[{name}]",
+            if name.ends_with("certified_set") {
+                " Read by `accuracy` and `predict` to bound errors over the set, not its box."
+            } else {
+                ""
+            }
         );
         let intervals = |rows: &[Vec<[f64; 2]>]| -> String {
             let lines: Vec<String> = rows

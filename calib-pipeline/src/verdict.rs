@@ -16,23 +16,34 @@ pub struct ConfigurationNames<'a> {
 
 impl ConfigurationNames<'_> {
     /// "configurations 4, 8 (measurements.csv lines 5, 9)" for 0-based configurations `[3, 7]`.
+    /// Configurations after the file's (a certified set's rows carried over from an earlier
+    /// calibration, numbered after the new ones) are named by their row in that set: "configurations
+    /// 4, 62 (measurements.csv line 5; the earlier calibration's row 2)" with 60 lines.
     pub fn name(&self, configs: &[usize]) -> String {
         let numbers: Vec<String> = configs.iter().map(|k| (k + 1).to_string()).collect();
-        let at: Vec<String> = configs
-            .iter()
-            .map(|&k| self.lines.get(k).map_or("?".into(), |l| l.to_string()))
-            .collect();
-        let (noun, line) = if configs.len() == 1 {
-            ("configuration", "line")
-        } else {
-            ("configurations", "lines")
-        };
-        format!(
-            "{noun} {} ({} {line} {})",
-            numbers.join(", "),
-            self.file,
-            at.join(", ")
-        )
+        let plural =
+            |n: usize, one: &'static str, many: &'static str| if n == 1 { one } else { many };
+        let (here, earlier): (Vec<usize>, Vec<usize>) =
+            configs.iter().partition(|&&k| k < self.lines.len());
+        let mut at = Vec::new();
+        if !here.is_empty() {
+            let lines: Vec<String> = here.iter().map(|&k| self.lines[k].to_string()).collect();
+            let line = plural(here.len(), "line", "lines");
+            at.push(format!("{} {line} {}", self.file, lines.join(", ")));
+        }
+        if !earlier.is_empty() {
+            let rows: Vec<String> = earlier
+                .iter()
+                .map(|k| (k - self.lines.len() + 1).to_string())
+                .collect();
+            let row = plural(earlier.len(), "row", "rows");
+            at.push(format!(
+                "the earlier calibration's {row} {}",
+                rows.join(", ")
+            ));
+        }
+        let noun = plural(configs.len(), "configuration", "configurations");
+        format!("{noun} {} ({})", numbers.join(", "), at.join("; "))
     }
 }
 

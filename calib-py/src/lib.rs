@@ -321,12 +321,21 @@ fn arm_certify_files(
         calib_arm::pose::require_pose_inputs(&arm, &robot, &bounds, &uncertainty)
             .map_err(value_error)?;
     }
+    let earlier = carried_set(&robot)?;
+    if pose.is_some() && earlier.is_some() {
+        return Err(value_error(calib_arm::ArmError::CarryWithPose));
+    }
     let (q, run) = py
-        .detach(|| match &pose {
-            Some((readings, b)) => calib_arm::pose::certify_pose(&arm, readings, b, &request),
-            None => {
+        .detach(|| match (&pose, &earlier) {
+            (Some((readings, b)), _) => calib_arm::pose::certify_pose(&arm, readings, b, &request),
+            (None, earlier) => {
                 let u = data.slack.widen(&bounds.position);
-                certify_request(&arm, &data.readings, &u, &request)
+                match earlier {
+                    Some(set) => {
+                        calib_arm::carry::certify_carried(&arm, set, &data.readings, &u, &request)
+                    }
+                    None => certify_request(&arm, &data.readings, &u, &request),
+                }
             }
         })
         .map_err(value_error)?;
@@ -370,7 +379,17 @@ fn arm_certify_files(
         )
         .map_err(|e| value_error(format!("{}: cannot write: {e}", path.display())))?;
     }
-    Ok(json_report(&run, &names, q))
+    let report = json_report(&run, &names, q);
+    let Some(set) = &earlier else {
+        return Ok(report);
+    };
+    // As `arm certify --json`: where the carried rows came from (numbered after the new ones).
+    let mut json: serde_json::Value = serde_json::from_str(&report).map_err(value_error)?;
+    json["carried_over"] = serde_json::json!({
+        "file": robot.display().to_string(),
+        "configurations": set.measurements().len(),
+    });
+    Ok(json.to_string())
 }
 
 /// Writes the simulated data set of `arm simulate` into `out` (the built-in arm, or `robot`);
@@ -469,6 +488,14 @@ fn arm_pose_inputs(
     let bounds =
         calib_arm::files::parse_pose_uncertainty(uncertainty, &text).map_err(value_error)?;
     Ok((arm, data, bounds))
+}
+
+/// The certified set the robot file carries over to a certification (its `[carried_set]` or
+/// `[certified_set]`, see `calib_arm::carry`), if any.
+fn carried_set(robot: &std::path::Path) -> PyResult<Option<calib_arm::certification::ArmSet>> {
+    let text = calib_pipeline::read_text(robot).map_err(value_error)?;
+    let (_, set) = calib_arm::files::parse_carried(robot, &text).map_err(value_error)?;
+    Ok(set)
 }
 
 /// The layout `columns` gives an arm of `joints` joints.
@@ -593,7 +620,8 @@ fn arm_register(
     orientation_convention: &str,
     tool_rotation_radius: f64,
 ) -> PyResult<String> {
-    let arm = calib_arm::files::read_robot(&robot).map_err(value_error)?;
+    let text = calib_pipeline::read_text(&robot).map_err(value_error)?;
+    let (arm, set) = calib_arm::files::parse_robot_and_set(&robot, &text).map_err(value_error)?;
     let mut layout = arm_columns(arm.joints.len(), columns)?;
     layout.orientation = orientation_layout(orientation_columns, orientation_convention)?;
     let data =
@@ -621,8 +649,9 @@ fn arm_register(
         }
         None => serde_json::Value::Null,
     };
+    let carried = set.map_or_else(String::new, |s| calib_arm::carry::carried_set_toml(&robot, &s));
     let text = format!(
-        "# registered by certicalib {}\n{}",
+        "# registered by certicalib {}\n{}{carried}",
         env!("CARGO_PKG_VERSION"),
         calib_arm::write::robot_toml(&r.arm)
     );
@@ -689,7 +718,18 @@ fn arm_error_scale(
         }
         None => {
             let u = data.slack.widen(&bounds.position);
-            py.detach(|| search(&arm, &data.readings, &u, which, |_| {}))
+            let earlier = carried_set(&robot)?;
+            py.detach(|| match &earlier {
+                Some(set) => calib_arm::carry::search_carried(
+                    &arm,
+                    set,
+                    &data.readings,
+                    &u,
+                    which,
+                    |_| {},
+                ),
+                None => search(&arm, &data.readings, &u, which, |_| {}),
+            })
         }
     }
     .map_err(value_error)?;

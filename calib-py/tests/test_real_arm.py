@@ -150,3 +150,28 @@ def test_certify_six_dof_writes_a_calibrated_tool_frame(tmp_path):
                                write_calibrated=tmp_path / "x.toml",
                                orientation_columns=orientation, **TRACKER)
     assert not (tmp_path / "x.toml").exists()
+
+
+def test_a_calibration_carries_over_to_new_rows_in_their_own_frame(tmp_path):
+    nominal = tmp_path / "nominal.toml"
+    certicalib.import_arm(DATA / "ur10_default_kinematics.yaml", nominal)
+    robot = tmp_path / "robot.toml"
+    certicalib.register_arm(nominal, SERIES, robot, rows="1-40", **TRACKER)
+    u = tmp_path / "u.toml"
+    u.write_text("joint_deg = 0.001\npos = 0.45\n")
+    calibrated = tmp_path / "calibrated.toml"
+    first = certicalib.certify_arm(robot, SERIES, u, rows="1-40", write_calibrated=calibrated,
+                                   **TRACKER)
+    assert first.status == "consistent" and first.carried_over is None
+    # The next cell: registered from the calibrated file, which hands its set on.
+    here = tmp_path / "here.toml"
+    certicalib.register_arm(calibrated, SERIES, here, rows="41-80", **TRACKER)
+    assert "[carried_set]" in here.read_text() and "[certified_set]" not in here.read_text()
+    both = certicalib.certify_arm(here, SERIES, u, rows="41-80", **TRACKER)
+    assert both.carried_over == {"file": str(here), "configurations": 40}
+    assert both.status == "consistent"
+    alone = certicalib.certify_arm(robot, SERIES, u, rows="41-80", **TRACKER)
+    # The joints' parameters (before the base's nine): narrower together with the earlier rows.
+    joints = len(both.names) - 9
+    width = lambda box: float((box[:joints, 1] - box[:joints, 0]).sum())  # noqa: E731
+    assert width(both.outer) < width(alone.outer)

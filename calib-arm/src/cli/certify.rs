@@ -5,9 +5,11 @@ use super::output::{
 };
 use super::DataFiles;
 use calib_arm::calibrated::{calibrated_arm, calibrated_toml, PointChoice};
+use calib_arm::carry::{certify_carried, search_carried};
+use calib_arm::certification::ArmSet;
 use calib_arm::certification::{certify_request, CertifyRequest};
 use calib_arm::error_scale::{search, search_pose, ScaleBounds};
-use calib_arm::files::{parse_pose_uncertainty, parse_robot};
+use calib_arm::files::{parse_carried, parse_pose_uncertainty};
 use calib_arm::joint_space::read_task;
 use calib_arm::pose::{certify_pose, require_pose_inputs, PoseReading, PoseUncertainty};
 use calib_arm::report_page::ArmReportPage;
@@ -99,6 +101,7 @@ fn error_scale(
     readings: &[calib_arm::simulate::Reading],
     u: &Uncertainty,
     pose: Option<&(Vec<PoseReading>, PoseUncertainty)>,
+    earlier: Option<&ArmSet>,
 ) -> Result<(serde_json::Value, PoseUncertainty, Vec<String>), Box<dyn std::error::Error>> {
     let margin = a.scale.scale_margin;
     check_margin(margin)?;
@@ -109,7 +112,10 @@ fn error_scale(
     let (found, bounds) = match pose {
         Some((readings, bounds)) => (search_pose(arm, readings, bounds, which, on_trial), *bounds),
         None => (
-            search(arm, readings, u, which, on_trial),
+            match earlier {
+                Some(set) => search_carried(arm, set, readings, u, which, on_trial),
+                None => search(arm, readings, u, which, on_trial),
+            },
             PoseUncertainty {
                 position: *u,
                 orient_deg: None,
@@ -127,6 +133,19 @@ fn error_scale(
         which.scale_pose(&bounds, done.certify_at),
         done.words,
     ))
+}
+
+/// What carrying `set` over from `robot` means, in words (`new`: the new configurations).
+fn carried_words(robot: &Path, set: &ArmSet, new: usize) -> String {
+    let earlier = set.measurements().len();
+    format!(
+        "carried over: the {earlier} configurations of the certified set in {} join the {new} \
+         new ones (numbered {}–{} below), with a base and tool of their own (their tracker frame); \
+         the joints' parameters must fit both",
+        robot.display(),
+        new + 1,
+        new + earlier
+    )
 }
 
 fn parse_choice(s: &str) -> Result<PointChoice, String> {
@@ -154,8 +173,14 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let (arm, data) = (&input.arm, &input.data);
     let (scale_json, u, pose, scale_words) = match a.scale.error_scale {
         Some(ErrorScaleMode::Auto) => {
-            let (json, scaled, words) =
-                error_scale(&a, arm, &data.readings, &input.u, pose.as_ref())?;
+            let (json, scaled, words) = error_scale(
+                &a,
+                arm,
+                &data.readings,
+                &input.u,
+                pose.as_ref(),
+                input.earlier.as_ref(),
+            )?;
             let pose = pose.map(|(readings, _)| (readings, scaled));
             (Some(json), scaled.position, pose, words)
         }
@@ -164,7 +189,14 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let request = a.request();
     // Option errors before any work.
     request.settings(data.readings.len())?;
-    let (q, run) = certify_with_spinner(arm, &data.readings, &u, pose.as_ref(), &request)?;
+    let earlier = input.earlier.as_ref();
+    if let Some(set) = earlier {
+        println!(
+            "{}",
+            carried_words(&a.files.robot, set, data.readings.len())
+        );
+    }
+    let (q, run) = certify_with_spinner(arm, &data.readings, &u, pose.as_ref(), earlier, &request)?;
     if let Some((_, bounds)) = &pose {
         println!(
             "6-DoF: six equations per configuration (position and orientation), orientations \
@@ -185,6 +217,15 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let mut extra = serde_json::Map::new();
     if let Some(scale) = scale_json {
         extra.insert("error_scale".into(), scale);
+    }
+    if let Some(set) = earlier {
+        extra.insert(
+            "carried_over".into(),
+            serde_json::json!({
+                "file": a.files.robot.display().to_string(),
+                "configurations": set.measurements().len(),
+            }),
+        );
     }
     if let Some(path) = &a.write_calibrated {
         let calibrated = write_calibrated(&a, path, &input, &run, pose.is_some(), task)?;
@@ -246,6 +287,8 @@ struct Files {
     data_text: String,
     u_text: String,
     arm: calib_arm::Arm,
+    /// The certified set --robot carries over ([`calib_arm::carry`]), if any.
+    earlier: Option<ArmSet>,
     data: calib_arm::files::Measurements,
     /// The positions' error bounds, widened by the file's slack.
     u: Uncertainty,
@@ -259,7 +302,7 @@ impl Files {
         let texts = [&a.files.robot, &a.files.measurements, &a.uncertainty].map(|p| read_text(p));
         let [robot_text, data_text, u_text] = texts;
         let (robot_text, data_text, u_text) = (robot_text?, data_text?, u_text?);
-        let arm = parse_robot(&a.files.robot, &robot_text)?;
+        let (arm, earlier) = parse_carried(&a.files.robot, &robot_text)?;
         let data = a
             .files
             .columns
@@ -269,12 +312,16 @@ impl Files {
         let pose = data.pose_readings(&pose_u);
         if pose.is_some() {
             require_pose_inputs(&arm, &a.files.robot, &pose_u, &a.uncertainty)?;
+            if earlier.is_some() {
+                return Err(calib_arm::ArmError::CarryWithPose.into());
+            }
         }
         Ok(Files {
             robot_text,
             data_text,
             u_text,
             arm,
+            earlier,
             data,
             u,
             pose,
@@ -301,6 +348,7 @@ fn certify_with_spinner(
     readings: &[calib_arm::simulate::Reading],
     u: &Uncertainty,
     pose: Option<&(Vec<PoseReading>, PoseUncertainty)>,
+    earlier: Option<&ArmSet>,
     request: &CertifyRequest,
 ) -> Result<(usize, calib_arm::certification::ArmRun), Box<dyn std::error::Error>> {
     let bar = spinner(&format!(
@@ -310,11 +358,12 @@ fn certify_with_spinner(
                 arm.tool_rotation
                     .map_or(0, |t| t.radius.iter().filter(|r| **r > 0.0).count())
             }),
-        readings.len()
+        readings.len() + earlier.map_or(0, |s| s.measurements().len())
     ));
-    let certified = match pose {
-        Some((readings, bounds)) => certify_pose(arm, readings, bounds, request),
-        None => certify_request(arm, readings, u, request),
+    let certified = match (pose, earlier) {
+        (Some((readings, bounds)), _) => certify_pose(arm, readings, bounds, request),
+        (None, Some(set)) => certify_carried(arm, set, readings, u, request),
+        (None, None) => certify_request(arm, readings, u, request),
     }?;
     bar.finish_and_clear();
     Ok(certified)

@@ -51,6 +51,13 @@ enum Command {
     /// with SHA-256, settings) to archive or print. --max-outliers auto finds the smallest number
     /// of bad configurations that explains the data.
     ///
+    /// Carrying a calibration over (the tracker moved, a new cell, a month later): when --robot
+    /// carries a certified set (a calibrated file's `[certified_set]`, or the `[carried_set]` that
+    /// `arm register --robot calibrated.toml` copies into the new cell's file), its rows join the
+    /// new ones in one certification, each series with its own base and tool point, the joints'
+    /// parameters shared: the new rows narrow the earlier set, or prove the two inconsistent and
+    /// name the rows (earlier ones numbered after the new).
+    ///
     /// What the boxes mean, per parameter:
     ///   outer  every parameter vector that fits all configurations (one reading of each within
     ///          its error bounds making all three coordinates agree) lies in this box: a proof.
@@ -145,6 +152,10 @@ enum Command {
     /// single axis, or too few rows), register says so, keeps the --robot file's tool point,
     /// fixed (--tool-radius 0 unless given), and fits the base alone; --tool fit fits it anyway,
     /// --tool keep always keeps it.
+    ///
+    /// From a calibrated file (--robot with a `[certified_set]`) the written file carries that set
+    /// on as `[carried_set]`, in its own tracker frame: `arm certify` joins its rows to the new
+    /// cell's; `predict` and `accuracy` do not read it.
     ///
     /// Example (the real UR10 data of the tutorial, radians and metres as exported):
     ///   arm register --robot nominal.toml --measurements series_b.csv \

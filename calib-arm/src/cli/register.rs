@@ -1,12 +1,13 @@
 //! `arm register`.
 
 use super::DataFiles;
-use calib_arm::files::read_robot;
+use calib_arm::files::parse_robot_and_set;
 use calib_arm::register::{
     register_tool_rotation, register_with, Registration, RegistrationPriors, ToolPoint,
 };
 use calib_arm::robot::ToolRotation;
-use calib_pipeline::write_atomically;
+use calib_pipeline::stored_set::StoredSet;
+use calib_pipeline::{read_text, write_atomically};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -48,7 +49,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             v.len()
         )
     })?;
-    let arm = read_robot(&a.files.robot)?;
+    let (arm, set) = parse_robot_and_set(&a.files.robot, &read_text(&a.files.robot)?)?;
     let data = a
         .files
         .columns
@@ -78,7 +79,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         println!("{w}");
     }
     print_registration(&a, &r, data.readings.len(), priors, rotation);
-    write_registered(&a, &r)?;
+    write_registered(&a, &r, set.as_ref())?;
     Ok(0)
 }
 
@@ -177,15 +178,24 @@ fn print_registration(
     }
 }
 
-/// --out: the robot file with the base and tool found.
-fn write_registered(a: &Args, r: &Registration) -> Result<(), Box<dyn std::error::Error>> {
+/// --out: the robot file with the base and tool found, and the certified set of --robot (if it
+/// has one) as its `[carried_set]`, in the frame it was certified in: `arm certify` joins its
+/// rows to the new ones ([`calib_arm::carry`]); `predict` and `accuracy` do not read it.
+fn write_registered(
+    a: &Args,
+    r: &Registration,
+    set: Option<&StoredSet>,
+) -> Result<(), Box<dyn std::error::Error>> {
     let found = match (r.tool_kept, r.separability.inseparable()) {
         (false, _) => "base and tool found",
         (true, false) => "base found, tool point kept",
         (true, true) => "base found, tool point kept (these rows cannot tell it from the base)",
     };
+    let carried = set.map_or_else(String::new, |s| {
+        calib_arm::carry::carried_set_toml(&a.files.robot, s)
+    });
     let text = format!(
-        "# registered by certicalib {} from {} and {}: {found}, joints as given\n{}",
+        "# registered by certicalib {} from {} and {}: {found}, joints as given\n{}{carried}",
         env!("CARGO_PKG_VERSION"),
         a.files.robot.display(),
         a.files.measurements.display(),

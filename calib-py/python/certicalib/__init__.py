@@ -520,6 +520,10 @@ class ArmReport:
         self.converged: Optional[bool] = self._dict.get("converged")
         #: Wall-clock seconds.
         self.seconds: float = self._dict["seconds"]
+        #: With a robot file that carries a certified set: ``file`` and ``configurations`` (the
+        #: earlier rows, numbered after the new ones in ``conflict`` and ``outliers``), else
+        #: ``None``.
+        self.carried_over: Optional[Dict[str, Any]] = self._dict.get("carried_over")
 
     @property
     def ratio(self) -> Optional[np.ndarray]:
@@ -565,6 +569,9 @@ def certify_arm(robot: PathLike, measurements: PathLike, uncertainty: PathLike, 
     ``"euler-xyz-deg"`` or ``"euler-xyz-rad"``) six equations per configuration: the robot file
     needs the tool frame's rotation (:func:`register_arm` with ``orientation_columns``) and the
     uncertainty file ``orient_deg``; the calibrated file then holds the tool frame's rotation too.
+    A robot file that carries a certified set (a calibrated file, or the file :func:`register_arm`
+    writes from one in a new cell) joins that set's configurations to the new ones, each series
+    in its own tracker frame, as ``arm certify`` does (the report's ``carried_over``).
     The interpreter is released while the work runs. Malformed input raises ``ValueError``
     naming the file, the line and the field."""
     opts = dict(hull=bool(hull), tolerance=float(tolerance), max_boxes=int(max_boxes),
@@ -648,7 +655,9 @@ def register_arm(robot: PathLike, measurements: PathLike, out: PathLike, *,
     ``orientation_columns`` (a 6-DoF probe's three Euler angles, ``orientation_convention``
     ``"euler-xyz-deg"`` or ``"euler-xyz-rad"``) the tool frame's rotation is registered too and
     written with the prior ``tool_rotation_radius`` (degrees): ``tool_rotation`` holds its
-    ``rpy_deg`` and the orientation residuals ``rms_deg``, ``max_deg`` (else ``None``)."""
+    ``rpy_deg`` and the orientation residuals ``rms_deg``, ``max_deg`` (else ``None``). From a
+    calibrated file (one with a certified set), ``out`` carries that set on as its
+    ``[carried_set]``, which :func:`certify_arm` joins to the new cell's rows."""
     cols = _columns(joint_columns, point_columns, joint_unit, length_unit, rows)
     text = _native.arm_register(os.fspath(robot), os.fspath(measurements), os.fspath(out), cols,
                                 (float(base_radius[0]), float(base_radius[1]),
