@@ -17,10 +17,10 @@
 //! times the error bounds, because the set is thin along `a_z + l - b_z` and the box is not.
 
 use crate::accuracy::LegReading;
-use crate::certification::LegResult;
+use crate::certification::{carried_boxes, LegResult};
 use crate::files::LegSpec;
 use crate::geometry::{Leg, Pose};
-use crate::measurement::{leg_boxes, Configuration, Orientation, Uncertainty};
+use crate::measurement::{Configuration, Orientation, Uncertainty};
 use crate::workspace::Workspace;
 use crate::GoughError;
 use crate::LegModel;
@@ -170,7 +170,9 @@ pub fn calibrated_robot(
         let outer = r.outer.ok_or(GoughError::LegInconsistent(leg))?;
         let undecided = || GoughError::LegUndecided(leg);
         let witness = r.points.first().ok_or_else(undecided)?;
-        let boxes = leg_boxes(configs, u, r.leg);
+        // The rows the leg was certified against: the new ones, then those carried over.
+        let stored = r.carried.as_ref().map(|c| &c.stored);
+        let boxes = carried_boxes(configs, u, r.leg, stored);
         let model = LegModel::of(configs);
         let mut set = CertifiedSet::new(&model, &r.cover, &boxes, &r.points, MAX_PIECES);
         let preds = predictions(&poses, witness);

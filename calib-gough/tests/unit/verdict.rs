@@ -32,6 +32,7 @@ fn faces_of_x0_reached_by_the_outer_box_are_named() {
         seconds: 0.0,
         cover: calib_core::Cover::single(outer),
         points: vec![],
+        carried: None,
     };
     let words = touching_x0(&r).expect("two faces reached");
     assert!(words.contains("az (lower end), l (both ends)"), "{words}");
