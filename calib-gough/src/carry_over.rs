@@ -159,7 +159,7 @@ fn kind_mismatch(found: usize, rodrigues: bool) -> String {
     let kind = |n: usize| match n {
         7 => "Rodrigues data: px, py, pz, q1, q2, q3, L".to_string(),
         8 => "axis–angle data: px, py, pz, ax, ay, az, angle_deg, L".to_string(),
-        n => format!("{n} quantities: neither axis–angle (8) nor Rodrigues (7) data"),
+        _ => "neither axis–angle (8) nor Rodrigues (7) data".to_string(),
     };
     let expected = if rodrigues { 7 } else { 8 };
     format!(
