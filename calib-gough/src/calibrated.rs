@@ -18,7 +18,7 @@
 
 use crate::accuracy::LegReading;
 use crate::certification::{carried_boxes, LegResult};
-use crate::files::LegSpec;
+use crate::files::{leg_sets, LegSpec, RobotFile};
 use crate::geometry::{Leg, Pose};
 use crate::measurement::{Configuration, Orientation, Uncertainty};
 use crate::workspace::Workspace;
@@ -46,6 +46,29 @@ pub struct CalibratedRobot {
     pub sets: Vec<Option<CertifiedSet<7, 8>>>,
     /// Per leg, how its geometry was chosen (`None` for a leg not certified in this run).
     pub points: Vec<Option<CalibratedPoint<7>>>,
+}
+
+impl CalibratedRobot {
+    /// The legs not certified in this run (`--legs`) keep the certified sets their robot file
+    /// `robot` (read from `file`) gives them (rebuilt and proved again, [`leg_sets`]), so that the
+    /// file written still holds them.
+    pub fn keep_stored_sets(
+        &mut self,
+        file: &std::path::Path,
+        robot: &RobotFile,
+    ) -> Result<(), calib_pipeline::DataError> {
+        let kept: Vec<usize> = (0..self.sets.len())
+            .filter(|&i| self.sets[i].is_none() && robot.sets.get(i).is_some_and(Option::is_some))
+            .collect();
+        if kept.is_empty() {
+            return Ok(());
+        }
+        let mut sets = leg_sets(file, robot)?;
+        for i in kept {
+            self.sets[i] = sets[i].take();
+        }
+        Ok(())
+    }
 }
 
 /// The workspace the predictions are taken over when none is given: the box of the measured

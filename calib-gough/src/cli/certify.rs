@@ -10,8 +10,8 @@ use calib_gough::certification::{
 };
 use calib_gough::error_scale::{search, ScaleBounds};
 use calib_gough::files::{
-    check_uncertainty, leg_sets, parse_measurements, parse_robot_file, parse_uncertainty,
-    read_text, RobotFile,
+    check_uncertainty, parse_measurements, parse_robot_file, parse_uncertainty, read_text,
+    RobotFile,
 };
 use calib_gough::lsq::fit_legs;
 use calib_gough::measurement::Uncertainty;
@@ -201,7 +201,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
                 .map(TaskFile::task)
                 .or(workspace.as_ref().map(Task::Workspace)),
         )?;
-        keep_stored_sets(&a.files.robot, &input.robot_file, &mut cal)?;
+        cal.keep_stored_sets(&a.files.robot, &input.robot_file)?;
         Some(cal)
     } else {
         None
@@ -409,26 +409,6 @@ fn carried_words(
         }
     }
     out
-}
-
-/// The legs not certified in this run (`--legs`) keep the certified sets the robot file gives
-/// them (rebuilt and proved again, [`leg_sets`]), so that the file written still holds them.
-fn keep_stored_sets(
-    file: &Path,
-    robot: &RobotFile,
-    cal: &mut CalibratedRobot,
-) -> Result<(), Box<dyn std::error::Error>> {
-    let kept: Vec<usize> = (0..cal.sets.len())
-        .filter(|&i| cal.sets[i].is_none() && robot.sets[i].is_some())
-        .collect();
-    if kept.is_empty() {
-        return Ok(());
-    }
-    let mut sets = leg_sets(file, robot)?;
-    for i in kept {
-        cal.sets[i] = sets[i].take();
-    }
-    Ok(())
 }
 
 /// --write-calibrated: the calibrated robot file, with a comment saying where it comes from.

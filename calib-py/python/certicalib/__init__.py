@@ -101,6 +101,10 @@ class LegResult:
     converged: Optional[bool]
     #: Wall-clock seconds for this leg.
     seconds: float
+    #: How many configurations of a calibrated robot file's stored set were certified with the
+    #: new ones (``robot`` a file written with ``write_calibrated``); they are configurations
+    #: ``len(new rows) + 1`` onwards. 0 when none were carried over.
+    carried_over: int = 0
 
     @property
     def ratio(self) -> Optional[np.ndarray]:
@@ -137,6 +141,7 @@ class Report:
                 outliers_tolerated=int(leg.get("outliers_tolerated", 0)),
                 converged=leg.get("converged"),
                 seconds=leg["seconds"],
+                carried_over=len((leg.get("carried_over") or {}).get("rows", [])),
             )
             for leg in self._dict["legs"]
         ]
