@@ -147,8 +147,10 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let input = Files::read(&a)?;
     let (robot, data) = (&input.robot, &input.data);
     let options = a.options();
-    // Option errors before any work (certify_legs checks them again).
-    let (legs, _) = options.validate(robot.len(), data.configs.len())?;
+    // Option errors before any work (certify_legs_carrying checks them again), counting the
+    // rows carried over as it does.
+    let most = input.stored.iter().flatten().map(|s| s.rows.len()).max();
+    let (legs, _) = options.validate(robot.len(), data.configs.len() + most.unwrap_or(0))?;
     let carried = carried_words(&a.files.robot, &input.stored, &legs, data.configs.len());
     let (scale_json, u, scale_words) = match a.scale.error_scale {
         Some(ErrorScaleMode::Auto) if input.stored.iter().any(Option::is_some) => {
@@ -367,8 +369,9 @@ fn carried_words(
     let name = file.display();
     let joined = |n: usize| {
         format!(
-            "{n} stored configuration{} of {name} join the {new} new one{}",
+            "{n} stored configuration{} of {name} join{} the {new} new one{}",
             if n == 1 { "" } else { "s" },
+            if n == 1 { "s" } else { "" },
             if new == 1 { "" } else { "s" }
         )
     };
