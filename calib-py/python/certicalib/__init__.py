@@ -275,7 +275,10 @@ def certify(robot: Union[PathLike, RobotData],
     ``write_calibrated``: write the calibrated robot file there, as ``--write-calibrated`` does
     (per leg a geometry proved consistent with every measurement, and the certified set that
     :func:`accuracy` works over); with ``task`` (a ``workspace.toml`` or a poses CSV, as
-    ``--task``), each geometry is chosen towards the centre of its predictions there. The interpreter is released while the work runs. Malformed input raises ``ValueError`` naming
+    ``--task``), each geometry is chosen towards the centre of its predictions there. A
+    ``robot`` file written so carries its certified sets over: each leg is certified against the
+    new measurements and the rows its set was certified against, as ``gough certify`` does
+    (``LegResult.carried_over`` counts them). The interpreter is released while the work runs. Malformed input raises ``ValueError`` naming
     the file (or in-memory input), the line and the field.
     """
     opts = _options(legs, sweep, max_outliers, fast, tolerance, max_boxes, max_seconds,
