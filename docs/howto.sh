@@ -29,6 +29,16 @@ verdict "$gough" certify --robot bad/robot.toml --measurements bad/measurements.
 verdict "$arm" certify --robot armbad/robot.toml --measurements armbad/measurements.csv \
             --uncertainty armbad/uncertainty.toml --max-outliers auto
 
+# remeasuring.md, on sample21 cut in two series.
+d=docs/data/sample21
+head -12 $d/measurements.csv > january.csv
+(head -1 $d/measurements.csv; tail -n +13 $d/measurements.csv) > february.csv
+"$gough" certify --robot $d/robot.toml --measurements january.csv \
+              --uncertainty $d/uncertainty.toml --write-calibrated calibrated.toml
+"$gough" certify --robot calibrated.toml --measurements february.csv \
+              --uncertainty $d/uncertainty.toml --write-calibrated calibrated-feb.toml
+rm calibrated.toml calibrated-feb.toml  # the arm's pages below write a calibrated.toml of their own
+
 # vendor-files.md. At hand: a URDF (here the nominal UR10's, as `arm export` writes it).
 "$arm" import --ur-yaml docs/data/ur10_ipa/ur10_default_kinematics.yaml --out nominal.toml
 "$arm" export --robot nominal.toml --urdf robot.urdf

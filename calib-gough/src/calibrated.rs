@@ -17,10 +17,10 @@
 //! times the error bounds, because the set is thin along `a_z + l - b_z` and the box is not.
 
 use crate::accuracy::LegReading;
-use crate::certification::LegResult;
-use crate::files::LegSpec;
+use crate::certification::{carried_boxes, LegResult};
+use crate::files::{leg_sets, LegSpec, RobotFile};
 use crate::geometry::{Leg, Pose};
-use crate::measurement::{leg_boxes, Configuration, Orientation, Uncertainty};
+use crate::measurement::{Configuration, Orientation, Uncertainty};
 use crate::workspace::Workspace;
 use crate::GoughError;
 use crate::LegModel;
@@ -46,6 +46,29 @@ pub struct CalibratedRobot {
     pub sets: Vec<Option<CertifiedSet<7, 8>>>,
     /// Per leg, how its geometry was chosen (`None` for a leg not certified in this run).
     pub points: Vec<Option<CalibratedPoint<7>>>,
+}
+
+impl CalibratedRobot {
+    /// The legs not certified in this run (`--legs`) keep the certified sets their robot file
+    /// `robot` (read from `file`) gives them (rebuilt and proved again, [`leg_sets`]), so that the
+    /// file written still holds them.
+    pub fn keep_stored_sets(
+        &mut self,
+        file: &std::path::Path,
+        robot: &RobotFile,
+    ) -> Result<(), calib_pipeline::DataError> {
+        let kept: Vec<usize> = (0..self.sets.len())
+            .filter(|&i| self.sets[i].is_none() && robot.sets.get(i).is_some_and(Option::is_some))
+            .collect();
+        if kept.is_empty() {
+            return Ok(());
+        }
+        let mut sets = leg_sets(file, robot)?;
+        for i in kept {
+            self.sets[i] = sets[i].take();
+        }
+        Ok(())
+    }
 }
 
 /// The workspace the predictions are taken over when none is given: the box of the measured
@@ -170,7 +193,9 @@ pub fn calibrated_robot(
         let outer = r.outer.ok_or(GoughError::LegInconsistent(leg))?;
         let undecided = || GoughError::LegUndecided(leg);
         let witness = r.points.first().ok_or_else(undecided)?;
-        let boxes = leg_boxes(configs, u, r.leg);
+        // The rows the leg was certified against: the new ones, then those carried over.
+        let stored = r.carried.as_ref().map(|c| &c.stored);
+        let boxes = carried_boxes(configs, u, r.leg, stored);
         let model = LegModel::of(configs);
         let mut set = CertifiedSet::new(&model, &r.cover, &boxes, &r.points, MAX_PIECES);
         let preds = predictions(&poses, witness);

@@ -1,9 +1,10 @@
 //! Certifying every leg of a robot: the work behind `gough certify` (and the Python package),
 //! from parsed data to one [`LegResult`] per leg and the JSON [`Report`].
 
+use crate::carry_over::{Carried, StoredRows};
 use crate::files::LegSpec;
 use crate::measurement::{leg_boxes, measured, Configuration, Uncertainty};
-use crate::report::{bounds, LegReport, Report};
+use crate::report::{bounds, CarriedReport, LegReport, Report};
 use crate::GoughError;
 use crate::{LegModel, PARAMETER_NAMES};
 use calib_core::{
@@ -136,6 +137,9 @@ pub struct LegResult {
     pub cover: Cover<7>,
     /// Certified consistent geometries: the witness and the points that attain the inner bounds.
     pub points: Vec<[f64; 7]>,
+    /// The rows carried over from a calibrated robot file, numbered after the new ones (`None`
+    /// when the leg was certified against the new rows alone; [`crate::carry_over`]).
+    pub carried: Option<Carried>,
 }
 
 impl LegResult {
@@ -163,6 +167,7 @@ impl LegResult {
             seconds: 0.0,
             points: h.witness.into_iter().chain(h.inner_points).collect(),
             cover: h.cover,
+            carried: None,
         }
     }
 
@@ -209,6 +214,11 @@ impl LegResult {
             outliers: one_based(&self.outliers),
             outliers_tolerated: self.tolerated,
             witness: self.witness.map(|w| w.to_vec()),
+            carried_over: self.carried.as_ref().map(|c| CarriedReport {
+                file: c.stored.file.clone(),
+                first: c.first + 1,
+                rows: one_based(&c.stored.rows),
+            }),
             iterations: self.iterations,
             boxes: self.boxes,
             seconds: self.seconds,
@@ -228,16 +238,18 @@ pub fn report(results: &[LegResult], seconds: f64) -> Report {
 /// The identifiability of one leg's parameters on the configurations, in words (see
 /// [`calib_pipeline::identify`]): the identification Jacobian at the nominal geometry, columns
 /// scaled by the prior half-widths, rows by the error bounds. Empty when every free parameter is
-/// determined (to first order).
+/// determined (to first order). With rows carried over from a calibrated robot file (`stored`),
+/// over the new rows and the stored ones, from the leg's box cut to the stored set's hull.
 pub fn identifiability(
     spec: &LegSpec,
     leg: usize,
     configs: &[Configuration],
     u: &Uncertainty,
+    stored: Option<&StoredRows>,
 ) -> Vec<String> {
     let nominal = spec.nominal.params();
-    let x0 = leg_prior(spec);
-    let boxes = leg_boxes(configs, u, leg);
+    let x0 = stored.map_or_else(|| leg_prior(spec), |s| s.prior(spec));
+    let boxes = carried_boxes(configs, u, leg, stored);
     let (free, jacobian) = identification_jacobian(&LegModel::of(configs), &nominal, &x0, &boxes);
     let names: Vec<String> = PARAMETER_NAMES.iter().map(|s| s.to_string()).collect();
     analyse(&free, jacobian).sentences(&names)
@@ -249,18 +261,34 @@ pub fn leg_prior(spec: &LegSpec) -> [Interval; 7] {
     core::array::from_fn(|j| measured(nominal[j], spec.radius[j]))
 }
 
-/// Certifies one leg (0-based) of `spec` against the configurations.
+/// The measurement boxes of leg `leg` (0-based): the configurations' ([`leg_boxes`]), followed
+/// by the rows carried over, when any.
+pub fn carried_boxes(
+    configs: &[Configuration],
+    u: &Uncertainty,
+    leg: usize,
+    stored: Option<&StoredRows>,
+) -> Vec<[Interval; 8]> {
+    let mut boxes = leg_boxes(configs, u, leg);
+    boxes.extend(stored.iter().flat_map(|s| s.boxes.iter().copied()));
+    boxes
+}
+
+/// Certifies one leg (0-based) of `spec` against the configurations, and against the rows
+/// `stored` carries over from a calibrated robot file when given (from the leg's box cut to the
+/// stored cover's hull, [`StoredRows::prior`]).
 pub fn certify_leg(
     spec: &LegSpec,
     leg: usize,
     configs: &[Configuration],
     u: &Uncertainty,
+    stored: Option<&StoredRows>,
     options: &CertifyOptions,
     settings: &Settings,
 ) -> LegResult {
     let t = Instant::now();
-    let x0 = leg_prior(spec);
-    let boxes = leg_boxes(configs, u, leg);
+    let x0 = stored.map_or_else(|| leg_prior(spec), |s| s.prior(spec));
+    let boxes = carried_boxes(configs, u, leg, stored);
     let model = LegModel::of(configs);
     let mut r = if options.fast {
         let c = certify(&model, &x0, &boxes, settings);
@@ -287,6 +315,7 @@ pub fn certify_leg(
             seconds: 0.0,
             points: c.witness.into_iter().collect(),
             cover: c.cover,
+            carried: None,
         }
     } else {
         LegResult::from_hull(leg, x0, hull(&model, &x0, &boxes, settings))
@@ -302,6 +331,10 @@ pub fn certify_leg(
         r.paving = Some((p.boxes.len(), p.inner_volume, p.outer_volume));
     }
     r.tolerated = settings.max_outliers;
+    r.carried = stored.map(|s| Carried {
+        first: configs.len(),
+        stored: s.clone(),
+    });
     r.seconds = t.elapsed().as_secs_f64();
     r
 }
@@ -318,7 +351,23 @@ pub fn certify_legs(
     options: &CertifyOptions,
     done: &(dyn Fn() + Sync),
 ) -> Result<Vec<LegResult>, GoughError> {
-    let (legs, mut settings) = options.validate(robot.len(), configs.len())?;
+    certify_legs_carrying(robot, &[], configs, u, options, done)
+}
+
+/// [`certify_legs`] for a calibrated robot file measured again: each leg with rows in `stored`
+/// (per leg, [`crate::carry_over::stored_rows`]; a shorter list carries nothing for the legs
+/// after it) is certified against the new configurations followed by its stored rows, from its
+/// box cut to the stored cover's hull ([`certify_leg`]).
+pub fn certify_legs_carrying(
+    robot: &[LegSpec],
+    stored: &[Option<StoredRows>],
+    configs: &[Configuration],
+    u: &Uncertainty,
+    options: &CertifyOptions,
+    done: &(dyn Fn() + Sync),
+) -> Result<Vec<LegResult>, GoughError> {
+    let most = stored.iter().flatten().map(|s| s.rows.len()).max();
+    let (legs, mut settings) = options.validate(robot.len(), configs.len() + most.unwrap_or(0))?;
     if options.max_outliers == OutlierBudget::Auto {
         // Every result `auto` keeps is consistent, or tolerates outliers: a conflict set (sought
         // only for an empty verdict with none tolerated) would be thrown away.
@@ -328,9 +377,10 @@ pub fn certify_legs(
         .par_iter()
         .map(|&leg| {
             let t = Instant::now();
+            let carried = stored.get(leg).and_then(Option::as_ref);
             let (_, mut r) = smallest_consistent(
                 options.max_outliers,
-                configs.len(),
+                configs.len() + carried.map_or(0, |s| s.rows.len()),
                 |q| {
                     let settings = settings.clone().with_max_outliers(q);
                     Ok::<_, std::convert::Infallible>(certify_leg(
@@ -338,6 +388,7 @@ pub fn certify_legs(
                         leg,
                         configs,
                         u,
+                        carried,
                         options,
                         &settings,
                     ))

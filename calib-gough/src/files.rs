@@ -137,7 +137,8 @@ pub fn leg_sets(
                     file,
                     None,
                     Some(&field("points")),
-                    "the stored set holds no geometry proved consistent with its measurements                      (was the file edited?): recalibrate with `gough certify --write-calibrated`",
+                    "the stored set holds no geometry proved consistent with its measurements \
+                     (was the file edited?): recalibrate with `gough certify --write-calibrated`",
                 ));
             }
             Ok(Some(set))

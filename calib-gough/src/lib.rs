@@ -11,6 +11,7 @@
 
 pub mod accuracy;
 pub mod calibrated;
+pub mod carry_over;
 pub mod certification;
 pub mod design;
 mod error;

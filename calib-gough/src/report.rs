@@ -10,6 +10,7 @@
 //!               "conflict": [configuration, ...] or null,
 //!               "support": [configuration, ...] or null, "spread": true | false,
 //!               "outliers": [configuration, ...],
+//!               "carried_over": {"file": name, "first": n, "rows": [row, ...]} (or absent),
 //!               "iterations": n, "boxes": n, "seconds": s } ],
 //!   "seconds": total }
 //! ```
@@ -20,8 +21,13 @@
 //! the paper's fixed point. `support` (empty legs) lists the configurations the certificate of
 //! emptiness weighs; `spread` says it weighs most of what a certificate can — a misfit spread over
 //! the data, the bounds too tight for the model — and then `conflict` is `null` (not searched).
-//! `outer`, `converged`, `conflict`, `outliers`, `support` and `spread` were added to version 1
-//! without breaking it: reports written before read back with `null` (`false`) there.
+//! `carried_over` (a calibrated robot file certified again with new measurements,
+//! [`crate::carry_over`]): configurations `first` onwards are the stored rows `rows` (1-based
+//! rows of the file's `leg[i].certified_set.measurements`), certified together with the new
+//! ones; `conflict`, `support` and `outliers` number them so.
+//! `outer`, `converged`, `conflict`, `outliers`, `support`, `spread` and `carried_over` were added
+//! to version 1 without breaking it: reports written before read back with `null` (`false`,
+//! absent) there.
 //!
 //! Bounds are written with Rust's shortest round-trip formatting (serde_json), so reading them back
 //! gives the same `f64`s: no bound is moved inward by printing. An empty box is written as `null`
@@ -74,12 +80,29 @@ pub struct LegReport {
     pub outliers_tolerated: usize,
     /// A certified consistent parameter vector.
     pub witness: Option<Vec<f64>>,
+    /// When the robot file was a calibrated one whose stored rows were certified with the new
+    /// ones: which configurations they are (absent otherwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub carried_over: Option<CarriedReport>,
     /// Newton/LP iterations of the certification.
     pub iterations: usize,
     /// Boxes contracted (1 without sweep or paving).
     pub boxes: usize,
     /// Wall-clock seconds for this leg.
     pub seconds: f64,
+}
+
+/// The rows a leg carried over from a calibrated robot file (`carried_over` in the JSON report).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CarriedReport {
+    /// The calibrated robot file's name.
+    pub file: String,
+    /// The 1-based configuration number of the first stored row (the new rows are
+    /// configurations 1 to `first - 1`).
+    pub first: usize,
+    /// Per carried configuration (`first`, `first + 1`, ...), its 1-based row in the file's
+    /// `leg[i].certified_set.measurements`.
+    pub rows: Vec<usize>,
 }
 
 /// The whole report.

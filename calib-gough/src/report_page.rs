@@ -154,7 +154,12 @@ impl ReportPage<'_> {
             if r.status == Status::Empty {
                 let culprit = r.conflict.as_ref().map_or_else(
                     || "no small set of culprit configurations was isolated".to_string(),
-                    |c| format!("culprit {}", self.names.name(c)),
+                    |c| {
+                        format!(
+                            "culprit {}",
+                            verdict::name_configurations(r, &self.names, c)
+                        )
+                    },
                 );
                 let _ = writeln!(
                     h,
@@ -168,7 +173,7 @@ impl ReportPage<'_> {
                     h,
                     "<li>Leg {}: {} proved to be outlier{} and tolerated.</li>",
                     r.leg + 1,
-                    escape(&self.names.name(&r.outliers)),
+                    escape(&verdict::name_configurations(r, &self.names, &r.outliers)),
                     if r.outliers.len() == 1 { "" } else { "s" }
                 );
             }
@@ -176,6 +181,9 @@ impl ReportPage<'_> {
         let reaching: Vec<String> = self
             .legs
             .iter()
+            // A leg that carried rows over reaches x0 where the stored set bounds it
+            // (verdict::touching_x0 says so on its own page).
+            .filter(|l| l.result.carried.is_none())
             .filter_map(|l| {
                 let faces = verdict::x0_faces(l.result);
                 let names: Vec<&str> = faces.iter().map(|(j, _)| PARAMETER_NAMES[*j]).collect();

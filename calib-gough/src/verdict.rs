@@ -14,10 +14,105 @@ pub fn proof_in_words(proof: Option<EmptinessProof>) -> String {
     words::proof_in_words(proof, &names)
 }
 
+/// Names configurations of a leg's result: a new row by its number and its line in the
+/// measurement file, as [`ConfigurationNames::name`] does; a row carried over from a calibrated
+/// robot file ([`crate::carry_over`]) by its number and its row in that file — "configurations
+/// 4, 23 (measurements.csv line 5; stored row 2 of calibrated.toml)".
+pub fn name_configurations(
+    r: &LegResult,
+    names: &ConfigurationNames<'_>,
+    configs: &[usize],
+) -> String {
+    let Some(carried) = &r.carried else {
+        return names.name(configs);
+    };
+    let (new, stored): (Vec<usize>, Vec<usize>) = configs.iter().partition(|&&k| k < carried.first);
+    if stored.is_empty() {
+        return names.name(configs);
+    }
+    let numbers: Vec<String> = configs.iter().map(|k| (k + 1).to_string()).collect();
+    let rows: Vec<String> = stored
+        .iter()
+        .map(|&k| {
+            carried
+                .stored_row(k)
+                .map_or("?".into(), |i| (i + 1).to_string())
+        })
+        .collect();
+    let plural = |n: usize, one: &'static str, many: &'static str| if n == 1 { one } else { many };
+    let at_lines: Vec<String> = new
+        .iter()
+        .map(|&k| names.lines.get(k).map_or("?".into(), |l| l.to_string()))
+        .collect();
+    let lines = (!new.is_empty()).then(|| {
+        format!(
+            "{} {} {}; ",
+            names.file,
+            plural(new.len(), "line", "lines"),
+            at_lines.join(", ")
+        )
+    });
+    format!(
+        "{} {} ({}stored {} {} of {})",
+        plural(configs.len(), "configuration", "configurations"),
+        numbers.join(", "),
+        lines.unwrap_or_default(),
+        plural(stored.len(), "row", "rows"),
+        rows.join(", "),
+        carried.stored.file
+    )
+}
+
+/// [`ConfigurationNames`] for every configuration of a leg's result, the rows it carried over
+/// included (their lines unknown to the measurement file: what the sentences of
+/// [`calib_pipeline::verdict`] count; [`name_configurations`] names them).
+fn all_rows(r: &LegResult, names: &ConfigurationNames<'_>) -> Vec<usize> {
+    let stored = r.carried.as_ref().map_or(0, |c| c.stored.rows.len());
+    names
+        .lines
+        .iter()
+        .copied()
+        .chain(std::iter::repeat_n(0, stored))
+        .collect()
+}
+
+/// The shared sentences, with every set of configurations they name (conflict, support,
+/// outliers) named by [`name_configurations`].
+fn with_stored_rows(
+    r: &LegResult,
+    names: &ConfigurationNames<'_>,
+    sentences: impl FnOnce(&ConfigurationNames<'_>) -> Vec<String>,
+) -> Vec<String> {
+    let lines = all_rows(r, names);
+    let every = ConfigurationNames {
+        file: names.file,
+        lines: &lines,
+    };
+    let mut out = sentences(&every);
+    if r.carried.is_some() {
+        let sets = [
+            r.conflict.as_deref(),
+            r.support.as_deref(),
+            Some(&r.outliers[..]),
+        ];
+        for set in sets.into_iter().flatten().filter(|s| !s.is_empty()) {
+            let (plain, named) = (every.name(set), name_configurations(r, names, set));
+            for sentence in &mut out {
+                *sentence = sentence.replace(&plain, &named);
+            }
+        }
+    }
+    out
+}
+
 /// The verdict and its evidence, one sentence per entry: for an empty leg the proof, the
 /// conflicting configurations and what to do next (with the outliers the result tolerates).
+/// Rows carried over from a calibrated robot file are named as its rows
+/// ([`name_configurations`]).
 pub fn verdict(r: &LegResult, names: &ConfigurationNames<'_>) -> Vec<String> {
-    words::verdict(&r.outcome(), names, r.tolerated)
+    with_stored_rows(r, names, |every| {
+        words::verdict(&r.outcome(), every, r.tolerated)
+    })
 }
 
 /// The outer (or x1) width over the inner width, per parameter, when both exist.
@@ -38,8 +133,29 @@ pub fn x0_faces(r: &LegResult) -> Vec<(usize, &'static str)> {
 
 /// Where the outer box reaches a face of the initial box x0, in words: consistent parameter
 /// vectors may then lie beyond x0, which the certificate does not cover.
+///
+/// For a leg that carried rows over from a calibrated robot file, x0 is the file's box cut to the
+/// hull of the stored set, which holds every geometry the earlier certification found consistent
+/// with the stored rows: reaching it says where the stored set bounds the new one, not that
+/// consistent geometries may lie beyond.
 pub fn touching_x0(r: &LegResult) -> Option<String> {
-    words::touching_x0(&r.outcome())
+    let Some(carried) = &r.carried else {
+        return words::touching_x0(&r.outcome());
+    };
+    let faces: Vec<String> = x0_faces(r)
+        .iter()
+        .map(|(j, end)| format!("{} ({end})", PARAMETER_NAMES[*j]))
+        .collect();
+    (!faces.is_empty()).then(|| {
+        format!(
+            "the outer box reaches x0 in {}: x0 is {}'s box cut to the hull of its stored set, \
+             which holds every geometry the earlier certification found consistent with the \
+             stored rows, so the stored set bounds the new one there (and the earlier \
+             certification's own x0 bounds what it covers)",
+            faces.join(", "),
+            carried.stored.file
+        )
+    })
 }
 
 /// Where `x` stands against a certificate over `x0`: `certified` is the certified box, `None` when
@@ -60,5 +176,10 @@ pub fn leg_standing(r: &LegResult, x: &[f64; 7]) -> Standing {
 /// With outliers tolerated (`r.tolerated > 0`) on a leg that is not empty: which configurations
 /// were proved to be outliers.
 pub fn outliers(r: &LegResult, names: &ConfigurationNames<'_>) -> Option<String> {
-    words::outliers(&r.outcome(), names, r.tolerated)
+    with_stored_rows(r, names, |every| {
+        words::outliers(&r.outcome(), every, r.tolerated)
+            .into_iter()
+            .collect()
+    })
+    .pop()
 }

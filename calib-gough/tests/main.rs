@@ -8,6 +8,7 @@ mod scratch_dir;
 mod support;
 
 mod accuracy;
+mod carry_over;
 mod cli;
 mod design;
 mod pose_error;

@@ -11,10 +11,11 @@
 //! (No `#![deny(unsafe_code)]` here: PyO3's macros expand to the FFI glue, which is unsafe code.)
 
 use calib_arm::certification::{certify_request, json_report, CertifyRequest};
-use calib_gough::certification::{certify_legs, report, CertifyOptions};
+use calib_gough::carry_over::{stored_rows, StoredRows};
+use calib_gough::certification::{certify_legs_carrying, report, CertifyOptions};
 use calib_gough::files::{
-    check_uncertainty, parse_measurements, parse_robot, parse_uncertainty, read_measurements,
-    read_robot, read_uncertainty, LegSpec, Measurements,
+    check_uncertainty, parse_measurements, parse_robot_file, parse_uncertainty, read_measurements,
+    read_robot, read_robot_file, read_uncertainty, LegSpec, Measurements, RobotFile,
 };
 use calib_gough::lsq::fit_legs;
 use calib_gough::Uncertainty;
@@ -32,6 +33,11 @@ fn value_error(e: impl std::fmt::Display) -> PyErr {
 /// The parsed inputs of a certification, with the name the uncertainty goes by in errors.
 struct Inputs {
     robot: Vec<LegSpec>,
+    /// Per leg, the rows a calibrated robot file carries over (`gough certify --robot
+    /// calibrated.toml`: the stored rows join the new ones).
+    stored: Vec<Option<StoredRows>>,
+    /// The robot file as read, and the name it goes by (the legs not certified keep its sets).
+    file: (PathBuf, RobotFile),
     data: Measurements,
     uncertainty: Uncertainty,
     uncertainty_name: PathBuf,
@@ -60,8 +66,9 @@ fn run(
     let start = Instant::now();
     let results = py
         .detach(|| {
-            certify_legs(
+            certify_legs_carrying(
                 &inputs.robot,
+                &inputs.stored,
                 &inputs.data.configs,
                 &inputs.uncertainty,
                 &options,
@@ -73,17 +80,19 @@ fn run(
     if let Some(path) = write_calibrated {
         // What `gough certify --write-calibrated` writes: per leg a geometry proved consistent
         // with every measurement, and the certified set.
-        let cal = py
-            .detach(|| {
-                calib_gough::calibrated::calibrated_robot(
-                    &inputs.robot,
-                    &results,
-                    &inputs.data.configs,
-                    &inputs.uncertainty,
-                    task.as_ref().map(calib_gough::calibrated::TaskFile::task),
-                )
-            })
+        let cal = py.detach(|| {
+            let mut cal = calib_gough::calibrated::calibrated_robot(
+                &inputs.robot,
+                &results,
+                &inputs.data.configs,
+                &inputs.uncertainty,
+                task.as_ref().map(calib_gough::calibrated::TaskFile::task),
+            )
             .map_err(value_error)?;
+            cal.keep_stored_sets(&inputs.file.0, &inputs.file.1)
+                .map_err(value_error)?;
+            Ok::<_, PyErr>(cal)
+        })?;
         let comment = format!(
             "calibrated by certicalib {} (Python): per leg a geometry proved consistent with \
              every measurement, and [leg.certified_set], the certified set",
@@ -145,11 +154,14 @@ fn certify_files(
     uncertainty: PathBuf,
     options: Options,
 ) -> PyResult<String> {
-    let spec = read_robot(&robot).map_err(value_error)?;
-    let data = read_measurements(&measurements, spec.len()).map_err(value_error)?;
+    let file = read_robot_file(&robot).map_err(value_error)?;
+    let data = read_measurements(&measurements, file.legs.len()).map_err(value_error)?;
     let u = read_uncertainty(&uncertainty).map_err(value_error)?;
+    let stored = stored_rows(&robot, &file, data.rodrigues).map_err(value_error)?;
     let inputs = Inputs {
-        robot: spec,
+        robot: file.legs.clone(),
+        stored,
+        file: (robot, file),
         data,
         uncertainty: u,
         uncertainty_name: uncertainty,
@@ -174,11 +186,14 @@ fn certify_text(
         PathBuf::from(names.1),
         PathBuf::from(names.2),
     );
-    let spec = parse_robot(&rn, robot).map_err(value_error)?;
-    let data = parse_measurements(&mn, measurements, spec.len()).map_err(value_error)?;
+    let file: RobotFile = parse_robot_file(&rn, robot).map_err(value_error)?;
+    let data = parse_measurements(&mn, measurements, file.legs.len()).map_err(value_error)?;
     let u = parse_uncertainty(&un, uncertainty).map_err(value_error)?;
+    let stored = stored_rows(&rn, &file, data.rodrigues).map_err(value_error)?;
     let inputs = Inputs {
-        robot: spec,
+        robot: file.legs.clone(),
+        stored,
+        file: (rn, file),
         data,
         uncertainty: u,
         uncertainty_name: un,

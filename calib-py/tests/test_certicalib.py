@@ -249,3 +249,32 @@ def test_write_calibrated_for_a_task_gives_the_cli_file(tmp_path):
     with pytest.raises(ValueError, match="bad.csv"):
         certicalib.certify(robot, meas, unc, write_calibrated=never, task=bad)
     assert not never.exists()
+
+
+def test_a_calibrated_robot_carries_its_rows_over_as_the_cli_does(tmp_path):
+    # Two series of the same simulated hexapod (the truth does not depend on the seed): the
+    # first calibrated, the second certified against the calibrated file.
+    first, second = tmp_path / "first", tmp_path / "second"
+    certicalib.simulate(first, configs=12, seed=21)
+    certicalib.simulate(second, configs=12, seed=22)
+    cal = tmp_path / "calibrated.toml"
+    alone = certicalib.certify(*files(first), write_calibrated=cal)
+    assert all(leg.carried_over == 0 for leg in alone.legs)
+    both = certicalib.certify(cal, second / "measurements.csv", second / "uncertainty.toml",
+                              write_calibrated=tmp_path / "again.toml")
+    assert [leg.carried_over for leg in both.legs] == [12] * 6
+    assert all(leg.status == "consistent" for leg in both.legs)
+    assert both.to_dict()["legs"][0]["carried_over"]["first"] == 13
+    # The command line certifies the same rows from the same boxes.
+    out = tmp_path / "cli.json"
+    subprocess.run([str(repo_binary("gough")), "certify", "--robot", str(cal), "--measurements",
+                    str(second / "measurements.csv"), "--uncertainty",
+                    str(second / "uncertainty.toml"), "--json", str(out)], check=True,
+                   capture_output=True)
+    cli = json.loads(out.read_text())
+    same_legs(both.to_dict(), cli)
+    assert [leg["carried_over"] for leg in cli["legs"]] == \
+        [leg["carried_over"] for leg in both.to_dict()["legs"]]
+    # The file written stores both series: a second round carries 24 rows.
+    again = certicalib.certify(tmp_path / "again.toml", *files(first)[1:])
+    assert [leg.carried_over for leg in again.legs] == [24] * 6

@@ -4,12 +4,14 @@ use super::DataFiles;
 use calib_core::Status;
 use calib_gough::accuracy::{accuracy_report, AccuracyProblem, AccuracyReport, AccuracySettings};
 use calib_gough::calibrated::{calibrated_robot, robot_toml, CalibratedRobot, Task, TaskFile};
+use calib_gough::carry_over::{stored_rows, StoredRows};
 use calib_gough::certification::{
-    certify_legs, identifiability, report, CertifyOptions, LegResult,
+    certify_legs_carrying, identifiability, report, CertifyOptions, LegResult,
 };
 use calib_gough::error_scale::{search, ScaleBounds};
 use calib_gough::files::{
-    check_uncertainty, parse_measurements, parse_robot, parse_uncertainty, read_text,
+    check_uncertainty, parse_measurements, parse_robot_file, parse_uncertainty, read_text,
+    RobotFile,
 };
 use calib_gough::lsq::fit_legs;
 use calib_gough::measurement::Uncertainty;
@@ -145,9 +147,21 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let input = Files::read(&a)?;
     let (robot, data) = (&input.robot, &input.data);
     let options = a.options();
-    // Option errors before any work (certify_legs checks them again).
-    let (legs, _) = options.validate(robot.len(), data.configs.len())?;
+    // Option errors before any work (certify_legs_carrying checks them again), counting the
+    // rows carried over as it does.
+    let most = input.stored.iter().flatten().map(|s| s.rows.len()).max();
+    let (legs, _) = options.validate(robot.len(), data.configs.len() + most.unwrap_or(0))?;
+    let carried = carried_words(&a.files.robot, &input.stored, &legs, data.configs.len());
     let (scale_json, u, scale_words) = match a.scale.error_scale {
+        Some(ErrorScaleMode::Auto) if input.stored.iter().any(Option::is_some) => {
+            return Err(format!(
+                "--error-scale auto: {} carries certified sets, whose stored rows keep the error \
+                 bounds of their own series; find the scale of the new rows against the nominal \
+                 robot file (or the calibrated one without its [leg.certified_set] tables)",
+                a.files.robot.display()
+            )
+            .into());
+        }
         Some(ErrorScaleMode::Auto) => {
             let (json, scaled, words) = error_scale(&a, robot, &legs, &data.configs, &input.u)?;
             println!();
@@ -158,7 +172,11 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let workspace = a.workspace.as_deref().map(read_workspace).transpose()?;
     let task = a.task.as_deref().map(TaskFile::read).transpose()?;
     let pose_seconds = super::accuracy::checked_pose_seconds(a.pose_seconds)?;
-    let (results, total) = certify_with_progress(robot, &data.configs, &u, &options, legs.len())?;
+    carried.iter().for_each(|line| println!("{line}"));
+    if !carried.is_empty() {
+        println!();
+    }
+    let (results, total) = certify_with_progress(&input, &u, &options, legs.len())?;
     let file = file_name(&a.files.measurements);
     let names = ConfigurationNames {
         file: &file,
@@ -166,14 +184,17 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     };
     let findings: Vec<Vec<String>> = results
         .iter()
-        .map(|r| identifiability(&robot[r.leg], r.leg, &data.configs, &u))
+        .map(|r| {
+            let stored = r.carried.as_ref().map(|c| &c.stored);
+            identifiability(&robot[r.leg], r.leg, &data.configs, &u, stored)
+        })
         .collect();
     print_results(&a, &results, &findings, &names, total);
     if let Some(dir) = &a.plots {
         write_plots(dir, &results)?;
     }
     let calibrated = if a.write_calibrated.is_some() || workspace.is_some() {
-        Some(calibrated_robot(
+        let mut cal = calibrated_robot(
             robot,
             &results,
             &data.configs,
@@ -181,12 +202,14 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             task.as_ref()
                 .map(TaskFile::task)
                 .or(workspace.as_ref().map(Task::Workspace)),
-        )?)
+        )?;
+        cal.keep_stored_sets(&a.files.robot, &input.robot_file)?;
+        Some(cal)
     } else {
         None
     };
     if let (Some(path), Some(cal)) = (&a.write_calibrated, &calibrated) {
-        write_calibrated(&a, path, cal)?;
+        write_calibrated(&a, path, cal, &carried)?;
     }
     let accuracy = match (&workspace, &calibrated) {
         (Some(w), Some(cal)) => Some(certify_accuracy(&a, robot, w, cal, &u, pose_seconds)),
@@ -198,6 +221,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             findings: &findings,
             u: &u,
             scale_words: &scale_words,
+            carried: &carried,
             seconds: total,
             accuracy: accuracy.as_ref(),
         };
@@ -219,6 +243,10 @@ struct Files {
     data_text: String,
     u_text: String,
     robot: Vec<calib_gough::files::LegSpec>,
+    /// The robot file as read, with the certified sets of a calibrated file.
+    robot_file: RobotFile,
+    /// Per leg, the rows a calibrated robot file carries over (`None`: the leg has no set).
+    stored: Vec<Option<StoredRows>>,
     data: calib_gough::files::Measurements,
     u: Uncertainty,
 }
@@ -229,15 +257,19 @@ impl Files {
         let texts = [&a.files.robot, &a.files.measurements, &a.uncertainty].map(|p| read_text(p));
         let [robot_text, data_text, u_text] = texts;
         let (robot_text, data_text, u_text) = (robot_text?, data_text?, u_text?);
-        let robot = parse_robot(&a.files.robot, &robot_text)?;
+        let robot_file = parse_robot_file(&a.files.robot, &robot_text)?;
+        let robot = robot_file.legs.clone();
         let data = parse_measurements(&a.files.measurements, &data_text, robot.len())?;
         let u = parse_uncertainty(&a.uncertainty, &u_text)?;
         check_uncertainty(&a.uncertainty, &u, data.rodrigues)?;
+        let stored = stored_rows(&a.files.robot, &robot_file, data.rodrigues)?;
         Ok(Files {
             robot_text,
             data_text,
             u_text,
             robot,
+            robot_file,
+            stored,
             data,
             u,
         })
@@ -247,8 +279,7 @@ impl Files {
 /// Certifies the chosen legs with a progress bar (on a terminal only: indicatif draws nothing
 /// when stderr is not a terminal); the results and the seconds they took.
 fn certify_with_progress(
-    robot: &[calib_gough::files::LegSpec],
-    configs: &[calib_gough::measurement::Configuration],
+    input: &Files,
     u: &Uncertainty,
     options: &CertifyOptions,
     legs: usize,
@@ -259,7 +290,14 @@ fn certify_with_progress(
         indicatif::ProgressStyle::with_template("certifying legs {bar:30} {pos}/{len} [{elapsed}]")
             .expect("static template"),
     );
-    let results = certify_legs(robot, configs, u, options, &|| bar.inc(1))?;
+    let results = certify_legs_carrying(
+        &input.robot,
+        &input.stored,
+        &input.data.configs,
+        u,
+        options,
+        &|| bar.inc(1),
+    )?;
     bar.finish_and_clear();
     Ok((results, start.elapsed().as_secs_f64()))
 }
@@ -312,11 +350,76 @@ fn write_plots(dir: &Path, results: &[LegResult]) -> Result<(), Box<dyn std::err
     Ok(())
 }
 
+/// What a run carries over from a calibrated robot file, in words (nothing when the file has no
+/// certified set): one line when every chosen leg carries the same rows, else one per leg; and
+/// the stored rows left out (tolerated as outliers by the earlier run).
+fn carried_words(
+    file: &Path,
+    stored: &[Option<StoredRows>],
+    legs: &[usize],
+    new: usize,
+) -> Vec<String> {
+    let chosen: Vec<(usize, Option<&StoredRows>)> = legs
+        .iter()
+        .map(|&i| (i, stored.get(i).and_then(Option::as_ref)))
+        .collect();
+    if chosen.iter().all(|(_, s)| s.is_none()) {
+        return Vec::new();
+    }
+    let name = file.display();
+    let joined = |n: usize| {
+        format!(
+            "{n} stored configuration{} of {name} join{} the {new} new one{}",
+            if n == 1 { "" } else { "s" },
+            if n == 1 { "s" } else { "" },
+            if new == 1 { "" } else { "s" }
+        )
+    };
+    let first = chosen[0].1.map(|s| &s.rows);
+    let mut out = if chosen.iter().all(|(_, s)| s.map(|s| &s.rows) == first) {
+        vec![format!(
+            "carried over: {} (each leg is certified against both series, from its certified set)",
+            joined(first.map_or(0, Vec::len))
+        )]
+    } else {
+        chosen
+            .iter()
+            .map(|(i, s)| match s {
+                Some(s) => format!("carried over to leg {}: {}", i + 1, joined(s.rows.len())),
+                None => format!(
+                    "leg {}: no certified set in {name}: certified against the {new} new \
+                     configurations alone",
+                    i + 1
+                ),
+            })
+            .collect()
+    };
+    for (i, s) in &chosen {
+        if let Some(s) = s.filter(|s| !s.left_out.is_empty()) {
+            let rows: Vec<String> = s.left_out.iter().map(|k| (k + 1).to_string()).collect();
+            out.push(format!(
+                "leg {}: stored row{} {} of {name} not carried over: the earlier certification \
+                 tolerated {}",
+                i + 1,
+                if rows.len() == 1 { "" } else { "s" },
+                rows.join(", "),
+                if rows.len() == 1 {
+                    "it as an outlier"
+                } else {
+                    "them as outliers"
+                },
+            ));
+        }
+    }
+    out
+}
+
 /// --write-calibrated: the calibrated robot file, with a comment saying where it comes from.
 fn write_calibrated(
     a: &Args,
     path: &Path,
     cal: &CalibratedRobot,
+    carried: &[String],
 ) -> Result<(), Box<dyn std::error::Error>> {
     let over = match (&a.task, &a.workspace) {
         (Some(task), _) => format!("the task {}", task.display()),
@@ -334,6 +437,9 @@ fn write_calibrated(
         a.files.measurements.display(),
         margin_words(cal),
     );
+    let comment = carried
+        .iter()
+        .fold(comment, |c, line| format!("{c}\n{line}"));
     write_atomically(path, &robot_toml(&cal.legs, &cal.sets, &comment))
         .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
     println!(
@@ -381,6 +487,8 @@ struct Run<'a> {
     /// The error bounds certified with (scaled by --error-scale).
     u: &'a Uncertainty,
     scale_words: &'a [String],
+    /// What was carried over from a calibrated robot file, in words.
+    carried: &'a [String],
     seconds: f64,
     accuracy: Option<&'a AccuracyReport>,
 }
@@ -422,7 +530,12 @@ fn write_certificate(
                 )
             }))
             .collect(),
-        settings: settings(a),
+        settings: settings(a)
+            .into_iter()
+            .chain(
+                (!run.carried.is_empty()).then(|| ("carried over".into(), run.carried.join("; "))),
+            )
+            .collect(),
         seconds: run.seconds,
         legs: run
             .results

@@ -35,6 +35,12 @@ enum Command {
     /// --report writes the calibration certificate: one self-contained HTML page (summary in
     /// words, inputs with SHA-256, settings, per-leg tables and figures) to archive or print.
     ///
+    /// --robot may be a calibrated robot file (--write-calibrated): each leg is then certified
+    /// against the new measurements and the rows its stored set was certified against, from
+    /// its box cut to that set (the robot measured again, same frames); the output says how many
+    /// rows were carried over, names a stored row by its row in the file, and --write-calibrated
+    /// stores both series.
+    ///
     /// What the boxes mean, per leg parameter (a = base point, b = platform point, l = offset):
     ///   outer  every parameter vector that fits all measurements within their error bounds lies
     ///          in this box: a proof, with rigorous rounding.

@@ -28,6 +28,11 @@ fn the_json_schema_round_trips_exactly() {
             outliers: vec![9],
             outliers_tolerated: 1,
             witness: Some(vec![0.1; 7]),
+            carried_over: Some(CarriedReport {
+                file: "calibrated.toml".into(),
+                first: 22,
+                rows: (1..=21).collect(),
+            }),
             iterations: 3,
             boxes: 1,
             seconds: 0.25,

@@ -101,6 +101,10 @@ class LegResult:
     converged: Optional[bool]
     #: Wall-clock seconds for this leg.
     seconds: float
+    #: How many configurations of a calibrated robot file's stored set were certified with the
+    #: new ones (``robot`` a file written with ``write_calibrated``); they are configurations
+    #: ``len(new rows) + 1`` onwards. 0 when none were carried over.
+    carried_over: int = 0
 
     @property
     def ratio(self) -> Optional[np.ndarray]:
@@ -137,6 +141,7 @@ class Report:
                 outliers_tolerated=int(leg.get("outliers_tolerated", 0)),
                 converged=leg.get("converged"),
                 seconds=leg["seconds"],
+                carried_over=len((leg.get("carried_over") or {}).get("rows", [])),
             )
             for leg in self._dict["legs"]
         ]
@@ -270,7 +275,10 @@ def certify(robot: Union[PathLike, RobotData],
     ``write_calibrated``: write the calibrated robot file there, as ``--write-calibrated`` does
     (per leg a geometry proved consistent with every measurement, and the certified set that
     :func:`accuracy` works over); with ``task`` (a ``workspace.toml`` or a poses CSV, as
-    ``--task``), each geometry is chosen towards the centre of its predictions there. The interpreter is released while the work runs. Malformed input raises ``ValueError`` naming
+    ``--task``), each geometry is chosen towards the centre of its predictions there. A
+    ``robot`` file written so carries its certified sets over: each leg is certified against the
+    new measurements and the rows its set was certified against, as ``gough certify`` does
+    (``LegResult.carried_over`` counts them). The interpreter is released while the work runs. Malformed input raises ``ValueError`` naming
     the file (or in-memory input), the line and the field.
     """
     opts = _options(legs, sweep, max_outliers, fast, tolerance, max_boxes, max_seconds,
