@@ -6,7 +6,9 @@ use crate::certification::LegResult;
 use crate::PARAMETER_NAMES;
 use calib_core::{EmptinessProof, Interval, Status};
 use calib_pipeline::verdict as words;
-pub use calib_pipeline::verdict::{auto_outliers, short_verdict, ConfigurationNames, Standing};
+pub use calib_pipeline::verdict::{
+    auto_outliers, short_verdict, CarriedRows, ConfigurationNames, Standing,
+};
 
 /// What proved a leg empty, in words.
 pub fn proof_in_words(proof: Option<EmptinessProof>) -> String {
@@ -15,94 +17,36 @@ pub fn proof_in_words(proof: Option<EmptinessProof>) -> String {
 }
 
 /// Names configurations of a leg's result: a new row by its number and its line in the
-/// measurement file, as [`ConfigurationNames::name`] does; a row carried over from a calibrated
-/// robot file ([`crate::carry_over`]) by its number and its row in that file — "configurations
-/// 4, 23 (measurements.csv line 5; stored row 2 of calibrated.toml)".
+/// measurement file, a row carried over from a calibrated robot file ([`crate::carry_over`]) by
+/// its number and its row in that file — "configurations 4, 23 (measurements.csv line 5; stored
+/// row 2 of calibrated.toml)" ([`ConfigurationNames::name`]).
 pub fn name_configurations(
     r: &LegResult,
     names: &ConfigurationNames<'_>,
     configs: &[usize],
 ) -> String {
-    let Some(carried) = &r.carried else {
-        return names.name(configs);
-    };
-    let (new, stored): (Vec<usize>, Vec<usize>) = configs.iter().partition(|&&k| k < carried.first);
-    if stored.is_empty() {
-        return names.name(configs);
-    }
-    let numbers: Vec<String> = configs.iter().map(|k| (k + 1).to_string()).collect();
-    let rows: Vec<String> = stored
-        .iter()
-        .map(|&k| {
-            carried
-                .stored_row(k)
-                .map_or("?".into(), |i| (i + 1).to_string())
-        })
-        .collect();
-    let plural = |n: usize, one: &'static str, many: &'static str| if n == 1 { one } else { many };
-    let at_lines: Vec<String> = new
-        .iter()
-        .map(|&k| names.lines.get(k).map_or("?".into(), |l| l.to_string()))
-        .collect();
-    let lines = (!new.is_empty()).then(|| {
-        format!(
-            "{} {} {}; ",
-            names.file,
-            plural(new.len(), "line", "lines"),
-            at_lines.join(", ")
-        )
-    });
-    format!(
-        "{} {} ({}stored {} {} of {})",
-        plural(configs.len(), "configuration", "configurations"),
-        numbers.join(", "),
-        lines.unwrap_or_default(),
-        plural(stored.len(), "row", "rows"),
-        rows.join(", "),
-        carried.stored.file
-    )
+    with_stored_rows(r, names, |every| every.name(configs))
 }
 
-/// [`ConfigurationNames`] for every configuration of a leg's result, the rows it carried over
-/// included (their lines unknown to the measurement file: what the sentences of
-/// [`calib_pipeline::verdict`] count; [`name_configurations`] names them).
-fn all_rows(r: &LegResult, names: &ConfigurationNames<'_>) -> Vec<usize> {
-    let stored = r.carried.as_ref().map_or(0, |c| c.stored.rows.len());
-    names
-        .lines
-        .iter()
-        .copied()
-        .chain(std::iter::repeat_n(0, stored))
-        .collect()
-}
-
-/// The shared sentences, with every set of configurations they name (conflict, support,
-/// outliers) named by [`name_configurations`].
-fn with_stored_rows(
+/// `f` of `names` with the rows `r` carried over named by their rows in the stored set.
+fn with_stored_rows<T>(
     r: &LegResult,
     names: &ConfigurationNames<'_>,
-    sentences: impl FnOnce(&ConfigurationNames<'_>) -> Vec<String>,
-) -> Vec<String> {
-    let lines = all_rows(r, names);
-    let every = ConfigurationNames {
+    f: impl FnOnce(&ConfigurationNames<'_>) -> T,
+) -> T {
+    let rows: Vec<usize> = r
+        .carried
+        .as_ref()
+        .map_or_else(Vec::new, |c| c.stored.rows.iter().map(|i| i + 1).collect());
+    let carried = r.carried.as_ref().map(|c| CarriedRows {
+        file: &c.stored.file,
+        rows: &rows,
+    });
+    f(&ConfigurationNames {
         file: names.file,
-        lines: &lines,
-    };
-    let mut out = sentences(&every);
-    if r.carried.is_some() {
-        let sets = [
-            r.conflict.as_deref(),
-            r.support.as_deref(),
-            Some(&r.outliers[..]),
-        ];
-        for set in sets.into_iter().flatten().filter(|s| !s.is_empty()) {
-            let (plain, named) = (every.name(set), name_configurations(r, names, set));
-            for sentence in &mut out {
-                *sentence = sentence.replace(&plain, &named);
-            }
-        }
-    }
-    out
+        lines: names.lines,
+        carried,
+    })
 }
 
 /// The verdict and its evidence, one sentence per entry: for an empty leg the proof, the
@@ -178,8 +122,5 @@ pub fn leg_standing(r: &LegResult, x: &[f64; 7]) -> Standing {
 pub fn outliers(r: &LegResult, names: &ConfigurationNames<'_>) -> Option<String> {
     with_stored_rows(r, names, |every| {
         words::outliers(&r.outcome(), every, r.tolerated)
-            .into_iter()
-            .collect()
     })
-    .pop()
 }

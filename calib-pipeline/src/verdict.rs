@@ -12,13 +12,26 @@ pub struct ConfigurationNames<'a> {
     pub file: &'a str,
     /// The file line of each configuration (1-based lines, in configuration order).
     pub lines: &'a [usize],
+    /// The configurations after the file's: rows carried over from an earlier calibration's
+    /// certified set (`None` when nothing was carried over).
+    pub carried: Option<CarriedRows<'a>>,
+}
+
+/// Configurations carried over from an earlier calibration's certified set, numbered after the
+/// measurement file's.
+#[derive(Clone, Copy, Debug)]
+pub struct CarriedRows<'a> {
+    /// The robot file that stored them (as shown to the user).
+    pub file: &'a str,
+    /// Per carried configuration, in order, its 1-based row in that file's stored set.
+    pub rows: &'a [usize],
 }
 
 impl ConfigurationNames<'_> {
     /// "configurations 4, 8 (measurements.csv lines 5, 9)" for 0-based configurations `[3, 7]`.
-    /// Configurations after the file's (a certified set's rows carried over from an earlier
-    /// calibration, numbered after the new ones) are named by their row in that set: "configurations
-    /// 4, 62 (measurements.csv line 5; the earlier calibration's row 2)" with 60 lines.
+    /// Configurations after the file's are named by their row in the stored set they were
+    /// carried over from: "configurations 4, 62 (measurements.csv line 5; stored row 2 of
+    /// calibrated.toml)" with 60 lines.
     pub fn name(&self, configs: &[usize]) -> String {
         let numbers: Vec<String> = configs.iter().map(|k| (k + 1).to_string()).collect();
         let plural =
@@ -32,15 +45,14 @@ impl ConfigurationNames<'_> {
             at.push(format!("{} {line} {}", self.file, lines.join(", ")));
         }
         if !earlier.is_empty() {
-            let rows: Vec<String> = earlier
-                .iter()
-                .map(|k| (k - self.lines.len() + 1).to_string())
-                .collect();
+            let row_of = |k: usize| {
+                let c = self.carried.and_then(|c| c.rows.get(k - self.lines.len()));
+                c.map_or("?".to_string(), |r| r.to_string())
+            };
+            let rows: Vec<String> = earlier.iter().map(|&k| row_of(k)).collect();
+            let from = self.carried.map_or("?", |c| c.file);
             let row = plural(earlier.len(), "row", "rows");
-            at.push(format!(
-                "the earlier calibration's {row} {}",
-                rows.join(", ")
-            ));
+            at.push(format!("stored {row} {} of {from}", rows.join(", ")));
         }
         let noun = plural(configs.len(), "configuration", "configurations");
         format!("{noun} {} ({})", numbers.join(", "), at.join("; "))

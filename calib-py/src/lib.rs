@@ -354,12 +354,19 @@ fn arm_certify_files(
             }
         })
         .map_err(value_error)?;
-    let file = measurements
-        .file_name()
-        .map_or_else(String::new, |f| f.to_string_lossy().into_owned());
+    let base_name = |p: &std::path::Path| {
+        p.file_name()
+            .map_or_else(String::new, |f| f.to_string_lossy().into_owned())
+    };
+    let (file, robot_file) = (base_name(&measurements), base_name(&robot));
+    let stored_rows: Vec<usize> = (1..=earlier.as_ref().map_or(0, |s| s.measurements().len())).collect();
     let names = ConfigurationNames {
         file: &file,
         lines: &data.lines,
+        carried: earlier.as_ref().map(|_| calib_pipeline::verdict::CarriedRows {
+            file: &robot_file,
+            rows: &stored_rows,
+        }),
     };
     if let Some(path) = write {
         use calib_arm::calibrated::PointChoice;

@@ -18,7 +18,7 @@ use calib_core::Status;
 use calib_pipeline::cli::{ErrorScaleArgs, ErrorScaleMode, OutlierArgs};
 use calib_pipeline::error_scale::{check_margin, report as scale_report};
 use calib_pipeline::html::{command_line, now, Input};
-use calib_pipeline::verdict::{self, ConfigurationNames};
+use calib_pipeline::verdict::{self, CarriedRows, ConfigurationNames};
 use calib_pipeline::{read_text, write_atomically};
 use calib_pipeline::{Depth, OutlierBudget};
 use std::path::{Path, PathBuf};
@@ -140,8 +140,8 @@ fn carried_words(robot: &Path, set: &ArmSet, new: usize) -> String {
     let earlier = set.measurements().len();
     format!(
         "carried over: the {earlier} configurations of the certified set in {} join the {new} \
-         new ones (numbered {}–{} below), with a base and tool of their own (their tracker frame); \
-         the joints' parameters must fit both",
+         new ones (numbered {}–{} below, stored rows 1–{earlier}), with a base and tool of their \
+         own (their tracker frame); the joints' parameters must fit both",
         robot.display(),
         new + 1,
         new + earlier
@@ -205,9 +205,15 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         );
     }
     let file = file_name(&a.files.measurements);
+    let robot_file = file_name(&a.files.robot);
+    let stored_rows: Vec<usize> = (1..=earlier.map_or(0, |s| s.measurements().len())).collect();
     let names = ConfigurationNames {
         file: &file,
         lines: &data.lines,
+        carried: earlier.map(|_| CarriedRows {
+            file: &robot_file,
+            rows: &stored_rows,
+        }),
     };
     print_identifiability(&run);
     if a.outliers.max_outliers == OutlierBudget::Auto {

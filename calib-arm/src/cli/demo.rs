@@ -68,6 +68,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let names = ConfigurationNames {
         file: "measurements.csv",
         lines: &lines,
+        carried: None,
     };
     print_identifiability(&run);
     print_outcome(&run, &names, 0);

@@ -58,6 +58,7 @@ fn page(run: &ArmRun) -> String {
         names: ConfigurationNames {
             file: "m.csv",
             lines: &lines,
+            carried: None,
         },
         tolerated: 0,
         truth: None,

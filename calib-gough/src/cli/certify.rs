@@ -181,6 +181,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let names = ConfigurationNames {
         file: &file,
         lines: &data.lines,
+        carried: None,
     };
     let findings: Vec<Vec<String>> = results
         .iter()

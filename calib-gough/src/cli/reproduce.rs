@@ -496,6 +496,7 @@ fn certificate(
         names: ConfigurationNames {
             file: "measurements.csv",
             lines: &lines,
+            carried: None,
         },
         sections: vec![comparison],
     };

@@ -74,6 +74,7 @@ fn stored_rows_are_named_by_their_row_in_the_calibrated_file() {
     let names = ConfigurationNames {
         file: "measurements.csv",
         lines: &[2, 3, 5],
+        carried: None,
     };
     assert_eq!(
         name_configurations(&r, &names, &[0, 2]),

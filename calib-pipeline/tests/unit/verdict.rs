@@ -41,10 +41,29 @@ fn configurations_are_named_by_number_and_line() {
     let n = ConfigurationNames {
         file: "m.csv",
         lines: &lines,
+        carried: None,
     };
     assert_eq!(n.name(&[2]), "configuration 3 (m.csv line 5)");
     assert_eq!(n.name(&[0, 3]), "configurations 1, 4 (m.csv lines 2, 6)");
-    assert_eq!(n.name(&[9]), "configuration 10 (m.csv line ?)");
+    // Past the file's configurations without carried rows: named, but unknown.
+    assert_eq!(n.name(&[9]), "configuration 10 (stored row ? of ?)");
+    // Rows carried over from a stored set are named by their row there.
+    let rows = [1, 2, 4];
+    let carried = ConfigurationNames {
+        carried: Some(CarriedRows {
+            file: "calibrated.toml",
+            rows: &rows,
+        }),
+        ..n
+    };
+    assert_eq!(
+        carried.name(&[1, 6]),
+        "configurations 2, 7 (m.csv line 3; stored row 4 of calibrated.toml)"
+    );
+    assert_eq!(
+        carried.name(&[4, 5]),
+        "configurations 5, 6 (stored rows 1, 2 of calibrated.toml)"
+    );
 }
 
 #[test]
@@ -119,6 +138,7 @@ fn a_spread_misfit_points_to_the_error_scale_and_names_no_conflict() {
     let names = ConfigurationNames {
         file: "m.csv",
         lines: &lines,
+        carried: None,
     };
     let spread = verdict(&empty_outcome(None, vec![0, 2, 5, 7, 9], true), &names, 0);
     let text = spread.join("\n");
