@@ -8,9 +8,54 @@
 
 use super::round::{down, up};
 use super::Interval;
+use std::cell::Cell;
+use std::thread::LocalKey;
 
 /// Beyond this magnitude the critical-point test is not attempted and `[-1, 1]` is returned.
 const LARGE_ARGUMENT: f64 = 1.0e15;
+
+/// Entries of each thread's table of recent `sin` / `cos` results (a power of two).
+const MEMO_SLOTS: usize = 64;
+
+/// A direct-mapped table of results by the argument's bits: `(bits of lo, bits of hi, result)`.
+type MemoTable = [Cell<(u64, u64, Interval)>; MEMO_SLOTS];
+
+/// The empty argument and its result: every slot starts as a true entry.
+const EMPTY_ENTRY: (u64, u64, Interval) = (
+    Interval::EMPTY.lo.to_bits(),
+    Interval::EMPTY.hi.to_bits(),
+    Interval::EMPTY,
+);
+
+thread_local! {
+    // A residual evaluates the trigonometry of its measured angles, which stay the same over
+    // every Newton step and every box of a sweep: the measurement box's angle in the evaluation
+    // over the box, its midpoint at the relaxation's corners. The results are pure functions of
+    // the argument's bits, so a remembered one is the very interval a new evaluation would give.
+    static SIN_MEMO: MemoTable = const { [const { Cell::new(EMPTY_ENTRY) }; MEMO_SLOTS] };
+    static COS_MEMO: MemoTable = const { [const { Cell::new(EMPTY_ENTRY) }; MEMO_SLOTS] };
+}
+
+/// `f(x)`, from `table` when its slot for `x` holds `x`'s result (the same bits `f` gives).
+#[inline]
+fn memoised(
+    table: &'static LocalKey<MemoTable>,
+    x: Interval,
+    f: impl FnOnce(Interval) -> Interval,
+) -> Interval {
+    let key = (x.lo.to_bits(), x.hi.to_bits());
+    let hash = (key.0 ^ key.1.rotate_left(29)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    let slot = (hash >> (64 - MEMO_SLOTS.trailing_zeros())) as usize;
+    if let Ok((lo, hi, value)) = table.try_with(|t| t[slot].get()) {
+        if (lo, hi) == key {
+            return value;
+        }
+    }
+    let value = f(x);
+    // (During the thread's teardown the table is gone: the value is then not remembered.)
+    let _ = table.try_with(|t| t[slot].set((key.0, key.1, value)));
+    value
+}
 
 fn down2(x: f64) -> f64 {
     down(down(x))
@@ -77,13 +122,17 @@ impl Interval {
     /// The sine `{sin(x)}`.
     pub fn sin(self) -> Interval {
         // Maxima at pi/2 + 2k pi, minima at -pi/2 + 2k pi.
-        self.periodic_unit_range(0.5, -0.5, f64::sin)
+        memoised(&SIN_MEMO, self, |x| {
+            x.periodic_unit_range(0.5, -0.5, f64::sin)
+        })
     }
 
     /// The cosine `{cos(x)}`.
     pub fn cos(self) -> Interval {
         // Maxima at 2k pi, minima at pi + 2k pi.
-        self.periodic_unit_range(0.0, 1.0, f64::cos)
+        memoised(&COS_MEMO, self, |x| {
+            x.periodic_unit_range(0.0, 1.0, f64::cos)
+        })
     }
 
     /// The tangent `{tan(x) : x != pi/2 + k pi}`; `ENTIRE` when the argument may contain a pole.
