@@ -15,7 +15,7 @@ use std::thread::LocalKey;
 const LARGE_ARGUMENT: f64 = 1.0e15;
 
 /// Entries of each thread's table of recent `sin` / `cos` results (a power of two).
-const MEMO_SLOTS: usize = 64;
+const MEMO_SLOTS: usize = 256;
 
 /// A direct-mapped table of results by the argument's bits: `(bits of lo, bits of hi, result)`.
 type MemoTable = [Cell<(u64, u64, Interval)>; MEMO_SLOTS];
@@ -195,4 +195,64 @@ fn may_contain_turn(turns: Interval, offset: f64, period: f64) -> bool {
     // k in (x / pi - offset) / period, enclosed with outward rounding.
     let k = (turns - Interval::point(offset)) / Interval::point(period);
     k.sup().floor() >= k.inf().ceil()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Interval;
+
+    /// A remembered `sin`/`cos` is bit for bit the fresh evaluation, whatever the table held
+    /// before (repeated arguments, slots shared by several arguments, signed zeros, points,
+    /// wide and unbounded arguments), on this thread and on another.
+    #[test]
+    fn remembered_sin_and_cos_are_the_fresh_evaluations() {
+        fn fresh(x: Interval) -> (Interval, Interval) {
+            (
+                x.periodic_unit_range(0.5, -0.5, f64::sin),
+                x.periodic_unit_range(0.0, 1.0, f64::cos),
+            )
+        }
+        let mut args = vec![
+            Interval::ZERO,
+            Interval::new(-0.0, 0.0),
+            Interval::new(-0.0, -0.0),
+            Interval::ENTIRE,
+            Interval::EMPTY,
+            Interval::new(1.0, 2.0),
+            Interval::new(0.0, 100.0),
+        ];
+        let mut seed = 11u64;
+        for _ in 0..2000 {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let a = ((seed >> 11) as f64 / (1u64 << 53) as f64) * 20.0 - 10.0;
+            let w = ((seed >> 3) & 0xff) as f64 * 1e-3;
+            args.push(if seed & 1 == 0 {
+                Interval::point(a)
+            } else {
+                Interval::new(a, a + w)
+            });
+        }
+        fn check(args: &[Interval]) {
+            for _ in 0..3 {
+                for &x in args {
+                    let (s, c) = fresh(x);
+                    let (ms, mc) = (x.sin(), x.cos());
+                    assert!(
+                        ms.inf().to_bits() == s.inf().to_bits()
+                            && ms.sup().to_bits() == s.sup().to_bits()
+                            && mc.inf().to_bits() == c.inf().to_bits()
+                            && mc.sup().to_bits() == c.sup().to_bits(),
+                        "{x:?}: remembered {ms:?} {mc:?}, fresh {s:?} {c:?}"
+                    );
+                }
+            }
+        }
+        check(&args);
+        let other: Vec<Interval> = args.iter().rev().copied().collect();
+        std::thread::spawn(move || check(&other))
+            .join()
+            .expect("the other thread's check");
+    }
 }
