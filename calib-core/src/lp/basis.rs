@@ -34,6 +34,8 @@ pub(super) struct Basis {
     pub w: Vec<f64>,
     /// A constraint's coefficients.
     pub a_k: Vec<f64>,
+    /// The right-hand sides `b_W` of the basis constraints (scratch for [`Basis::vertex`]).
+    b_w: Vec<f64>,
     /// Basis changes made by the current solve.
     pub pivots: usize,
 }
@@ -48,6 +50,7 @@ impl Basis {
         self.lambda.resize(n, 0.0);
         self.w.resize(n, 0.0);
         self.a_k.resize(n, 0.0);
+        self.b_w.resize(n, 0.0);
     }
 
     /// Rebuilds `in_basis` for `constraints` constraints from `basis`. A basis entry beyond the
@@ -76,10 +79,13 @@ impl Basis {
     /// `y = A_W⁻¹ b_W`.
     pub fn vertex(&mut self, c: &impl Constraints) {
         let n = self.basis.len();
+        // Each right-hand side once, not once per coordinate (the same values and sums).
+        self.b_w.resize(n, 0.0);
+        for r in 0..n {
+            self.b_w[r] = c.rhs(self.basis[r]);
+        }
         for j in 0..n {
-            self.y[j] = (0..n)
-                .map(|r| self.inv[j * n + r] * c.rhs(self.basis[r]))
-                .sum();
+            self.y[j] = (0..n).map(|r| self.inv[j * n + r] * self.b_w[r]).sum();
         }
     }
 

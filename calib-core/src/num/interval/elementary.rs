@@ -8,9 +8,54 @@
 
 use super::round::{down, up};
 use super::Interval;
+use std::cell::Cell;
+use std::thread::LocalKey;
 
 /// Beyond this magnitude the critical-point test is not attempted and `[-1, 1]` is returned.
 const LARGE_ARGUMENT: f64 = 1.0e15;
+
+/// Entries of each thread's table of recent `sin` / `cos` results (a power of two).
+const MEMO_SLOTS: usize = 256;
+
+/// A direct-mapped table of results by the argument's bits: `(bits of lo, bits of hi, result)`.
+type MemoTable = [Cell<(u64, u64, Interval)>; MEMO_SLOTS];
+
+/// The empty argument and its result: every slot starts as a true entry.
+const EMPTY_ENTRY: (u64, u64, Interval) = (
+    Interval::EMPTY.lo.to_bits(),
+    Interval::EMPTY.hi.to_bits(),
+    Interval::EMPTY,
+);
+
+thread_local! {
+    // A residual evaluates the trigonometry of its measured angles, which stay the same over
+    // every Newton step and every box of a sweep: the measurement box's angle in the evaluation
+    // over the box, its midpoint at the relaxation's corners. The results are pure functions of
+    // the argument's bits, so a remembered one is the very interval a new evaluation would give.
+    static SIN_MEMO: MemoTable = const { [const { Cell::new(EMPTY_ENTRY) }; MEMO_SLOTS] };
+    static COS_MEMO: MemoTable = const { [const { Cell::new(EMPTY_ENTRY) }; MEMO_SLOTS] };
+}
+
+/// `f(x)`, from `table` when its slot for `x` holds `x`'s result (the same bits `f` gives).
+#[inline]
+fn memoised(
+    table: &'static LocalKey<MemoTable>,
+    x: Interval,
+    f: impl FnOnce(Interval) -> Interval,
+) -> Interval {
+    let key = (x.lo.to_bits(), x.hi.to_bits());
+    let hash = (key.0 ^ key.1.rotate_left(29)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    let slot = (hash >> (64 - MEMO_SLOTS.trailing_zeros())) as usize;
+    if let Ok((lo, hi, value)) = table.try_with(|t| t[slot].get()) {
+        if (lo, hi) == key {
+            return value;
+        }
+    }
+    let value = f(x);
+    // (During the thread's teardown the table is gone: the value is then not remembered.)
+    let _ = table.try_with(|t| t[slot].set((key.0, key.1, value)));
+    value
+}
 
 fn down2(x: f64) -> f64 {
     down(down(x))
@@ -77,13 +122,17 @@ impl Interval {
     /// The sine `{sin(x)}`.
     pub fn sin(self) -> Interval {
         // Maxima at pi/2 + 2k pi, minima at -pi/2 + 2k pi.
-        self.periodic_unit_range(0.5, -0.5, f64::sin)
+        memoised(&SIN_MEMO, self, |x| {
+            x.periodic_unit_range(0.5, -0.5, f64::sin)
+        })
     }
 
     /// The cosine `{cos(x)}`.
     pub fn cos(self) -> Interval {
         // Maxima at 2k pi, minima at pi + 2k pi.
-        self.periodic_unit_range(0.0, 1.0, f64::cos)
+        memoised(&COS_MEMO, self, |x| {
+            x.periodic_unit_range(0.0, 1.0, f64::cos)
+        })
     }
 
     /// The tangent `{tan(x) : x != pi/2 + k pi}`; `ENTIRE` when the argument may contain a pole.
@@ -146,4 +195,64 @@ fn may_contain_turn(turns: Interval, offset: f64, period: f64) -> bool {
     // k in (x / pi - offset) / period, enclosed with outward rounding.
     let k = (turns - Interval::point(offset)) / Interval::point(period);
     k.sup().floor() >= k.inf().ceil()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Interval;
+
+    /// A remembered `sin`/`cos` is bit for bit the fresh evaluation, whatever the table held
+    /// before (repeated arguments, slots shared by several arguments, signed zeros, points,
+    /// wide and unbounded arguments), on this thread and on another.
+    #[test]
+    fn remembered_sin_and_cos_are_the_fresh_evaluations() {
+        fn fresh(x: Interval) -> (Interval, Interval) {
+            (
+                x.periodic_unit_range(0.5, -0.5, f64::sin),
+                x.periodic_unit_range(0.0, 1.0, f64::cos),
+            )
+        }
+        let mut args = vec![
+            Interval::ZERO,
+            Interval::new(-0.0, 0.0),
+            Interval::new(-0.0, -0.0),
+            Interval::ENTIRE,
+            Interval::EMPTY,
+            Interval::new(1.0, 2.0),
+            Interval::new(0.0, 100.0),
+        ];
+        let mut seed = 11u64;
+        for _ in 0..2000 {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let a = ((seed >> 11) as f64 / (1u64 << 53) as f64) * 20.0 - 10.0;
+            let w = ((seed >> 3) & 0xff) as f64 * 1e-3;
+            args.push(if seed & 1 == 0 {
+                Interval::point(a)
+            } else {
+                Interval::new(a, a + w)
+            });
+        }
+        fn check(args: &[Interval]) {
+            for _ in 0..3 {
+                for &x in args {
+                    let (s, c) = fresh(x);
+                    let (ms, mc) = (x.sin(), x.cos());
+                    assert!(
+                        ms.inf().to_bits() == s.inf().to_bits()
+                            && ms.sup().to_bits() == s.sup().to_bits()
+                            && mc.inf().to_bits() == c.inf().to_bits()
+                            && mc.sup().to_bits() == c.sup().to_bits(),
+                        "{x:?}: remembered {ms:?} {mc:?}, fresh {s:?} {c:?}"
+                    );
+                }
+            }
+        }
+        check(&args);
+        let other: Vec<Interval> = args.iter().rev().copied().collect();
+        std::thread::spawn(move || check(&other))
+            .join()
+            .expect("the other thread's check");
+    }
 }
