@@ -4,6 +4,7 @@
 //! ([`calib_pipeline::error_scale::search_from_estimate`]: each leg one sub-problem, started from
 //! its Chebyshev fit, each trial the leg's witness or a verdict-only certification).
 
+use crate::carry_over::StoredRows;
 use crate::certification::leg_prior;
 use crate::files::LegSpec;
 use crate::measurement::{leg_boxes, Configuration, Uncertainty};
@@ -89,18 +90,29 @@ pub const HULL_BOXES: usize = 2_000;
 
 /// Searches the smallest consistent factor of `which` bounds of `u` for the `legs` (0-based) of
 /// `robot` on `configs`; `on_trial` hears each factor before it is tried. Each trial is a hull
-/// per leg, which cannot fail: the bracket itself is returned.
+/// per leg, which cannot fail: the bracket itself is returned. A leg with rows carried over
+/// (`stored[leg]`, [`crate::carry_over`]) is searched with them, as it is certified: from its
+/// prior cut to the stored set's hull, the stored rows keeping the bounds they were certified
+/// with (the factor scales the new rows only).
 pub fn search(
     robot: &[LegSpec],
+    stored: &[Option<StoredRows>],
     legs: &[usize],
     configs: &[Configuration],
     u: &Uncertainty,
     which: ScaleBounds,
     on_trial: impl FnMut(f64),
 ) -> ErrorScale {
+    let carried = |leg: usize| stored.get(leg).and_then(Option::as_ref);
     let boxes: Vec<_> = legs
         .iter()
-        .map(|&leg| move |s: f64| leg_boxes(configs, &which.scale(u, s), leg))
+        .map(|&leg| {
+            move |s: f64| {
+                let mut b = leg_boxes(configs, &which.scale(u, s), leg);
+                b.extend(carried(leg).map_or(&[][..], |c| &c.boxes[..]));
+                b
+            }
+        })
         .collect();
     let model = LegModel::of(configs);
     let problems: Vec<ScaledProblem<'_, LegModel, 7, 8>> = legs
@@ -108,7 +120,7 @@ pub fn search(
         .zip(&boxes)
         .map(|(&leg, b)| ScaledProblem {
             model: &model,
-            x0: leg_prior(&robot[leg]),
+            x0: carried(leg).map_or_else(|| leg_prior(&robot[leg]), |c| c.prior(&robot[leg])),
             boxes: b,
             scaled: which.mask(),
         })

@@ -377,3 +377,56 @@ fn a_stored_set_that_cannot_carry_over_is_a_clear_error() {
         &["leg[1].certified_set.boxes", "contradicts itself"],
     );
 }
+
+#[test]
+fn the_error_scale_with_stored_rows_scales_the_new_rows_only() {
+    // A's calibrated file carried to B: the bracket of B's bounds with A's rows as stored is
+    // proved (consistent at its top, with the stored rows), and no lower than B's alone, which
+    // has fewer rows to fit (a consistent factor with both is consistent without A's rows).
+    let dir = tempdir("carry-scale");
+    let (a, b) = (dir.join("a"), dir.join("b"));
+    simulate12(&a, 31, &[]);
+    // B's noise four times its declared bounds: the bracket is well above 0.
+    simulate12(&b, 32, &["--noise-scale", "4"]);
+    let d = |n: &str| dir.join(n);
+    ok(&certify_with(
+        &a.join("robot.toml"),
+        &a,
+        &d("a.json"),
+        &[
+            "--legs",
+            "2",
+            "--write-calibrated",
+            d("cal_a.toml").to_str().unwrap(),
+        ],
+    ));
+    let scale = [
+        "--legs",
+        "2",
+        "--fast",
+        "--error-scale",
+        "auto",
+        "--scale-bounds",
+        "all",
+    ];
+    ok(&certify_with(&d("cal_a.toml"), &b, &d("ab.json"), &scale));
+    ok(&certify_with(
+        &b.join("robot.toml"),
+        &b,
+        &d("b.json"),
+        &scale,
+    ));
+    let (ab, alone) = (json(&d("ab.json")), json(&d("b.json")));
+    let (with, without) = (&ab["error_scale"], &alone["error_scale"]);
+    let s = |j: &serde_json::Value, k: &str| j[k].as_f64().unwrap();
+    assert!(s(with, "s_hi") >= s(without, "s_lo"), "{with}\n{without}");
+    // The report lists the certified legs only: leg 2 first.
+    assert_eq!(ab["legs"][0]["status"], "consistent");
+    assert_eq!(
+        ab["legs"][0]["carried_over"]["rows"]
+            .as_array()
+            .unwrap()
+            .len(),
+        12
+    );
+}

@@ -783,10 +783,13 @@ fn error_scale_files(
             )))
         }
     };
-    let spec = read_robot(&robot).map_err(value_error)?;
+    let file = calib_gough::files::read_robot_file(&robot).map_err(value_error)?;
+    let spec = file.legs.clone();
     let data = read_measurements(&measurements, spec.len()).map_err(value_error)?;
     let u = read_uncertainty(&uncertainty).map_err(value_error)?;
     check_uncertainty(&uncertainty, &u, data.rodrigues).map_err(value_error)?;
+    // As `gough certify --error-scale auto`: rows a calibrated file carries over join the new.
+    let stored = stored_rows(&robot, &file, data.rodrigues).map_err(value_error)?;
     let (legs, _) = CertifyOptions {
         legs,
         ..CertifyOptions::default()
@@ -794,7 +797,7 @@ fn error_scale_files(
     .validate(spec.len(), data.configs.len())
     .map_err(value_error)?;
     let started = Instant::now();
-    let found = py.detach(|| search(&spec, &legs, &data.configs, &u, which, |_| {}));
+    let found = py.detach(|| search(&spec, &stored, &legs, &data.configs, &u, which, |_| {}));
     Ok(to_json(&found, which.name(), None, started.elapsed().as_secs_f64()).to_string())
 }
 

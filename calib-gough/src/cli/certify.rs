@@ -114,20 +114,21 @@ pub struct Args {
 
 /// With --error-scale auto: finds the smallest consistent factor of `u`'s bounds for the `legs`,
 /// prints it in words, and returns the bracket's JSON, the bounds to certify with, and the words.
+/// Stored rows carried over keep their own bounds: the factor scales the new rows'.
 fn error_scale(
     a: &Args,
     robot: &[calib_gough::files::LegSpec],
+    input: &Files,
     legs: &[usize],
-    configs: &[calib_gough::measurement::Configuration],
-    u: &Uncertainty,
 ) -> Result<(serde_json::Value, Uncertainty, Vec<String>), Box<dyn std::error::Error>> {
+    let (configs, u) = (&input.data.configs, &input.u);
     let margin = a.scale.scale_margin;
     check_margin(margin)?;
     let which = a.scale.scale_bounds;
     let started = Instant::now();
     let bar = indicatif::ProgressBar::new_spinner();
     bar.enable_steady_tick(std::time::Duration::from_millis(120));
-    let found = search(robot, legs, configs, u, which, |s| {
+    let found = search(robot, &input.stored, legs, configs, u, which, |s| {
         bar.set_message(format!("certifying with the error bounds × {s:.4}"))
     });
     bar.finish_and_clear();
@@ -153,17 +154,8 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     let (legs, _) = options.validate(robot.len(), data.configs.len() + most.unwrap_or(0))?;
     let carried = carried_words(&a.files.robot, &input.stored, &legs, data.configs.len());
     let (scale_json, u, scale_words) = match a.scale.error_scale {
-        Some(ErrorScaleMode::Auto) if input.stored.iter().any(Option::is_some) => {
-            return Err(format!(
-                "--error-scale auto: {} carries certified sets, whose stored rows keep the error \
-                 bounds of their own series; find the scale of the new rows against the nominal \
-                 robot file (or the calibrated one without its [leg.certified_set] tables)",
-                a.files.robot.display()
-            )
-            .into());
-        }
         Some(ErrorScaleMode::Auto) => {
-            let (json, scaled, words) = error_scale(&a, robot, &legs, &data.configs, &input.u)?;
+            let (json, scaled, words) = error_scale(&a, robot, &input, &legs)?;
             println!();
             (Some(json), scaled, words)
         }

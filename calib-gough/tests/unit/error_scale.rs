@@ -31,7 +31,15 @@ fn the_bracket_holds_the_truth_within_two_per_cent() {
     let robot = crate::support::priors(&sim.nominal);
     let u = ScaleBounds::All.scale(&Uncertainty::PAPER, 0.25);
     let legs: Vec<usize> = (0..6).collect();
-    let found = search(&robot, &legs, &sim.measured, &u, ScaleBounds::All, |_| {});
+    let found = search(
+        &robot,
+        &[],
+        &legs,
+        &sim.measured,
+        &u,
+        ScaleBounds::All,
+        |_| {},
+    );
     let (lo, hi) = (found.s_lo.expect("s_lo"), found.s_hi.expect("s_hi"));
     assert!(lo < 4.0, "{lo}: the truth fits at × 4");
     assert!(hi / lo <= 1.02, "{lo} {hi}: {:?}", found.trials);
