@@ -18,8 +18,8 @@
 //! with the new rows and, with a base and tool of their own, with the earlier ones.
 
 use crate::certification::{
-    check_shape, names, padded_box, padded_index, padded_nominal, run_model, verdict_settings,
-    ArmRun, ArmSet, CertifyRequest, Cover, Job, Padded, ARM_PIECES, NM, NX,
+    check_shape, names, padded_box, padded_index, padded_nominal, point_model_cover, run_model,
+    verdict_settings, ArmRun, ArmSet, CertifyRequest, Cover, Job, Padded, ARM_PIECES, NM, NX,
 };
 use crate::error_scale::ScaleBounds;
 use crate::model::Arm7PointTwoFrames;
@@ -173,28 +173,15 @@ fn two_frames(
 /// The set in this frame of a two-frame cover (module documentation): its boxes without the
 /// earlier frame's parameters, over the new rows `here` (their frame flag dropped), the outliers
 /// each box tolerated among them kept; `None` when empty.
-fn this_frame((cover, points): &Cover<NX2>, here: &[[Interval; NM2]]) -> Option<ArmSet> {
+fn this_frame(certified: &Cover<NX2>, here: &[[Interval; NM2]]) -> Option<ArmSet> {
     let n = here.len();
-    let projected = calib_core::Cover {
-        boxes: cover
-            .boxes
-            .iter()
-            .map(|b| core::array::from_fn(|i| b[i]))
-            .collect(),
-        subsets: cover.subsets.clone(),
-        dropped: cover
-            .dropped
-            .iter()
-            .map(|d| d.iter().copied().filter(|&k| k < n).collect())
-            .collect(),
-    };
+    let (mut projected, points) = point_model_cover(certified);
+    for d in &mut projected.dropped {
+        d.retain(|&k| k < n);
+    }
     let boxes: Vec<[Interval; NM]> = here
         .iter()
         .map(|m| core::array::from_fn(|i| m[i]))
-        .collect();
-    let points: Vec<[f64; NX]> = points
-        .iter()
-        .map(|x| core::array::from_fn(|i| x[i]))
         .collect();
     let set = ArmSet::new(&Arm7Point, &projected, &boxes, &points, ARM_PIECES);
     (!set.is_empty()).then_some(set)

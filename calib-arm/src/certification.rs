@@ -440,6 +440,23 @@ fn run(arm: &Arm, readings: &[Reading], u: &Uncertainty, job: Job, settings: &Se
 /// The certified cover and points of a run (model units), for its certified set.
 pub(crate) type Cover<const X: usize> = (calib_core::Cover<X>, Vec<[f64; X]>);
 
+/// A cover and its points in a model that extends the point model (its first [`NX`]
+/// parameters are the point model's), without the parameters after those: the boxes' and points'
+/// first `NX` coordinates, each box keeping its subset.
+pub(crate) fn point_model_cover<const X: usize>((cover, points): &Cover<X>) -> Cover<NX> {
+    let head = |b: &[Interval; X]| -> [Interval; NX] { core::array::from_fn(|i| b[i]) };
+    let cover = calib_core::Cover {
+        boxes: cover.boxes.iter().map(head).collect(),
+        subsets: cover.subsets.clone(),
+        dropped: cover.dropped.clone(),
+    };
+    let points = points
+        .iter()
+        .map(|x| core::array::from_fn(|i| x[i]))
+        .collect();
+    (cover, points)
+}
+
 /// A run of `model` on the padded problem `p` (the arm's parameters `names`, its prior `prior` in
 /// model units): the outcome, identifiability and fit in the files' units (the [`ArmRun`] without
 /// its set), and what a certified set is built from (`None` when nothing was certified).

@@ -3,23 +3,13 @@
 //! truth, a second round carries both series, a contradiction is proved and its stored rows
 //! named, and a stored set that cannot carry over is a clear error.
 
-use crate::support::{gough, tempdir, truth_values};
+use crate::support::{gough, simulate_configs, tempdir, truth_values};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-/// `gough simulate --configs 12 --seed SEED --out DIR` (and `extra`): the built-in hexapod, so
-/// every seed measures the same truth, at other poses with other noise.
+/// Twelve configurations of the built-in hexapod ([`simulate_configs`]).
 fn simulate12(dir: &Path, seed: u64, extra: &[&str]) {
-    let seed = seed.to_string();
-    let mut args = vec!["simulate", "--configs", "12", "--seed", &seed, "--out"];
-    args.push(dir.to_str().unwrap());
-    args.extend_from_slice(extra);
-    let out = gough(&args);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    simulate_configs(dir, 12, seed, extra);
 }
 
 /// `gough certify --robot ROBOT` on the measurements and error bounds of `data`, with the JSON

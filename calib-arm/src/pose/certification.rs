@@ -16,8 +16,8 @@
 
 use super::{Arm7Pose, PoseReading, PoseUncertainty};
 use crate::certification::{
-    check_shape, padded_box, padded_index, padded_nominal, run_model, verdict_settings, ArmRun,
-    ArmSet, CertifyRequest, Cover, Job, Padded, ARM_PIECES, NM, NX,
+    check_shape, padded_box, padded_index, padded_nominal, point_model_cover, run_model,
+    verdict_settings, ArmRun, ArmSet, CertifyRequest, Cover, Job, Padded, ARM_PIECES, NM, NX,
 };
 use crate::params::{self, Unit};
 use crate::robot::Arm;
@@ -79,22 +79,14 @@ pub fn certify_pose_request(
 /// documentation), each `None` when empty.
 fn certified_sets(
     boxes: &[[Interval; NM6]],
-    (cover, points): &Cover<NX6>,
+    certified: &Cover<NX6>,
 ) -> (Option<ArmSet>, Option<PoseSet>) {
+    let (cover, points) = certified;
     let pose = PoseSet::new(&Arm7Pose, cover, boxes, points, ARM_PIECES);
-    let head = |b: &[Interval; NX6]| -> [Interval; NX] { core::array::from_fn(|i| b[i]) };
-    let projected = calib_core::Cover {
-        boxes: cover.boxes.iter().map(head).collect(),
-        subsets: cover.subsets.clone(),
-        dropped: cover.dropped.clone(),
-    };
+    let (projected, point_params) = point_model_cover(certified);
     let point_boxes: Vec<[Interval; NM]> = boxes
         .iter()
         .map(|m| core::array::from_fn(|i| m[i]))
-        .collect();
-    let point_params: Vec<[f64; NX]> = points
-        .iter()
-        .map(|x| core::array::from_fn(|i| x[i]))
         .collect();
     let positions = ArmSet::new(
         &Arm7Point,

@@ -19,11 +19,17 @@ pub fn tempdir(name: &str) -> ScratchDir {
 }
 
 pub fn simulate(dir: &Path, seed: u64, extra: &[&str]) {
-    let seed = seed.to_string();
+    simulate_configs(dir, 21, seed, extra);
+}
+
+/// `gough simulate --configs CONFIGS --seed SEED --out DIR` and `extra`: the built-in hexapod,
+/// so every seed measures the same truth, at other poses with other noise.
+pub fn simulate_configs(dir: &Path, configs: usize, seed: u64, extra: &[&str]) {
+    let (seed, configs) = (seed.to_string(), configs.to_string());
     let mut args = vec![
         "simulate",
         "--configs",
-        "21",
+        &configs,
         "--seed",
         &seed,
         "--out",
