@@ -24,8 +24,35 @@
 
 /// Writes the residual of an `N`-joint arm under `#[interval_model]`: parameter and measurement
 /// indices are spelled out as literals (the attribute needs constant indices), joints listed from
-/// the flange to the base (the order in which they act on the tool point).
+/// the flange to the base (the order in which they act on the tool point). With `two_frames`,
+/// also the same arm's residual for rows from two tracker frames (the joints spelled once).
 macro_rules! serial_arm_model {
+    (
+        $(#[$doc:meta])*
+        $name:ident,
+        nx = $nx:literal,
+        nm = $nm:literal,
+        tool = $tool:tt,
+        joints_from_flange = $joints:tt,
+        base = $base:tt,
+        point = $point:tt,
+        two_frames = (
+            $(#[$doc2:meta])*
+            $name2:ident,
+            nx = $nx2:literal,
+            nm = $nm2:literal,
+            earlier_frame = $earlier:tt
+        )
+    ) => {
+        serial_arm_model!(
+            $(#[$doc])* $name, nx = $nx, nm = $nm, tool = $tool, joints_from_flange = $joints,
+            base = $base, point = $point
+        );
+        serial_arm_model!(
+            $(#[$doc2])* $name2, nx = $nx2, nm = $nm2, tool = $tool, joints_from_flange = $joints,
+            base = $base, point = $point, earlier_frame = $earlier
+        );
+    };
     (
         $(#[$doc:meta])*
         $name:ident,
@@ -110,29 +137,16 @@ serial_arm_model!(
         (0, 1, 2, 3, 4, 0)
     ],
     base = [35, 36, 37, 38, 39, 40],
-    point = [7, 8, 9]
-);
-
-serial_arm_model!(
-    /// [`arm7_point`] for rows from two tracker frames: parameters 44–49 are the earlier frame's
-    /// base and 50–52 its tool point, and measured quantity 10 says which frame a row is in (0:
-    /// this one, 1: the earlier one, always a point). See [`crate::carry`].
-    arm7_point_two_frames,
-    nx = 53,
-    nm = 11,
-    tool = [41, 42, 43],
-    joints_from_flange = [
-        (30, 31, 32, 33, 34, 6),
-        (25, 26, 27, 28, 29, 5),
-        (20, 21, 22, 23, 24, 4),
-        (15, 16, 17, 18, 19, 3),
-        (10, 11, 12, 13, 14, 2),
-        (5, 6, 7, 8, 9, 1),
-        (0, 1, 2, 3, 4, 0)
-    ],
-    base = [35, 36, 37, 38, 39, 40],
     point = [7, 8, 9],
-    earlier_frame = (flag = 10, base = [44, 45, 46, 47, 48, 49], tool = [50, 51, 52])
+    two_frames = (
+        /// [`arm7_point`] for rows from two tracker frames: parameters 44–49 are the earlier
+        /// frame's base and 50–52 its tool point, and measured quantity 10 says which frame a row
+        /// is in (0: this one, 1: the earlier one, always a point). See [`crate::carry`].
+        arm7_point_two_frames,
+        nx = 53,
+        nm = 11,
+        earlier_frame = (flag = 10, base = [44, 45, 46, 47, 48, 49], tool = [50, 51, 52])
+    )
 );
 
 /// The tracked point `p(x, q)` of an arm with `q.len()` joints (3 to 7) in floating point, from
