@@ -29,6 +29,7 @@ use crate::simulate::{measurement_box, Reading, Uncertainty};
 use crate::{Arm7Point, ArmError};
 use calib_core::{Interval, Status};
 use calib_pipeline::error_scale::{search_from_estimate, ErrorScale, ScaledProblem};
+use calib_pipeline::identify::Identifiability;
 use calib_pipeline::smallest_consistent;
 use calib_pipeline::stored_set::StoredSet;
 use std::path::Path;
@@ -65,6 +66,7 @@ pub fn certify_carried(
             let model = &Arm7PointTwoFrames;
             let (mut run, cover) = run_model(model, &p, names.clone(), &prior, job, &settings);
             run.set = cover.and_then(|c| this_frame(&c, &p.boxes[..readings.len()]));
+            in_this_frame(&mut run.identifiability, names.len());
             Ok(run)
         },
         |run: &ArmRun| run.outcome.status == Status::Empty,
@@ -168,6 +170,18 @@ fn two_frames(
         index: padded_index(joints),
         units,
     })
+}
+
+/// The identifiability findings in the arm's `params` parameters (the outcome's): the earlier
+/// frame's base and tool (the two-frame model's parameters after the arm's, which the outcome
+/// does not show) left out of each combination, a combination of them alone dropped.
+fn in_this_frame(id: &mut Identifiability, params: usize) {
+    for list in [&mut id.undetermined, &mut id.weak] {
+        for c in list.iter_mut() {
+            c.members.retain(|&(j, _)| j < params);
+        }
+        list.retain(|c| !c.members.is_empty());
+    }
 }
 
 /// The set in this frame of a two-frame cover (module documentation): its boxes without the

@@ -190,11 +190,9 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     // Option errors before any work.
     request.settings(data.readings.len())?;
     let earlier = input.earlier.as_ref();
-    if let Some(set) = earlier {
-        println!(
-            "{}",
-            carried_words(&a.files.robot, set, data.readings.len())
-        );
+    let carried = earlier.map(|set| carried_words(&a.files.robot, set, data.readings.len()));
+    if let Some(words) = &carried {
+        println!("{words}");
     }
     let (q, run) = certify_with_spinner(arm, &data.readings, &u, pose.as_ref(), earlier, &request)?;
     if let Some((_, bounds)) = &pose {
@@ -257,7 +255,10 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             date: now(),
             inputs: input.hashed(&a),
             uncertainty: u,
-            settings: run_settings(&a, q),
+            settings: run_settings(&a, q)
+                .into_iter()
+                .chain(carried.map(|words| ("carried over".to_string(), words)))
+                .collect(),
             run: &run,
             names,
             tolerated: q,
