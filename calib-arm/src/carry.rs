@@ -120,9 +120,24 @@ pub fn search_carried(
     )
 }
 
+/// The rows of the `earlier` set that carry over (0-based, into its measurements): all but those
+/// a piece of its cover leaves out, which the earlier certification tolerated as outliers (they
+/// hold no proof of anything about the robot).
+pub fn carried_rows(earlier: &ArmSet) -> Vec<usize> {
+    let cover = earlier.cover();
+    let left_out: Vec<usize> = cover
+        .subsets
+        .iter()
+        .flat_map(|&s| cover.dropped[s].iter().copied())
+        .collect();
+    (0..earlier.measurements().len())
+        .filter(|k| !left_out.contains(k))
+        .collect()
+}
+
 /// The two-frame problem: `arm`'s prior (its joints' parameters within the earlier set's hull),
 /// the earlier frame's base and tool within that hull; the new rows (flag 0), then the earlier
-/// set's (flag 1).
+/// set's that carry over ([`carried_rows`], flag 1).
 fn two_frames(
     arm: &Arm,
     earlier: &ArmSet,
@@ -160,7 +175,12 @@ fn two_frames(
         .map(|r| measurement_box(r, u).map(|m| flagged(&m, 0.0)))
         .collect::<Option<_>>()
         .ok_or(ArmError::TooManyJointReadings)?;
-    boxes.extend(earlier.measurements().iter().map(|m| flagged(m, 1.0)));
+    let stored = earlier.measurements();
+    boxes.extend(
+        carried_rows(earlier)
+            .iter()
+            .map(|&k| flagged(&stored[k], 1.0)),
+    );
     let joints = arm.joints.len();
     let units: Vec<Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
     Ok(Padded {

@@ -75,7 +75,8 @@ macro_rules! serial_arm_model {
             let base = [x[$bx], x[$by], x[$bz], x[$rx], x[$ry], x[$rz]];
             $(
                 // A row of the earlier frame (flag 1) takes that frame's base and tool: with the
-                // flag a point 0 or 1, `a (1 - f) + b f` is `a` or `b` exactly, in intervals too.
+                // flag a point 0 or 1, `a (1 - f) + b f` is `a` or `b` (in intervals, `a` or `b`
+                // widened outward by the product's rounding, `0 · b` exactly 0).
                 let (now, then) = (1.0 - m[$f], m[$f]);
                 let [vx, vy, vz] = v;
                 let v = [vx * now + x[$etx] * then, vy * now + x[$ety] * then, vz * now + x[$etz] * then];

@@ -1022,7 +1022,7 @@ fn a_calibration_registered_in_a_new_cell_carries_its_set_into_certify() {
     ]);
     assert!(o.status.success(), "{}", text(&o));
     assert!(
-        text(&o).contains("carried over: the 6 configurations"),
+        text(&o).contains("carried over: 6 configurations"),
         "{}",
         text(&o)
     );
@@ -1044,4 +1044,61 @@ fn a_calibration_registered_in_a_new_cell_carries_its_set_into_certify() {
         "1-3",
     ]);
     assert!(o.status.success(), "{}", text(&o));
+}
+
+#[test]
+fn rows_the_earlier_certification_tolerated_as_outliers_are_not_carried_over() {
+    let dir = tempdir("carry-outlier");
+    simulated(&dir, 14, &["--outlier", "3:0.5"]);
+    let p = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let (calibrated, data, here, u) = (
+        p("calibrated.toml"),
+        p("measurements.csv"),
+        p("here.toml"),
+        p("uncertainty.toml"),
+    );
+    let o = certify(
+        &dir,
+        &[
+            "--rows",
+            "1-10",
+            "--max-outliers",
+            "1",
+            "--write-calibrated",
+            &calibrated,
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let register = [
+        "register",
+        "--robot",
+        &calibrated,
+        "--measurements",
+        &data,
+        "--rows",
+        "11-14",
+        "--out",
+        &here,
+    ];
+    let o = arm(&register);
+    assert!(o.status.success(), "{}", text(&o));
+    let o = arm(&[
+        "certify",
+        "--robot",
+        &here,
+        "--measurements",
+        &data,
+        "--uncertainty",
+        &u,
+        "--rows",
+        "11-14",
+    ]);
+    // The outlier (row 3) stays out: the two series are consistent, not proved empty by it.
+    assert!(o.status.success(), "{}", text(&o));
+    let out = text(&o);
+    assert!(
+        out.contains("carried over: 9 configurations")
+            && out.contains("1 stored row the earlier certification tolerated as outliers"),
+        "{out}"
+    );
 }

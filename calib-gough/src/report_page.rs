@@ -181,9 +181,6 @@ impl ReportPage<'_> {
         let reaching: Vec<String> = self
             .legs
             .iter()
-            // A leg that carried rows over reaches x0 where the stored set bounds it
-            // (verdict::touching_x0 says so on its own page).
-            .filter(|l| l.result.carried.is_none())
             .filter_map(|l| {
                 let faces = verdict::x0_faces(l.result);
                 let names: Vec<&str> = faces.iter().map(|(j, _)| PARAMETER_NAMES[*j]).collect();

@@ -76,30 +76,11 @@ pub fn x0_faces(r: &LegResult) -> Vec<(usize, &'static str)> {
 }
 
 /// Where the outer box reaches a face of the initial box x0, in words: consistent parameter
-/// vectors may then lie beyond x0, which the certificate does not cover.
-///
-/// For a leg that carried rows over from a calibrated robot file, x0 is the file's box cut to the
-/// hull of the stored set, which holds every geometry the earlier certification found consistent
-/// with the stored rows: reaching it says where the stored set bounds the new one, not that
-/// consistent geometries may lie beyond.
+/// vectors may then lie beyond x0, which the certificate does not cover. (For a leg that carried
+/// rows over, x0 is the file's box cut to the stored set's hull; where that face is the file's
+/// own box, geometries beyond it are not covered either, so the warning is the same.)
 pub fn touching_x0(r: &LegResult) -> Option<String> {
-    let Some(carried) = &r.carried else {
-        return words::touching_x0(&r.outcome());
-    };
-    let faces: Vec<String> = x0_faces(r)
-        .iter()
-        .map(|(j, end)| format!("{} ({end})", PARAMETER_NAMES[*j]))
-        .collect();
-    (!faces.is_empty()).then(|| {
-        format!(
-            "the outer box reaches x0 in {}: x0 is {}'s box cut to the hull of its stored set, \
-             which holds every geometry the earlier certification found consistent with the \
-             stored rows, so the stored set bounds the new one there (and the earlier \
-             certification's own x0 bounds what it covers)",
-            faces.join(", "),
-            carried.stored.file
-        )
-    })
+    words::touching_x0(&r.outcome())
 }
 
 /// Where `x` stands against a certificate over `x0`: `certified` is the certified box, `None` when

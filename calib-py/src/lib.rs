@@ -359,7 +359,9 @@ fn arm_certify_files(
             .map_or_else(String::new, |f| f.to_string_lossy().into_owned())
     };
     let (file, robot_file) = (base_name(&measurements), base_name(&robot));
-    let stored_rows: Vec<usize> = (1..=earlier.as_ref().map_or(0, |s| s.measurements().len())).collect();
+    let stored_rows: Vec<usize> = earlier.as_ref().map_or_else(Vec::new, |s| {
+        calib_arm::carry::carried_rows(s).iter().map(|k| k + 1).collect()
+    });
     let names = ConfigurationNames {
         file: &file,
         lines: &data.lines,
@@ -402,14 +404,14 @@ fn arm_certify_files(
         .map_err(|e| value_error(format!("{}: cannot write: {e}", path.display())))?;
     }
     let report = json_report(&run, &names, q);
-    let Some(set) = &earlier else {
+    if earlier.is_none() {
         return Ok(report);
-    };
+    }
     // As `arm certify --json`: where the carried rows came from (numbered after the new ones).
     let mut json: serde_json::Value = serde_json::from_str(&report).map_err(value_error)?;
     json["carried_over"] = serde_json::json!({
-        "file": robot.display().to_string(),
-        "configurations": set.measurements().len(),
+        "file": robot_file,
+        "configurations": stored_rows.len(),
     });
     Ok(json.to_string())
 }
@@ -735,6 +737,9 @@ fn arm_error_scale(
         arm_pose_inputs(&robot, &measurements, &uncertainty, columns, orientation)?;
     let started = Instant::now();
     let found = match data.pose_readings(&bounds) {
+        Some(_) if carried_set(&robot)?.is_some() => {
+            return Err(value_error(calib_arm::ArmError::CarryWithPose));
+        }
         Some((readings, bounds)) => {
             py.detach(|| search_pose(&arm, &readings, &bounds, which, |_| {}))
         }

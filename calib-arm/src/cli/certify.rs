@@ -5,7 +5,7 @@ use super::output::{
 };
 use super::DataFiles;
 use calib_arm::calibrated::{calibrated_arm, calibrated_toml, PointChoice};
-use calib_arm::carry::{certify_carried, search_carried};
+use calib_arm::carry::{carried_rows, certify_carried, search_carried};
 use calib_arm::certification::ArmSet;
 use calib_arm::certification::{certify_request, CertifyRequest};
 use calib_arm::error_scale::{search, search_pose, ScaleBounds};
@@ -137,11 +137,21 @@ fn error_scale(
 
 /// What carrying `set` over from `robot` means, in words (`new`: the new configurations).
 fn carried_words(robot: &Path, set: &ArmSet, new: usize) -> String {
-    let earlier = set.measurements().len();
+    let rows = carried_rows(set);
+    let earlier = rows.len();
+    let left_out = set.measurements().len() - earlier;
+    let outliers = if left_out > 0 {
+        format!(
+            "; {left_out} stored row{} the earlier certification tolerated as outliers stay out",
+            if left_out == 1 { "" } else { "s" }
+        )
+    } else {
+        String::new()
+    };
     format!(
-        "carried over: the {earlier} configurations of the certified set in {} join the {new} \
-         new ones (numbered {}–{} below, stored rows 1–{earlier}), with a base and tool of their \
-         own (their tracker frame); the joints' parameters must fit both",
+        "carried over: {earlier} configurations of the certified set in {} join the {new} new \
+         ones (numbered {}–{} below), with a base and tool of their own (their tracker frame); \
+         the joints' parameters must fit both{outliers}",
         robot.display(),
         new + 1,
         new + earlier
@@ -187,8 +197,9 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         None => (None, input.u, pose, Vec::new()),
     };
     let request = a.request();
-    // Option errors before any work.
-    request.settings(data.readings.len())?;
+    // Option errors before any work (over both series when a set is carried over).
+    let carried_count = input.earlier.as_ref().map_or(0, |s| carried_rows(s).len());
+    request.settings(data.readings.len() + carried_count)?;
     let earlier = input.earlier.as_ref();
     let carried = earlier.map(|set| carried_words(&a.files.robot, set, data.readings.len()));
     if let Some(words) = &carried {
@@ -204,7 +215,9 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
     }
     let file = file_name(&a.files.measurements);
     let robot_file = file_name(&a.files.robot);
-    let stored_rows: Vec<usize> = (1..=earlier.map_or(0, |s| s.measurements().len())).collect();
+    let stored_rows: Vec<usize> = earlier.map_or_else(Vec::new, |s| {
+        carried_rows(s).iter().map(|k| k + 1).collect()
+    });
     let names = ConfigurationNames {
         file: &file,
         lines: &data.lines,
@@ -226,8 +239,8 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         extra.insert(
             "carried_over".into(),
             serde_json::json!({
-                "file": a.files.robot.display().to_string(),
-                "configurations": set.measurements().len(),
+                "file": file_name(&a.files.robot),
+                "configurations": carried_rows(set).len(),
             }),
         );
     }
