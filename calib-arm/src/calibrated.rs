@@ -14,7 +14,9 @@
 //!   is rebuilt ([`calib_pipeline::stored_set`], in the arm's own parameters in model order,
 //!   radians and mm), so that `arm accuracy` and `arm predict` work over it from the file alone.
 
+use crate::carry::NX2;
 use crate::certification::{padded_index, padded_quantities, ArmRun, ArmSet, MAX_JOINTS, NM, NX};
+use crate::model::Arm7PointTwoFrames;
 use crate::params::{self, Unit};
 use crate::pose::certification::NX6;
 use crate::pose::Arm7Pose;
@@ -120,6 +122,9 @@ pub fn calibrated_arm(
     if run.pose_set.is_some() {
         return calibrated_pose_arm(arm, run, joints_deg, choice);
     }
+    if run.two_frame_set.is_some() {
+        return calibrated_carried_arm(arm, run, joints_deg, choice);
+    }
     let outer = certified_outer(run)?;
     let mut set = run.set.clone().ok_or(ArmError::Undecided)?;
     let joints = arm.joints.len();
@@ -149,6 +154,64 @@ pub fn calibrated_arm(
         .map(|x| with_point(arm, outer, &x))
         .find(|a| is_certified_consistent(&Arm7Point, &read_back(a), &kept))
         .ok_or(ArmError::Undecided)?;
+    Ok(CalibratedArm {
+        arm: written,
+        set,
+        point,
+    })
+}
+
+/// The calibrated arm of a run with a certified set carried over ([`crate::carry`]): the
+/// parameter vector is chosen in the set over both series ([`ArmRun::two_frame_set`]) by the same
+/// rules, and proved, as the file writes it, consistent with every new row and, with the earlier
+/// frame's base and tool it was chosen with, every earlier row; the file's `[certified_set]` is
+/// the run's set in this frame ([`ArmRun::set`]), to which the written vector is added.
+fn calibrated_carried_arm(
+    arm: &Arm,
+    run: &ArmRun,
+    joints_deg: &[Vec<f64>],
+    choice: PointChoice,
+) -> Result<CalibratedArm, ArmError> {
+    let outer = certified_outer(run)?;
+    let mut both = run.two_frame_set.clone().ok_or(ArmError::Undecided)?;
+    let mut set = run.set.clone().ok_or(ArmError::Undecided)?;
+    let witness = match both.points().first() {
+        Some(p) => head(&p.x),
+        None => head(&both.outer().ok_or(ArmError::Undecided)?.map(|v| v.mid())),
+    };
+    // The earlier frame's columns 0: the tool points predicted in this frame.
+    let preds: Vec<[f64; NX2]> = predictions(choice, joints_deg, &witness)
+        .iter()
+        .map(|g| core::array::from_fn(|i| g.get(i).copied().unwrap_or(0.0)))
+        .collect();
+    let point = calibrated_point(&Arm7PointTwoFrames, &mut both, rule(choice, &preds))
+        .ok_or(ArmError::Undecided)?;
+    let kept = both.subset_measurements(point.subset);
+    let (written, x) = [point.x, point.deepest]
+        .into_iter()
+        .map(|x| (with_point(arm, outer, &head(&x)), x))
+        .find(|(a, x)| {
+            let here = read_back(a);
+            let read: [Interval; NX2] = core::array::from_fn(|i| match i.checked_sub(NX) {
+                None => here[i],
+                Some(_) => Interval::point(x[i]),
+            });
+            is_certified_consistent(&Arm7PointTwoFrames, &read, &kept)
+        })
+        .ok_or(ArmError::Undecided)?;
+    // The written vector fits the new rows: the file's set holds it as a certified point.
+    let written_point = read_back(&written).map(|v| v.mid());
+    set.add_point(&Arm7Point, &written_point);
+    let point = CalibratedPoint {
+        x: head(&x),
+        deepest: head(&point.deepest),
+        target: head(&point.target),
+        margin: point.margin,
+        deepest_misfit: point.deepest_misfit,
+        reached: point.reached,
+        prior_weight: point.prior_weight,
+        subset: point.subset,
+    };
     Ok(CalibratedArm {
         arm: written,
         set,

@@ -27,7 +27,7 @@ use crate::params::{self, Unit};
 use crate::robot::Arm;
 use crate::simulate::{measurement_box, Reading, Uncertainty};
 use crate::{Arm7Point, ArmError};
-use calib_core::{Interval, Status};
+use calib_core::{CertifiedSet, Interval, Status};
 use calib_pipeline::error_scale::{search_from_estimate, ErrorScale, ScaledProblem};
 use calib_pipeline::identify::Identifiability;
 use calib_pipeline::smallest_consistent;
@@ -39,6 +39,10 @@ use std::path::Path;
 pub const NX2: usize = NX + 9;
 /// Measured quantities of the two-frame model: the point model's, then the frame flag.
 pub const NM2: usize = NM + 1;
+
+/// A certified set over both series in the two-frame model ([`NX2`] parameters, [`NM2`]
+/// measured quantities).
+pub type TwoFrameSet = CertifiedSet<NX2, NM2>;
 
 /// Where the point model keeps the base and the tool point (its parameters from here on).
 const BASE: usize = 5 * crate::certification::MAX_JOINTS;
@@ -65,6 +69,10 @@ pub fn certify_carried(
             let job = Job::Certify(options);
             let model = &Arm7PointTwoFrames;
             let (mut run, cover) = run_model(model, &p, names.clone(), &prior, job, &settings);
+            if let Some((c, points)) = &cover {
+                let set = TwoFrameSet::new(&Arm7PointTwoFrames, c, &p.boxes, points, ARM_PIECES);
+                run.two_frame_set = (!set.is_empty()).then_some(set);
+            }
             run.set = cover.and_then(|c| this_frame(&c, &p.boxes[..readings.len()]));
             in_this_frame(&mut run.identifiability, names.len());
             Ok(run)

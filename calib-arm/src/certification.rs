@@ -43,6 +43,10 @@ pub struct ArmRun {
     /// A 6-DoF run's certified set in the padded pose model (the tool frame's rotation appended,
     /// [`crate::pose::certification::PoseSet`]); `None` for positions.
     pub pose_set: Option<crate::pose::certification::PoseSet>,
+    /// A run with a certified set carried over: the set over both series in the two-frame model
+    /// ([`crate::carry::TwoFrameSet`]), where the written vector is chosen and proved; `None`
+    /// otherwise.
+    pub two_frame_set: Option<crate::carry::TwoFrameSet>,
 }
 
 /// An arm's certified set in the padded model (every arm goes through the 7-joint model): its
@@ -529,6 +533,7 @@ where
         fit,
         set: None,
         pose_set: None,
+        two_frame_set: None,
     };
     (run, cover)
 }

@@ -1019,8 +1019,24 @@ fn a_calibration_registered_in_a_new_cell_carries_its_set_into_certify() {
         "7-12",
         "--json",
         &json,
+        "--write-calibrated",
+        &p("calibrated-here.toml"),
     ]);
     assert!(o.status.success(), "{}", text(&o));
+    // The written file: the vector chosen over both series, the set in this frame (predict reads
+    // it back, its points proved again).
+    let o2 = arm(&[
+        "predict",
+        "--robot",
+        &p("calibrated-here.toml"),
+        "--measurements",
+        &data,
+        "--uncertainty",
+        &u,
+        "--rows",
+        "7-12",
+    ]);
+    assert!(o2.status.success(), "{}", text(&o2));
     assert!(
         text(&o).contains("carried over: 6 configurations"),
         "{}",

@@ -42,6 +42,7 @@ fn run(fit: f64) -> ArmRun {
         }),
         set: None,
         pose_set: None,
+        two_frame_set: None,
     }
 }
 
