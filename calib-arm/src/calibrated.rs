@@ -180,10 +180,7 @@ fn calibrated_carried_arm(
         None => head(&both.outer().ok_or(ArmError::Undecided)?.map(|v| v.mid())),
     };
     // The earlier frame's columns 0: the tool points predicted in this frame.
-    let preds: Vec<[f64; NX2]> = predictions(choice, joints_deg, &witness)
-        .iter()
-        .map(|g| core::array::from_fn(|i| g.get(i).copied().unwrap_or(0.0)))
-        .collect();
+    let preds: Vec<[f64; NX2]> = widened(&predictions(choice, joints_deg, &witness));
     let point = calibrated_point(&Arm7PointTwoFrames, &mut both, rule(choice, &preds))
         .ok_or(ArmError::Undecided)?;
     let kept = both.subset_measurements(point.subset);
@@ -202,20 +199,10 @@ fn calibrated_carried_arm(
     // The written vector fits the new rows: the file's set holds it as a certified point.
     let written_point = read_back(&written).map(|v| v.mid());
     set.add_point(&Arm7Point, &written_point);
-    let point = CalibratedPoint {
-        x: head(&x),
-        deepest: head(&point.deepest),
-        target: head(&point.target),
-        margin: point.margin,
-        deepest_misfit: point.deepest_misfit,
-        reached: point.reached,
-        prior_weight: point.prior_weight,
-        subset: point.subset,
-    };
     Ok(CalibratedArm {
         arm: written,
         set,
-        point,
+        point: in_point_model(&point, &x),
     })
 }
 
@@ -249,10 +236,7 @@ pub fn calibrated_pose_arm(
         .map(|p| head(&p.x))
         .ok_or(ArmError::Undecided)?;
     // The position rows' gradients, the tool rotation's columns 0: the tool points predicted.
-    let preds: Vec<[f64; NX6]> = predictions(choice, joints_deg, &witness)
-        .iter()
-        .map(|g| core::array::from_fn(|i| g.get(i).copied().unwrap_or(0.0)))
-        .collect();
+    let preds: Vec<[f64; NX6]> = widened(&predictions(choice, joints_deg, &witness));
     let point = calibrated_point(&Arm7Pose, &mut pose_set, rule(choice, &preds))
         .ok_or(ArmError::Undecided)?;
     let kept = pose_set.subset_measurements(point.subset);
@@ -284,20 +268,10 @@ pub fn calibrated_pose_arm(
         })
         .find(|a| read_back_pose(a).is_some_and(|x| is_certified_consistent(&Arm7Pose, &x, &kept)))
         .ok_or(ArmError::Undecided)?;
-    let point = CalibratedPoint {
-        x: head(&point.x),
-        deepest: head(&point.deepest),
-        target: head(&point.target),
-        margin: point.margin,
-        deepest_misfit: point.deepest_misfit,
-        reached: point.reached,
-        prior_weight: point.prior_weight,
-        subset: point.subset,
-    };
     Ok(CalibratedArm {
         arm: written,
         set,
-        point,
+        point: in_point_model(&point, &point.x),
     })
 }
 
@@ -311,6 +285,30 @@ fn rule<const X: usize>(choice: PointChoice, preds: &[[f64; X]]) -> PointRule<'_
     match choice {
         PointChoice::Centre | PointChoice::Task => PointRule::PredictionCentre(preds),
         PointChoice::LeastSquares => PointRule::LeastSquares,
+    }
+}
+
+/// The point model's gradients `preds` in a model that extends it (its first [`NX`] parameters
+/// are the point model's), the columns after those 0.
+fn widened<const X: usize>(preds: &[[f64; NX]]) -> Vec<[f64; X]> {
+    preds
+        .iter()
+        .map(|g| core::array::from_fn(|i| g.get(i).copied().unwrap_or(0.0)))
+        .collect()
+}
+
+/// A point chosen in a model that extends the point model, in the point model's parameters; `x`
+/// the vector written (its chosen point or its deepest).
+fn in_point_model<const X: usize>(point: &CalibratedPoint<X>, x: &[f64; X]) -> CalibratedPoint<NX> {
+    CalibratedPoint {
+        x: head(x),
+        deepest: head(&point.deepest),
+        target: head(&point.target),
+        margin: point.margin,
+        deepest_misfit: point.deepest_misfit,
+        reached: point.reached,
+        prior_weight: point.prior_weight,
+        subset: point.subset,
     }
 }
 
