@@ -360,15 +360,20 @@ fn arm_certify_files(
     };
     let (file, robot_file) = (base_name(&measurements), base_name(&robot));
     let stored_rows: Vec<usize> = earlier.as_ref().map_or_else(Vec::new, |s| {
-        calib_arm::carry::carried_rows(s).iter().map(|k| k + 1).collect()
+        calib_arm::carry::carried_rows(s)
+            .iter()
+            .map(|k| k + 1)
+            .collect()
     });
     let names = ConfigurationNames {
         file: &file,
         lines: &data.lines,
-        carried: earlier.as_ref().map(|_| calib_pipeline::verdict::CarriedRows {
-            file: &robot_file,
-            rows: &stored_rows,
-        }),
+        carried: earlier
+            .as_ref()
+            .map(|_| calib_pipeline::verdict::CarriedRows {
+                file: &robot_file,
+                rows: &stored_rows,
+            }),
     };
     if let Some(path) = write {
         use calib_arm::calibrated::PointChoice;
@@ -673,7 +678,9 @@ fn arm_register(
         }
         None => serde_json::Value::Null,
     };
-    let carried = set.map_or_else(String::new, |s| calib_arm::carry::carried_set_toml(&robot, &s));
+    let carried = set.map_or_else(String::new, |s| {
+        calib_arm::carry::carried_set_toml(&robot, &s)
+    });
     let text = format!(
         "# registered by certicalib {}\n{}{carried}",
         env!("CARGO_PKG_VERSION"),
@@ -747,14 +754,9 @@ fn arm_error_scale(
             let u = data.slack.widen(&bounds.position);
             let earlier = carried_set(&robot)?;
             py.detach(|| match &earlier {
-                Some(set) => calib_arm::carry::search_carried(
-                    &arm,
-                    set,
-                    &data.readings,
-                    &u,
-                    which,
-                    |_| {},
-                ),
+                Some(set) => {
+                    calib_arm::carry::search_carried(&arm, set, &data.readings, &u, which, |_| {})
+                }
                 None => search(&arm, &data.readings, &u, which, |_| {}),
             })
         }
