@@ -93,3 +93,49 @@ fn shorter_arms_padded_with_identity_joints_give_their_own_forward_kinematics() 
     assert_eq!(tracked_point(&[0.0; 24], &[0.0; 2]), None);
     assert_eq!(tracked_point(&[0.0; 23], &[0.0; 3]), None);
 }
+
+#[test]
+fn each_joint_enters_the_tool_point_through_its_cosine_and_sine_only() {
+    // The accuracy engine's wide boxes rest on it (`ToolPoint`'s `ANGULAR_INPUTS`): for fixed
+    // parameters and other joints, the point and its derivatives are `A cos q + B sin q + C`,
+    // so `f(q) + f(q + π)` (= 2C) is the same for every `q`.
+    let mut rng = StdRng::seed_from_u64(12);
+    for _ in 0..100 {
+        let x: [f64; 44] = random_arm(&mut rng, 7).try_into().unwrap();
+        let m: [f64; 10] = core::array::from_fn(|k| {
+            if k < 7 {
+                rng.random_range(-3.0..3.0)
+            } else {
+                0.0
+            }
+        });
+        for joint in 0..7 {
+            let sum_at = |q: f64| {
+                let (mut a, mut b) = (m, m);
+                a[joint] = q;
+                b[joint] = q + std::f64::consts::PI;
+                let (ra, rb) = (
+                    Arm7Point.evaluate_rows(&x, &a),
+                    Arm7Point.evaluate_rows(&x, &b),
+                );
+                let mut out = Vec::new();
+                for r in 0..3 {
+                    out.push(ra[r].value + rb[r].value);
+                    out.extend((0..44).map(|j| ra[r].dx[j] + rb[r].dx[j]));
+                    out.extend((0..7).map(|i| ra[r].dm[i] + rb[r].dm[i]));
+                }
+                out
+            };
+            let (s1, s2) = (
+                sum_at(rng.random_range(-3.0..3.0)),
+                sum_at(rng.random_range(-3.0..3.0)),
+            );
+            for (k, (a, b)) in s1.iter().zip(&s2).enumerate() {
+                assert!(
+                    (a - b).abs() <= 1e-7 * (1.0 + a.abs().max(b.abs())),
+                    "joint {joint}, entry {k}: {a} against {b}"
+                );
+            }
+        }
+    }
+}

@@ -26,6 +26,9 @@ impl Prediction<NX, NM, NM, MAX_JOINTS, 3> for ToolPoint {
     /// second-order models ([`Quadratic`]).
     const SECOND_ORDER_WIDTH: f64 = 1.0;
 
+    /// Every joint turns one rotation `Rz(theta_i + q_i)` of the chain (padded joints too).
+    const ANGULAR_INPUTS: bool = true;
+
     type Model = Arm7Point;
 
     fn model(&self) -> &Arm7Point {

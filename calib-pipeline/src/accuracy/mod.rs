@@ -17,10 +17,16 @@
 //! over the set ([`SetAccuracy::predict`], [`Predicted`]): the ranges new measurements are checked
 //! against.
 
+mod arcs;
 mod over_set;
 mod sphere;
 
 pub use over_set::{bracket_over_set, SetAccuracy};
+
+#[doc(hidden)]
+pub use arcs::arc_vertices;
+#[doc(hidden)]
+pub use sphere::cover_bound;
 
 use calib_core::{CertifiedSet, Interval, Jet, Quadratic, SetMaximum, VectorModel};
 
@@ -44,6 +50,14 @@ pub trait Prediction<
     /// keeps its second-order models tight however wide the box); a prediction through sines and
     /// cosines of its inputs may want `1` ([`Quadratic`]'s second-order reach).
     const SECOND_ORDER_WIDTH: f64 = f64::INFINITY;
+
+    /// Whether every input is an angle that enters `g` only through its cosine and sine, one
+    /// rotation each: for fixed `θ`, `g` and its derivatives are affine in `(cos u_i, sin u_i)`
+    /// for each input, the others fixed (a chain of revolute joints, each `Rz(θ_i + q_i)`). Then
+    /// input boxes wider than [`Prediction::SECOND_ORDER_WIDTH`] are bounded at the vertices of
+    /// triangles around their arcs, with no interval slopes over the box (tight on boxes of tens
+    /// of degrees). A soundness claim about the prediction: by default `false`.
+    const ANGULAR_INPUTS: bool = false;
 
     /// Whether the inputs' terms that are bounded apart take two linear programs each over the
     /// set (tighter than the parallelotope around it; worth it where the programs are small,

@@ -33,6 +33,7 @@
 //! pushed along the error's gradient at inputs spread over the box, and at every input where the
 //! search raises the lower bound), with exact inputs.
 
+use super::arcs::{Arcs, WIDEST_ARC};
 use super::sphere::{add_up, cover_bound, farthest_corner, frame, norm, COVER_DIRECTIONS};
 use super::{slot, Attained, Bracket, BracketSettings, Instance, Predicted, Prediction};
 use calib_core::{
@@ -294,6 +295,18 @@ where
             .prediction
             .curvature(&spread, &widened)
             .filter(|c| c.iter().all(|v| v.is_bounded() && !v.is_empty()));
+        let arcs = match &self.parallelotope {
+            Some(p) if P::ANGULAR_INPUTS && widest > P::SECOND_ORDER_WIDTH => Arcs::over(
+                self.prediction,
+                &widened,
+                &self.hull,
+                &self.nominal,
+                &self.input_error,
+                p,
+            )
+            .map(Box::new),
+            _ => None,
+        };
         let columns = if widest <= P::SECOND_ORDER_WIDTH {
             let at = match curvature {
                 Some(_) => self.nominal.map(Interval::point),
@@ -308,6 +321,7 @@ where
             input_term,
             columns,
             curvature,
+            arcs,
         })
     }
 
@@ -342,6 +356,9 @@ where
         let mut first = [0.0; R];
         first[0] = 1.0;
         let axes = frame(self.direction_at(&centre).unwrap_or(first));
+        if let (Some(arcs), Some(p)) = (&terms.arcs, &self.parallelotope) {
+            return self.upper_by_arcs(arcs, p, &axes, enough, lps);
+        }
         let mut per_axis: Vec<Component<NX>> = axes.iter().map(|w| self.along(&terms, w)).collect();
         // The norm's bound from the frame's ranges, the main terms' support from `main` (told
         // the slot of its linear function: programs warm-start per slot).
@@ -366,9 +383,60 @@ where
         if best <= enough || R != 3 {
             return best;
         }
-        cover_bound(best, |d, w3| {
+        cover_bound(best, enough, |d, w3| {
             let w: [f64; R] = core::array::from_fn(|r| w3[r]);
-            self.along(&terms, &w).max(2 * R + d, 1.0, &mut lp)
+            self.along(&terms, &w)
+                .max(2 * R + d % COVER_DIRECTIONS, 1.0, &mut lp)
+        })
+    }
+
+    /// [`SetAccuracy::upper`] over a wide box of angular inputs, from its arcs' vertices
+    /// ([`Arcs`]): the frame's ranges first over the parallelotope alone, then with programs,
+    /// then (in three dimensions) the sphere's cover.
+    fn upper_by_arcs(
+        &self,
+        arcs: &Arcs<NX, NU, R>,
+        p: &Parallelotope<NX>,
+        axes: &[[f64; R]; R],
+        enough: f64,
+        lps: &mut SlotQueries<'_, NX, NMS>,
+    ) -> f64 {
+        let ranges = |main: &mut dyn FnMut(usize, &[Interval; NX]) -> f64, programs: bool| {
+            let ranges: [Interval; R] = core::array::from_fn(|k| {
+                let down = axes[k].map(|v| -v);
+                let (hi, lo) = if programs {
+                    (
+                        arcs.max_along(&axes[k], p, Some(&mut |o| main(2 * k, o))),
+                        -arcs.max_along(&down, p, Some(&mut |o| main(2 * k + 1, o))),
+                    )
+                } else {
+                    (
+                        arcs.max_along(&axes[k], p, None),
+                        -arcs.max_along(&down, p, None),
+                    )
+                };
+                if lo.is_finite() && hi.is_finite() && lo <= hi {
+                    Interval::new(lo, hi)
+                } else {
+                    Interval::ENTIRE
+                }
+            });
+            farthest_corner(&ranges)
+        };
+        let mut lp = |slot: usize, w: &[Interval; NX]| {
+            lps.max_linear(slot << VERTEX_INPUTS, w, &self.nominal)
+        };
+        let mut best = ranges(&mut lp, false);
+        if best <= enough {
+            return best;
+        }
+        best = best.min(ranges(&mut lp, true));
+        if best <= enough || R != 3 {
+            return best;
+        }
+        cover_bound(best, enough, |d, w3| {
+            let w: [f64; R] = core::array::from_fn(|r| w3[r]);
+            arcs.max_along(&w, p, Some(&mut |o| lp(2 * R + d % COVER_DIRECTIONS, o)))
         })
     }
 
@@ -975,6 +1043,8 @@ struct Terms<const NX: usize, const NP: usize, const NU: usize, const R: usize> 
     columns: Option<Box<Columns<NX, NU, R>>>,
     /// The robot's curvature enclosure, when it has one.
     curvature: Option<[Interval; R]>,
+    /// The arcs' vertices (wide boxes of angular inputs, [`Prediction::ANGULAR_INPUTS`]).
+    arcs: Option<Box<Arcs<NX, NU, R>>>,
 }
 
 /// Slots per component for the terms bounded by programs ([`Prediction::TERMS_BY_PROGRAMS`]):
@@ -1104,6 +1174,10 @@ where
     }
 
     fn split_weights(&self, u: &[Interval; NU]) -> Option<[f64; NU]> {
+        // Arcs too wide for their triangles are split first.
+        if P::ANGULAR_INPUTS && u.iter().any(|v| v.wid() > WIDEST_ARC) {
+            return Some(u.map(|v| if v.wid() > WIDEST_ARC { 1.0 } else { 0.0 }));
+        }
         Some(self.problem.error_variation(u))
     }
 

@@ -72,6 +72,8 @@ pub(crate) struct SphereCover {
     pub(crate) directions: Vec<[f64; 3]>,
     /// A lower bound of `cos α`.
     pub(crate) cos_radius: f64,
+    /// The subdivided icosahedron's faces (indices into `directions`), which tile the sphere.
+    faces: Vec<[usize; 3]>,
 }
 
 /// How many directions the sphere's cover has (the icosahedron subdivided once).
@@ -158,27 +160,123 @@ impl SphereCover {
         SphereCover {
             directions: v,
             cos_radius,
+            faces: fine,
         }
     }
 }
 
-/// `‖d‖ <= max_k u_k·d / cos α` over the directions `u_k` of [`SphereCover`], each bound
-/// `u_k·d <= along(k, u_k)`; `best` where that cannot beat it (then the remaining directions
-/// are not bounded) or a bound fails.
-pub(crate) fn cover_bound(best: f64, mut along: impl FnMut(usize, &[f64; 3]) -> f64) -> f64 {
+/// `‖d‖` bounded from bounds `u·d <= along(k, u)` along unit directions `u` (`k` the
+/// direction's index, for warm starts), refined where the bound is reached.
+///
+/// The faces of the subdivided icosahedron tile the sphere; a vector `d` whose direction lies in
+/// the cone of a face `F` is within the angle `α_F` of one of its vertices `u`, so
+/// `‖d‖ cos α_F <= u·d`: `‖d‖ <= max_{u ∈ F} along(u) / cos α_F` (`face_cos_radius`). The
+/// largest of the faces' bounds holds for every `d`. While it exceeds `enough`, the face that
+/// gives it is split in four at its edges' midpoints (the children tile it, each with a smaller
+/// `α`), until the bound is within 1% of the largest `along` found (where the
+/// directions' discretisation no longer matters) or 162 directions have been
+/// bounded. `best` where the cover cannot beat it (then the remaining directions are not
+/// bounded) or a bound fails.
+pub fn cover_bound(best: f64, enough: f64, mut along: impl FnMut(usize, &[f64; 3]) -> f64) -> f64 {
     let cover = SphereCover::get();
-    let mut largest = 0.0f64;
+    let mut directions = cover.directions.clone();
+    let mut value = Vec::with_capacity(COVER_BUDGET);
     for (k, u) in cover.directions.iter().enumerate() {
         let v = along(k, u);
-        if v.is_nan() {
+        if v.is_nan() || v / cover.cos_radius > best {
             return best;
         }
-        largest = largest.max(v);
-        if largest / cover.cos_radius > best {
+        value.push(v);
+    }
+    let bound_of = |f: &[usize; 3], directions: &[[f64; 3]], value: &[f64]| {
+        let top = f
+            .iter()
+            .map(|&i| value[i])
+            .fold(f64::NEG_INFINITY, f64::max);
+        let cos = face_cos_radius(f.map(|i| directions[i]));
+        if top <= 0.0 {
+            // Every direction of the face bounds d·u by 0 or less: no d points into its cone.
+            0.0
+        } else if cos > 0.0 {
+            (Interval::point(top) / Interval::point(cos)).sup()
+        } else {
+            f64::INFINITY
+        }
+    };
+    let mut faces: Vec<([usize; 3], f64)> = cover
+        .faces
+        .iter()
+        .map(|f| (*f, bound_of(f, &directions, &value)))
+        .collect();
+    loop {
+        let Some((worst, &(face, bound))) = faces
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1 .1.total_cmp(&b.1 .1))
+        else {
             return best;
+        };
+        let largest = value.iter().copied().fold(0.0, f64::max);
+        if bound <= enough
+            || bound <= largest * (1.0 + COVER_TOLERANCE)
+            || directions.len() + 3 > COVER_BUDGET
+        {
+            return best.min(bound);
+        }
+        let [a, b, c] = face;
+        let mut mid = |p: usize, q: usize| -> Option<usize> {
+            let (x, y) = (directions[p], directions[q]);
+            let u = unit([x[0] + y[0], x[1] + y[1], x[2] + y[2]]);
+            let k = directions.len();
+            let v = along(k, &u);
+            if v.is_nan() {
+                return None;
+            }
+            directions.push(u);
+            value.push(v);
+            Some(k)
+        };
+        let (Some(ab), Some(bc), Some(ca)) = (mid(a, b), mid(b, c), mid(c, a)) else {
+            return best.min(bound);
+        };
+        faces.swap_remove(worst);
+        for f in [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]] {
+            // A child's bound is also at most its parent's (its cone lies in the parent's).
+            faces.push((f, bound_of(&f, &directions, &value).min(bound)));
         }
     }
-    best.min((Interval::point(largest) / Interval::point(cover.cos_radius)).sup())
+}
+
+/// At most this many directions are bounded by one [`cover_bound`].
+pub(crate) const COVER_BUDGET: usize = 162;
+
+/// The cover stops refining once its bound is within this share of the largest component.
+const COVER_TOLERANCE: f64 = 0.01;
+
+/// A lower bound of `cos α` for a spherical triangle of unit vertices: every unit vector in its
+/// cone is within the angle `α` of one of its vertices. For an acute triangle (its circumcentre
+/// inside) `α` is the circumradius; in any case the nearest vertex is no farther than the
+/// longest edge (the distance to a vertex is convex, largest at another vertex). A margin covers
+/// the rounding of these floating-point computations; `0` (no bound) for a degenerate triangle.
+fn face_cos_radius(v: [[f64; 3]; 3]) -> f64 {
+    let [p, q, r] = v;
+    let edges = dot(p, q).min(dot(q, r)).min(dot(r, p));
+    let n = cross(sub(q, p), sub(r, p));
+    let len = norm(&n);
+    let mut cos = edges;
+    if len > 1e-12 {
+        let n = n.map(|c| c / len);
+        let n = if dot(n, p) < 0.0 { n.map(|c| -c) } else { n };
+        // The circumcentre n lies in the cone when it is on the inner side of every edge plane.
+        let inside = [(p, q, r), (q, r, p), (r, p, q)].iter().all(|&(a, b, c)| {
+            let e = cross(a, b);
+            dot(e, n) * dot(e, c) >= 0.0
+        });
+        if inside {
+            cos = cos.max(dot(n, p).min(dot(n, q)).min(dot(n, r)));
+        }
+    }
+    (cos - 1e-9).max(0.0)
 }
 
 fn unit(p: [f64; 3]) -> [f64; 3] {

@@ -5,7 +5,9 @@ use calib_core::{
     certify, interval_model, is_consistent_point, maximize_over_set, CertifiedSet, Cover, Interval,
     Jet, LinearFunction, Quadratic, Scalar, SetMaximum, SetMaximumSettings, Settings, Status,
 };
-use calib_pipeline::accuracy::{bracket_over_set, BracketSettings, Prediction, SetAccuracy};
+use calib_pipeline::accuracy::{
+    arc_vertices, bracket_over_set, cover_bound, BracketSettings, Prediction, SetAccuracy,
+};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -350,5 +352,232 @@ fn a_prediction_whose_enclosure_fails_is_not_made_and_nothing_panics() {
             let v = g[k] / q;
             assert!(p.outer[k].inf() - 1e-12 <= v && v <= p.outer[k].sup() + 1e-12);
         }
+    }
+}
+
+/// A spatial two-joint arm (a base turning about `z`, a link raised by the second joint):
+/// `x = (l1, l2, o1, o2)`, `m = (q1, q2, px, py, pz)`. Each joint enters through one rotation,
+/// so the tip is affine in each joint's cosine and sine.
+#[interval_model]
+fn spatial_tip<S: Scalar>(x: &[S; 4], m: &[S; 5]) -> [S; 3] {
+    let [l1, l2, o1, o2] = *x;
+    let [q1, q2, px, py, pz] = *m;
+    let (a, b) = (q1 + o1, q2 + o2);
+    let reach = l1 + l2 * b.cos();
+    [
+        reach * a.cos() - px,
+        reach * a.sin() - py,
+        l2 * b.sin() + l1 * 0.25 - pz,
+    ]
+}
+
+/// The spatial tip as a prediction with angular inputs: boxes wider than 0.2 rad take the arcs'
+/// vertices, and the error's norm the sphere's cover.
+struct SpatialTipPoint;
+
+impl Prediction<4, 5, 5, 2, 3> for SpatialTipPoint {
+    const SECOND_ORDER_WIDTH: f64 = 0.2;
+    const ANGULAR_INPUTS: bool = true;
+    type Model = SpatialTip;
+
+    fn model(&self) -> &SpatialTip {
+        &SpatialTip
+    }
+
+    fn second_order(
+        &self,
+        x: &[Jet<Quadratic<2>, 4>; 4],
+        m: &[Jet<Quadratic<2>, 4>; 5],
+    ) -> [Jet<Quadratic<2>, 4>; 3] {
+        spatial_tip(x, m)
+    }
+
+    fn push(&self, set: &mut CertifiedSet<4, 5>, direction: &[f64; 4]) -> bool {
+        set.extreme_point(&SpatialTip, direction).is_some()
+    }
+}
+
+/// The spatial tip by plain trigonometry.
+fn spatial(x: &[f64; 4], q: &[f64; 2]) -> [f64; 3] {
+    let (a, b) = (q[0] + x[2], q[1] + x[3]);
+    let reach = x[0] + x[1] * b.cos();
+    [
+        reach * a.cos(),
+        reach * a.sin(),
+        x[1] * b.sin() + 0.25 * x[0],
+    ]
+}
+
+#[test]
+fn wide_boxes_of_angular_inputs_keep_the_bracket_sound() {
+    let mut rng = StdRng::seed_from_u64(5);
+    let boxes: Vec<[Interval; 5]> = (0..16)
+        .map(|_| {
+            let q = [rng.random_range(-0.6..0.6), rng.random_range(-0.8..0.8)];
+            let p = spatial(&TRUTH, &q);
+            let read = [q[0], q[1], p[0], p[1], p[2]];
+            core::array::from_fn(|k| {
+                let r = if k < 2 {
+                    JOINT_ERROR
+                } else {
+                    10.0 * JOINT_ERROR
+                };
+                Interval::mid_rad(read[k] + rng.random_range(-r..r), r)
+            })
+        })
+        .collect();
+    let prior = [
+        Interval::new(0.9, 1.1),
+        Interval::new(0.7, 0.9),
+        Interval::new(-0.1, 0.1),
+        Interval::new(-0.1, 0.1),
+    ];
+    let r = certify(&SpatialTip, &prior, &boxes, &Settings::default());
+    assert_eq!(r.status, Status::Consistent);
+    let (r_outer, witness) = (r.outer, r.witness.expect("a certified point"));
+    let set = engine_set(&boxes, &r_outer, &witness);
+    // Far outside the measured joints (the error grows there), boxes of up to two radians.
+    let nominal = [1.0, 0.8, 0.0, 0.0];
+    let domain = [Interval::new(-2.0, 2.0), Interval::new(-1.2, 2.0)];
+    let engine =
+        SetAccuracy::new(&SpatialTipPoint, set, nominal, domain, [JOINT_ERROR; 2]).expect("a set");
+    let b = bracket_over_set(
+        &engine,
+        &BracketSettings {
+            rel_tol: 0.05,
+            max_boxes: 150,
+        },
+    );
+    assert!(
+        b.upper.is_finite() && b.lower > 0.0 && b.upper >= b.lower,
+        "{b:?}"
+    );
+    let mut geometries = vec![TRUTH];
+    geometries.extend(engine.catalogue());
+    for g in &geometries {
+        assert!(is_consistent_point(&SpatialTip, g, &boxes), "{g:?}");
+    }
+    for k in 0..4000 {
+        let g = &geometries[k % geometries.len()];
+        let q = [
+            rng.random_range(domain[0].inf()..=domain[0].sup()),
+            rng.random_range(domain[1].inf()..=domain[1].sup()),
+        ];
+        let real = q.map(|v| v + rng.random_range(-JOINT_ERROR..=JOINT_ERROR));
+        let (p, p0) = (spatial(g, &real), spatial(&nominal, &q));
+        let e = (0..3).map(|c| (p[c] - p0[c]).powi(2)).sum::<f64>().sqrt();
+        assert!(e <= b.upper * (1.0 + 1e-9), "error {e} above {}", b.upper);
+    }
+    // Single boxes of 0.8 rad per joint, the controller's geometry off the set: each bound is
+    // the arcs' alone (no split to hide behind), tight enough that a vertex missed shows.
+    let far = [1.03, 0.78, 0.02, -0.01];
+    for (a, c) in [(-1.5, -1.0), (-0.4, 0.2), (0.6, 1.2), (1.2, -0.6)] {
+        let wide = [Interval::new(a, a + 0.8), Interval::new(c, c + 0.8)];
+        let root = bracket_over_set(
+            &SetAccuracy::new(
+                &SpatialTipPoint,
+                engine_set(&boxes, &r_outer, &witness),
+                far,
+                wide,
+                [JOINT_ERROR; 2],
+            )
+            .expect("a set"),
+            &BracketSettings {
+                rel_tol: 0.0,
+                max_boxes: 1,
+            },
+        );
+        for k in 0..2000 {
+            let g = &geometries[k % geometries.len()];
+            let q = wide.map(|d| rng.random_range(d.inf()..=d.sup()));
+            let real = q.map(|v| v + rng.random_range(-JOINT_ERROR..=JOINT_ERROR));
+            let (p, p0) = (spatial(g, &real), spatial(&far, &q));
+            let e = (0..3).map(|c| (p[c] - p0[c]).powi(2)).sum::<f64>().sqrt();
+            assert!(e <= root.upper, "error {e} above the box's {}", root.upper);
+        }
+    }
+    let w = b.worst.as_ref().expect("an instance");
+    assert!(is_consistent_point(&SpatialTip, &w.theta, &boxes));
+    let (p, p0) = (spatial(&w.theta, &w.reached), spatial(&nominal, &w.inputs));
+    let value = (0..3).map(|c| (p[c] - p0[c]).powi(2)).sum::<f64>().sqrt();
+    assert!(value >= b.lower * (1.0 - 1e-9), "{value} below {}", b.lower);
+}
+
+/// The spatial arm's certified set from its measurements, outer box and witness.
+fn engine_set(
+    boxes: &[[Interval; 5]],
+    outer: &[Interval; 4],
+    witness: &[f64; 4],
+) -> CertifiedSet<4, 5> {
+    CertifiedSet::new(&SpatialTip, &Cover::single(*outer), boxes, &[*witness], 4)
+}
+
+#[test]
+fn an_arc_lies_in_its_triangle_for_every_function_affine_in_its_cosine_and_sine() {
+    // max over the arc of A cos φ + B sin φ + C is at most the largest value at the triangle's
+    // vertices (the lemma the wide boxes rest on), and the triangle is not much larger.
+    let mut rng = StdRng::seed_from_u64(3);
+    for _ in 0..2000 {
+        let lo = rng.random_range(-4.0..4.0);
+        let arc = Interval::new(lo, lo + rng.random_range(1e-3..2.4));
+        let vertices = arc_vertices(arc).expect("an arc narrower than the widest");
+        let (a, b, c) = (
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+        );
+        let f = |phi: Interval| {
+            Interval::point(a) * phi.cos() + Interval::point(b) * phi.sin() + Interval::point(c)
+        };
+        let at_vertices = vertices
+            .iter()
+            .map(|evaluations| {
+                evaluations
+                    .iter()
+                    .fold(Interval::ZERO, |s, (phi, w)| s + *w * f(*phi))
+                    .sup()
+            })
+            .fold(f64::NEG_INFINITY, f64::max);
+        for k in 0..=64 {
+            let phi = arc.inf() + arc.wid() * k as f64 / 64.0;
+            let v = a * phi.cos() + b * phi.sin() + c;
+            assert!(
+                v <= at_vertices + 1e-12,
+                "{v} above {at_vertices} on {arc:?}"
+            );
+        }
+    }
+    // An arc too wide for a triangle gets none; a point, itself.
+    assert!(arc_vertices(Interval::new(0.0, 3.0)).is_none());
+    assert_eq!(arc_vertices(Interval::point(0.5)).map(|v| v.len()), Some(1));
+}
+
+#[test]
+fn the_sphere_cover_bounds_the_norm_of_every_point_and_comes_within_two_percent() {
+    // Point clouds with one long spike in a random direction: the cover's bound from the exact
+    // support function is at least every point's norm, and close to the largest.
+    let mut rng = StdRng::seed_from_u64(9);
+    for _ in 0..200 {
+        let mut points: Vec<[f64; 3]> = (0..20)
+            .map(|_| core::array::from_fn(|_| rng.random_range(-0.3..0.3)))
+            .collect();
+        let d: [f64; 3] = core::array::from_fn(|_| rng.random_range(-1.0..1.0));
+        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        points.push(d.map(|v| v / n));
+        let support = |u: &[f64; 3]| {
+            points
+                .iter()
+                .map(|p| {
+                    (0..3)
+                        .fold(Interval::ZERO, |s, c| {
+                            s + Interval::point(u[c]) * Interval::point(p[c])
+                        })
+                        .sup()
+                })
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        let bound = cover_bound(f64::INFINITY, 0.0, |_, u| support(u));
+        assert!(bound >= 1.0, "{bound} below the spike's norm 1");
+        assert!(bound <= 1.02, "{bound}: the refinement stopped early");
     }
 }
