@@ -38,7 +38,9 @@ pub struct Args {
     max_boxes: usize,
     /// Examine at most this many joint boxes over a certified set (each costs tens of
     /// milliseconds on a 6-axis arm: its derivatives as second-order models in the joints, and
-    /// up to ninety linear programs over the set, warm-started).
+    /// up to ninety linear programs over the set, warm-started; a box wider than a radian in
+    /// some joint about a tenth of a second: its joints' arcs enclosed by triangles, the error
+    /// bounded at their 729 vertices).
     #[arg(long, value_name = "N", default_value_t = ToolAccuracySettings::default().max_set_boxes)]
     max_set_boxes: usize,
     /// Write the JSON report to this file.

@@ -330,8 +330,9 @@ impl Ranges {
 /// The support of the set, `sup_S o·δ` for slopes `o` (a linear program's safe bound).
 pub(super) type Support<'a, const NX: usize> = &'a mut dyn FnMut(&[Interval; NX]) -> f64;
 
-/// At most this many vertices get their own program per component.
-const VERTEX_PROGRAMS: usize = 24;
+/// At most this many vertices get their own program per component (`benches/README.md`: on wide
+/// boxes, more boxes with fewer programs are about as good for the time).
+const VERTEX_PROGRAMS: usize = 4;
 
 /// Vertices stop getting their own programs once every other's bound is within this share of
 /// the largest proved with one.

@@ -171,8 +171,9 @@ impl SphereCover {
 /// The faces of the subdivided icosahedron tile the sphere; a vector `d` whose direction lies in
 /// the cone of a face `F` is within the angle `α_F` of one of its vertices `u`, so
 /// `‖d‖ cos α_F <= u·d`: `‖d‖ <= max_{u ∈ F} along(u) / cos α_F` (`face_cos_radius`). The
-/// largest of the faces' bounds holds for every `d`. While it exceeds `enough`, the face that
-/// gives it is split in four at its edges' midpoints (the children tile it, each with a smaller
+/// largest of the faces' bounds holds for every `d`. While it exceeds `enough` (and the largest
+/// `along` found does not: only then can refining reach `enough`), the face that gives it is
+/// split in four at its edges' midpoints (the children tile it, each with a smaller
 /// `α`), until the bound is within 1% of the largest `along` found (where the
 /// directions' discretisation no longer matters) or 162 directions have been
 /// bounded. `best` where the cover cannot beat it (then the remaining directions are not
@@ -217,7 +218,9 @@ pub fn cover_bound(best: f64, enough: f64, mut along: impl FnMut(usize, &[f64; 3
             return best;
         };
         let largest = value.iter().copied().fold(0.0, f64::max);
+        // Refined only while that may discard the box: the bound cannot fall below `largest`.
         if bound <= enough
+            || largest >= enough
             || bound <= largest * (1.0 + COVER_TOLERANCE)
             || directions.len() + 3 > COVER_BUDGET
         {
