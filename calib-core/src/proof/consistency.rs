@@ -19,6 +19,7 @@
 
 use crate::num::linalg::gauss_jordan_inverse;
 use crate::proof::existence::configuration_fits;
+use crate::proof::segment::{Segment, SegmentMemory, Step};
 use crate::{Interval, Model, VectorModel};
 
 /// Whether every `x` in the box `x` (a point when the box is degenerate) is consistent with every
@@ -61,6 +62,20 @@ where
     if NR != 1 {
         return configuration_fits(model, x, m);
     }
+    sign_test_margin(&sign_test(model, x, m)) >= 0.0
+}
+
+/// The sign test of [`configuration_consistent`] for one residual per configuration (`NR = 1`)
+/// over the box `x`: enclosures of `f(x, M⁻)` and `f(x, M⁺)` at the two corners `M⁻`, `M⁺` of `m`
+/// that the linearisation in `M` at the centre picks (see [`sign_test_margin`]).
+pub(crate) fn sign_test<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    m: &[Interval; NM],
+) -> [Interval; 2]
+where
+    M: VectorModel<NX, NM, NR>,
+{
     // The linearisation in M at the centre picks the corners most likely to change the sign.
     let xm = x.map(|v| v.mid());
     let mm = m.map(|v| v.mid());
@@ -71,9 +86,16 @@ where
             Interval::point(if (g[i] > 0.0) == up { hi } else { lo })
         })
     };
-    let below = model.residuals_interval(x, &corner(false))[0];
-    let above = model.residuals_interval(x, &corner(true))[0];
-    below.sup() <= 0.0 && above.inf() >= 0.0
+    [
+        model.residuals_interval(x, &corner(false))[0],
+        model.residuals_interval(x, &corner(true))[0],
+    ]
+}
+
+/// `min(-sup f(x, M⁻), inf f(x, M⁺))` from the enclosures of [`sign_test`]: non-negative exactly
+/// when the test passes (`f(x, M⁻) <= 0 <= f(x, M⁺)` over the box), and how much room is left.
+pub(crate) fn sign_test_margin(values: &[Interval; 2]) -> f64 {
+    (-values[0].sup()).min(values[1].inf())
 }
 
 /// [`is_consistent_point`] for a sequence of nearby points (a bisection, a walk towards a face):
@@ -114,6 +136,44 @@ impl FailFirst {
             .order
             .iter()
             .position(|&k| !configuration_consistent(model, &xi, &measurements[k]))
+        else {
+            return true;
+        };
+        self.order[..=pos].rotate_right(1);
+        false
+    }
+
+    /// [`FailFirst::is_consistent_point`] for the point of a bisection step along a segment (see
+    /// [`crate::proof::segment`]): the configurations `memory` proved over an earlier stretch of
+    /// the segment are not tested again, and those that pass may be proved for the steps to come.
+    /// Returns whether the step's point is certified consistent.
+    fn is_consistent_on_segment<M, const NX: usize, const NM: usize, const NR: usize>(
+        &mut self,
+        model: &M,
+        step: &Step<NX>,
+        memory: &mut SegmentMemory,
+        measurements: &[[Interval; NM]],
+    ) -> bool
+    where
+        M: VectorModel<NX, NM, NR>,
+    {
+        if NR != 1 {
+            return self.is_consistent_point(model, &step.point, measurements);
+        }
+        if !step.point.iter().all(|v| v.is_finite()) {
+            return false;
+        }
+        let xi = step.point.map(Interval::point);
+        if !bounded(&xi, measurements) {
+            return false;
+        }
+        if self.order.len() != measurements.len() {
+            *self = FailFirst::new(measurements.len());
+        }
+        let Some(pos) = self
+            .order
+            .iter()
+            .position(|&k| !memory.passes(model, step, &xi, k, &measurements[k]))
         else {
             return true;
         };
@@ -246,6 +306,7 @@ where
     M: VectorModel<NX, NM, NR>,
 {
     let mut order = FailFirst::new(measurements.len());
+    let mut memory = SegmentMemory::new(measurements.len());
     let mut points = Vec::new();
     for target in targets {
         let target: &[f64; NX] =
@@ -255,15 +316,28 @@ where
                 (witness[i] + t * (target[i] - witness[i])).clamp(outer[i].inf(), outer[i].sup())
             })
         };
+        let segment = Segment::new(witness, target, outer);
         let mut best = None;
         if order.is_consistent_point(model, target, measurements) {
             best = Some(*target);
         } else {
+            memory.reset(measurements.len());
             let (mut lo, mut hi) = (0.0, 1.0);
             for _ in 0..bisections {
                 let t = 0.5 * (lo + hi);
-                let p = at(t);
-                if order.is_consistent_point(model, &p, measurements) {
+                let (p, consistent) = match &segment {
+                    Some(segment) => {
+                        let step = segment.step(lo, t, hi);
+                        let ok =
+                            order.is_consistent_on_segment(model, &step, &mut memory, measurements);
+                        (step.point, ok)
+                    }
+                    None => {
+                        let p = at(t);
+                        (p, order.is_consistent_point(model, &p, measurements))
+                    }
+                };
+                if consistent {
                     lo = t;
                     best = Some(p);
                 } else {

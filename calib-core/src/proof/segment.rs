@@ -1,0 +1,224 @@
+//! Configurations proved once for the rest of a bisection along a segment.
+//!
+//! The inner bounds' search ([`crate::proof::consistency::inner_points`]) bisects the segment
+//! from a certified point `w` towards a target, testing each point against every configuration.
+//! Near the segment's end one or a few configurations bind; the others pass every test with
+//! room to spare, and testing them again at each of the 24 steps was most of `gough certify
+//! --fast` (`benches/README.md`, issue 52). Here a configuration that passes at a point is also
+//! tested, once, over the whole stretch of the segment that the bisection has left to visit; if it
+//! passes there it is not tested again on this segment.
+//!
+//! **The stretch test.** The bisection's points are computed as
+//! `at(s) = clamp(w + s·d)` in floating point, `d = target - w` rounded, `s` in `[0, 1]`. Each lies
+//! within `ρ_j` of the line `ℓ(s) = w + s d` in coordinate `j` ([`Segment::new`] bounds `ρ`), so
+//! for every `s` in the bracket `S = [lo, hi]` the point `at(s)` lies in the box
+//! `X = w + S d + [-ρ, ρ]`. With `x̂ = at(t)` the point just tested and a measurement vector `M`,
+//! the mean value theorem gives, for every such `s`,
+//!
+//! `f(at(s), M) ∈ F(x̂, M) + (S - t) Σ_j G_j d_j + Σ_j G_j [-2ρ_j, 2ρ_j]`
+//!
+//! where `F(x̂, M)` is the point test's enclosure and `G` encloses `∂f/∂x` over `X` and the
+//! measurement box (`at(s) - x̂ = (s - t) d + e(s) - e(t)` with `|e_j| <= ρ_j`). Evaluated in outward-rounded
+//! interval arithmetic at the point test's two corners `M⁻, M⁺`, a right-hand side `<= 0` at `M⁻`
+//! and `>= 0` at `M⁺` proves the configuration for every point the bisection can still test (its
+//! brackets nest inside `S`): the same claim as the point test's, with the same corners.
+//!
+//! The directional term `(S - t) Σ G_j d_j` is what makes this pass early: along the segment the
+//! residual of a configuration that does not bind changes by about its own error band, while a
+//! natural interval evaluation over the box `X` adds up the large and opposite terms of the
+//! residual (`|e|² - (L + l)²` for a Gough leg) coordinate by coordinate and fails until the
+//! bracket is tiny.
+
+use crate::num::interval::round::{add_up, mul_up};
+use crate::proof::consistency::{sign_test, sign_test_margin};
+use crate::{Interval, VectorModel};
+
+/// A segment `ℓ(s) = w + s d` of the inner bounds' search, with the box of points still to test.
+pub(crate) struct Segment<const NX: usize> {
+    /// The certified start `w`.
+    start: [f64; NX],
+    /// `target - w`, rounded: the computed points are `clamp(w + s d)`.
+    d: [f64; NX],
+    /// The box the points are clamped into.
+    outer: [Interval; NX],
+    /// Per coordinate, `ρ_j`: every computed point `at(s)`, `s` in `[0, 1]`, lies within `ρ_j` of
+    /// `ℓ_j(s)`.
+    stray: [f64; NX],
+}
+
+impl<const NX: usize> Segment<NX> {
+    /// The segment from `start` to `target` (both finite), its points clamped into the bounded box
+    /// `outer`; `None` when a bound on how far the computed points stray from the line cannot be
+    /// given in floating point (an overflow).
+    ///
+    /// The bound: with `u = 2^-53`, `y = fl(s d_j)` is within `u |d_j|` of `s d_j` and
+    /// `z = fl(w_j + y)` within `u (|w_j| + (1 + u) |d_j|)` of `w_j + y`, each up to an underflow
+    /// of at most `2^-1075`; the clamp is a projection onto `outer_j`, so it moves `z` at most as
+    /// far from `ℓ_j(s)` as `z` was, plus `ℓ_j(s)`'s own distance to `outer_j`, which is convex in
+    /// `s` and so at most the larger of its values at `w_j` and `w_j + d_j`. Hence
+    /// `ρ_j = 2^-52 (|w_j| + 2 |d_j|) + 2^-1070 + max(dist(w_j), dist(w_j + d_j))`, each operation
+    /// rounded up.
+    pub(crate) fn new(
+        start: &[f64; NX],
+        target: &[f64; NX],
+        outer: &[Interval; NX],
+    ) -> Option<Self> {
+        let d: [f64; NX] = core::array::from_fn(|j| target[j] - start[j]);
+        let stray: [f64; NX] = core::array::from_fn(|j| {
+            let (w, dj, a, b) = (start[j], d[j], outer[j].inf(), outer[j].sup());
+            // Distances to [a, b] rounded up: max(a - v, v - b, 0) for v = w and v = w + d.
+            let dist_w = add_up(a, -w).max(add_up(w, -b)).max(0.0);
+            let dist_end = add_up(add_up(a, -w), -dj)
+                .max(add_up(add_up(w, dj), -b))
+                .max(0.0);
+            let rounding = mul_up(f64::EPSILON, add_up(w.abs(), 2.0 * dj.abs()));
+            add_up(add_up(rounding, 2f64.powi(-1070)), dist_w.max(dist_end))
+        });
+        let finite = |v: &[f64]| v.iter().all(|v| v.is_finite());
+        (finite(start) && finite(&d) && finite(&stray) && outer.iter().all(|v| v.is_bounded()))
+            .then_some(Segment {
+                start: *start,
+                d,
+                outer: *outer,
+                stray,
+            })
+    }
+
+    /// The computed point at `s`: `clamp(w + s d)` in floating point.
+    pub(crate) fn at(&self, s: f64) -> [f64; NX] {
+        core::array::from_fn(|i| {
+            (self.start[i] + s * self.d[i]).clamp(self.outer[i].inf(), self.outer[i].sup())
+        })
+    }
+
+    /// The step of a bisection that tests `at(t)` with the bracket `[lo, hi]` around `t`.
+    pub(crate) fn step(&self, lo: f64, t: f64, hi: f64) -> Step<NX> {
+        let bracket = Interval::new(lo, hi);
+        Step {
+            point: self.at(t),
+            stretch: core::array::from_fn(|j| {
+                let rho = self.stray[j];
+                Interval::point(self.start[j])
+                    + bracket * Interval::point(self.d[j])
+                    + Interval::new(-rho, rho)
+            }),
+            offset: bracket - Interval::point(t),
+            d: self.d,
+            slack: core::array::from_fn(|j| {
+                let r = 2.0 * self.stray[j];
+                Interval::new(-r, r)
+            }),
+            width: hi - lo,
+        }
+    }
+}
+
+/// One step of a bisection along a [`Segment`]: the point it tests and the stretch left to visit.
+pub(crate) struct Step<const NX: usize> {
+    /// The point tested, `at(t)`.
+    pub(crate) point: [f64; NX],
+    /// A box holding every `at(s)`, `s` in the bracket.
+    stretch: [Interval; NX],
+    /// `S - t`: the bracket's parameters less the tested one.
+    offset: Interval,
+    /// The segment's direction.
+    d: [f64; NX],
+    /// `[-2ρ_j, 2ρ_j]`: how far `at(s) - at(t)` can be from `(s - t) d`.
+    slack: [Interval; NX],
+    /// The bracket's width.
+    width: f64,
+}
+
+impl<const NX: usize> Step<NX> {
+    /// The margin `min(-sup f(·, M⁻), inf f(·, M⁺))` over the stretch by the mean value form of
+    /// the module documentation (non-negative when the configuration is proved for every point
+    /// of the stretch), given the point test at `at(t)` against the measurement box `m`: its two
+    /// corners `M⁻, M⁺` and its enclosures `values` of `f(at(t), M⁻)` and `f(at(t), M⁺)`. One
+    /// enclosure of `∂f/∂x` over the stretch and the whole box `m` serves both corners.
+    fn stretch_margin<M, const NM: usize, const NR: usize>(
+        &self,
+        model: &M,
+        m: &[Interval; NM],
+        values: &[Interval; 2],
+    ) -> f64
+    where
+        M: VectorModel<NX, NM, NR>,
+    {
+        let g = model.jacobians_x_interval(&self.stretch, m)[0];
+        let (mut along, mut aside) = (Interval::ZERO, Interval::ZERO);
+        for j in 0..NX {
+            along += g[j] * Interval::point(self.d[j]);
+            aside += g[j] * self.slack[j];
+        }
+        let change = self.offset * along + aside;
+        (-(values[0] + change).sup()).min((values[1] + change).inf())
+    }
+}
+
+/// What the bisection of one [`Segment`] has learnt about each configuration (see the module
+/// documentation).
+///
+/// A stretch test costs two enclosures of `∂f/∂x`, and fails while the bracket is too long for
+/// a configuration that binds near the end; it is tried only when predicted to pass: the point
+/// margin larger than the shortfall per unit of bracket width that the configuration's last
+/// failed stretch test showed, times the width (the first is always tried). The prediction only
+/// saves time: a point is accepted only when each configuration passed its point test there or a
+/// stretch test over a box containing it.
+pub(crate) struct SegmentMemory {
+    /// Per configuration: proved over a stretch that holds every point still to be tested.
+    proved: Vec<bool>,
+    /// Per configuration: at its last failed stretch test, the point margin less the stretch
+    /// margin, over the bracket width (0 before the first).
+    shortfall: Vec<f64>,
+}
+
+impl SegmentMemory {
+    /// Nothing learnt, for `p` configurations.
+    pub(crate) fn new(p: usize) -> Self {
+        SegmentMemory {
+            proved: vec![false; p],
+            shortfall: vec![0.0; p],
+        }
+    }
+
+    /// Forgets everything (a new segment), for `p` configurations.
+    pub(crate) fn reset(&mut self, p: usize) {
+        self.proved.clear();
+        self.proved.resize(p, false);
+        self.shortfall.clear();
+        self.shortfall.resize(p, 0.0);
+    }
+
+    /// Whether configuration `k` (measurement box `m`, bounded) is proved at the step's point:
+    /// by an earlier stretch test, or by the point test (followed, when predicted to pass, by a
+    /// stretch test for the steps to come). One residual per configuration (`NR = 1`).
+    pub(crate) fn passes<M, const NX: usize, const NM: usize, const NR: usize>(
+        &mut self,
+        model: &M,
+        step: &Step<NX>,
+        point: &[Interval; NX],
+        k: usize,
+        m: &[Interval; NM],
+    ) -> bool
+    where
+        M: VectorModel<NX, NM, NR>,
+    {
+        if self.proved[k] {
+            return true;
+        }
+        let values = sign_test(model, point, m);
+        let margin = sign_test_margin(&values);
+        if !(margin >= 0.0) {
+            return false;
+        }
+        if margin > self.shortfall[k] * step.width {
+            let over = step.stretch_margin(model, m, &values);
+            if over >= 0.0 {
+                self.proved[k] = true;
+            } else {
+                self.shortfall[k] = (margin - over) / step.width;
+            }
+        }
+        true
+    }
+}
