@@ -146,7 +146,8 @@ impl FailFirst {
     /// [`FailFirst::is_consistent_point`] for the point of a bisection step along a segment (see
     /// [`crate::proof::segment`]): the configurations `memory` proved over an earlier stretch of
     /// the segment are not tested again, and those that pass may be proved for the steps to come.
-    /// Returns whether the step's point is certified consistent.
+    /// Returns whether the step's point is certified consistent. Every measurement box must be
+    /// bounded (the caller checks them once, not at every step).
     fn is_consistent_on_segment<M, const NX: usize, const NM: usize, const NR: usize>(
         &mut self,
         model: &M,
@@ -164,16 +165,14 @@ impl FailFirst {
             return false;
         }
         let xi = step.point.map(Interval::point);
-        if !bounded(&xi, measurements) {
-            return false;
-        }
+        let start = step.start.map(Interval::point);
         if self.order.len() != measurements.len() {
             *self = FailFirst::new(measurements.len());
         }
         let Some(pos) = self
             .order
             .iter()
-            .position(|&k| !memory.passes(model, step, &xi, k, &measurements[k]))
+            .position(|&k| !memory.passes(model, step, &xi, &start, k, &measurements[k]))
         else {
             return true;
         };
@@ -307,6 +306,9 @@ where
 {
     let mut order = FailFirst::new(measurements.len());
     let mut memory = SegmentMemory::new(measurements.len());
+    let measured = measurements
+        .iter()
+        .all(|m| m.iter().all(|v| v.is_bounded()));
     let mut points = Vec::new();
     for target in targets {
         let target: &[f64; NX] =
@@ -316,7 +318,7 @@ where
                 (witness[i] + t * (target[i] - witness[i])).clamp(outer[i].inf(), outer[i].sup())
             })
         };
-        let segment = Segment::new(witness, target, outer);
+        let segment = Segment::new(witness, target, outer).filter(|_| measured);
         let mut best = None;
         if order.is_consistent_point(model, target, measurements) {
             best = Some(*target);

@@ -93,16 +93,11 @@ impl<const NX: usize> Segment<NX> {
 
     /// The step of a bisection that tests `at(t)` with the bracket `[lo, hi]` around `t`.
     pub(crate) fn step(&self, lo: f64, t: f64, hi: f64) -> Step<NX> {
-        let bracket = Interval::new(lo, hi);
         Step {
             point: self.at(t),
-            stretch: core::array::from_fn(|j| {
-                let rho = self.stray[j];
-                Interval::point(self.start[j])
-                    + bracket * Interval::point(self.d[j])
-                    + Interval::new(-rho, rho)
-            }),
-            offset: bracket - Interval::point(t),
+            start: self.at(0.0),
+            near: self.stretch(lo, t, hi),
+            from_start: self.stretch(0.0, 0.0, hi),
             d: self.d,
             slack: core::array::from_fn(|j| {
                 let r = 2.0 * self.stray[j];
@@ -111,16 +106,41 @@ impl<const NX: usize> Segment<NX> {
             width: hi - lo,
         }
     }
+
+    /// The stretch of the parameters `[lo, hi]` seen from `at(t)`, `t` in `[lo, hi]`.
+    fn stretch(&self, lo: f64, t: f64, hi: f64) -> Stretch<NX> {
+        let bracket = Interval::new(lo, hi);
+        Stretch {
+            boxed: core::array::from_fn(|j| {
+                let rho = self.stray[j];
+                Interval::point(self.start[j])
+                    + bracket * Interval::point(self.d[j])
+                    + Interval::new(-rho, rho)
+            }),
+            offset: bracket - Interval::point(t),
+        }
+    }
 }
 
-/// One step of a bisection along a [`Segment`]: the point it tests and the stretch left to visit.
+/// The points `at(s)`, `s` in `S = [lo, hi]`, as seen from one of them, `at(t)`.
+struct Stretch<const NX: usize> {
+    /// A box holding every `at(s)`, `s` in `S`.
+    boxed: [Interval; NX],
+    /// `S - t`.
+    offset: Interval,
+}
+
+/// One step of a bisection along a [`Segment`]: the point it tests and the stretches left to
+/// visit, seen from that point and from the segment's start `at(0)`.
 pub(crate) struct Step<const NX: usize> {
     /// The point tested, `at(t)`.
     pub(crate) point: [f64; NX],
-    /// A box holding every `at(s)`, `s` in the bracket.
-    stretch: [Interval; NX],
-    /// `S - t`: the bracket's parameters less the tested one.
-    offset: Interval,
+    /// The segment's start, `at(0)`.
+    pub(crate) start: [f64; NX],
+    /// The bracket `[lo, hi]` seen from `at(t)`.
+    near: Stretch<NX>,
+    /// `[0, hi]` seen from `at(0)`.
+    from_start: Stretch<NX>,
     /// The segment's direction.
     d: [f64; NX],
     /// `[-2ρ_j, 2ρ_j]`: how far `at(s) - at(t)` can be from `(s - t) d`.
@@ -132,11 +152,13 @@ pub(crate) struct Step<const NX: usize> {
 impl<const NX: usize> Step<NX> {
     /// The margin `min(-sup f(·, M⁻), inf f(·, M⁺))` over the stretch by the mean value form of
     /// the module documentation (non-negative when the configuration is proved for every point
-    /// of the stretch), given the point test at `at(t)` against the measurement box `m`: its two
-    /// corners `M⁻, M⁺` and its enclosures `values` of `f(at(t), M⁻)` and `f(at(t), M⁺)`. One
-    /// enclosure of `∂f/∂x` over the stretch and the whole box `m` serves both corners.
-    fn stretch_margin<M, const NM: usize, const NR: usize>(
+    /// of the stretch), given the point test at the stretch's `at(t)` against the measurement box
+    /// `m`: its enclosures `values` of `f(at(t), M⁻)` and `f(at(t), M⁺)` at the corners `M⁻, M⁺`
+    /// it picked. One enclosure of `∂f/∂x` over the stretch and the whole box `m` serves both
+    /// corners.
+    fn margin<M, const NM: usize, const NR: usize>(
         &self,
+        stretch: &Stretch<NX>,
         model: &M,
         m: &[Interval; NM],
         values: &[Interval; 2],
@@ -144,27 +166,33 @@ impl<const NX: usize> Step<NX> {
     where
         M: VectorModel<NX, NM, NR>,
     {
-        let g = model.jacobians_x_interval(&self.stretch, m)[0];
+        let g = model.jacobians_x_interval(&stretch.boxed, m)[0];
         let (mut along, mut aside) = (Interval::ZERO, Interval::ZERO);
         for j in 0..NX {
             along += g[j] * Interval::point(self.d[j]);
             aside += g[j] * self.slack[j];
         }
-        let change = self.offset * along + aside;
-        (-(values[0] + change).sup()).min((values[1] + change).inf())
+        let change = stretch.offset * along + aside;
+        sign_test_margin(&[values[0] + change, values[1] + change])
     }
 }
 
-/// What the bisection of one [`Segment`] has learnt about each configuration (see the module
-/// documentation).
+/// What the bisections of the segments from one start have learnt about each configuration
+/// (see the module documentation).
 ///
-/// A stretch test costs two enclosures of `∂f/∂x`, and fails while the bracket is too long for
-/// a configuration that binds near the end; it is tried only when predicted to pass: the point
-/// margin larger than the shortfall per unit of bracket width that the configuration's last
-/// failed stretch test showed, times the width (the first is always tried). The prediction only
-/// saves time: a point is accepted only when each configuration passed its point test there or a
-/// stretch test over a box containing it.
+/// The first time a segment's bisection reaches a configuration, it is tested over the stretch
+/// `[0, hi]` seen from the segment's start, with the point test there (the same start for every
+/// segment of one search, so one point test per configuration and search). If that fails, the
+/// configuration is tested at each step's point, and, when predicted to pass, over the bracket
+/// seen from that point: the point margin larger than the shortfall per unit of bracket width
+/// that the configuration's last failed stretch test showed, times the width (the first is
+/// always tried). The predictions only save time: a point is accepted only when each
+/// configuration passed its point test there or a stretch test over a box containing it.
 pub(crate) struct SegmentMemory {
+    /// Per configuration: the point test at the segments' start (once computed).
+    start: Vec<Option<[Interval; 2]>>,
+    /// Per configuration: tested over a stretch from the start on this segment.
+    from_start: Vec<bool>,
     /// Per configuration: proved over a stretch that holds every point still to be tested.
     proved: Vec<bool>,
     /// Per configuration: at its last failed stretch test, the point margin less the stretch
@@ -173,30 +201,38 @@ pub(crate) struct SegmentMemory {
 }
 
 impl SegmentMemory {
-    /// Nothing learnt, for `p` configurations.
+    /// Nothing learnt, for `p` configurations and segments from one start.
     pub(crate) fn new(p: usize) -> Self {
         SegmentMemory {
+            start: vec![None; p],
+            from_start: vec![false; p],
             proved: vec![false; p],
             shortfall: vec![0.0; p],
         }
     }
 
-    /// Forgets everything (a new segment), for `p` configurations.
+    /// A new segment from the same start, for `p` configurations: forgets all but the point
+    /// tests at the start.
     pub(crate) fn reset(&mut self, p: usize) {
-        self.proved.clear();
-        self.proved.resize(p, false);
-        self.shortfall.clear();
-        self.shortfall.resize(p, 0.0);
+        if self.start.len() != p {
+            *self = SegmentMemory::new(p);
+            return;
+        }
+        self.from_start.fill(false);
+        self.proved.fill(false);
+        self.shortfall.fill(0.0);
     }
 
-    /// Whether configuration `k` (measurement box `m`, bounded) is proved at the step's point:
-    /// by an earlier stretch test, or by the point test (followed, when predicted to pass, by a
-    /// stretch test for the steps to come). One residual per configuration (`NR = 1`).
+    /// Whether configuration `k` (measurement box `m`, bounded) is proved at the step's point
+    /// (`point` as intervals): by an earlier stretch test, by a stretch test from the start, or
+    /// by the point test (followed, when predicted to pass, by a stretch test for the steps to
+    /// come). `start` is the segment's start `at(0)`. One residual per configuration (`NR = 1`).
     pub(crate) fn passes<M, const NX: usize, const NM: usize, const NR: usize>(
         &mut self,
         model: &M,
         step: &Step<NX>,
         point: &[Interval; NX],
+        start: &[Interval; NX],
         k: usize,
         m: &[Interval; NM],
     ) -> bool
@@ -206,13 +242,23 @@ impl SegmentMemory {
         if self.proved[k] {
             return true;
         }
+        if !self.from_start[k] {
+            self.from_start[k] = true;
+            let at_start = *self.start[k].get_or_insert_with(|| sign_test(model, start, m));
+            if sign_test_margin(&at_start) >= 0.0
+                && step.margin(&step.from_start, model, m, &at_start) >= 0.0
+            {
+                self.proved[k] = true;
+                return true;
+            }
+        }
         let values = sign_test(model, point, m);
         let margin = sign_test_margin(&values);
         if !(margin >= 0.0) {
             return false;
         }
         if margin > self.shortfall[k] * step.width {
-            let over = step.stretch_margin(model, m, &values);
+            let over = step.margin(&step.near, model, m, &values);
             if over >= 0.0 {
                 self.proved[k] = true;
             } else {
