@@ -151,7 +151,7 @@ impl FailFirst {
     fn is_consistent_on_segment<M, const NX: usize, const NM: usize, const NR: usize>(
         &mut self,
         model: &M,
-        step: &Step<NX>,
+        step: &Step<'_, NX>,
         memory: &mut SegmentMemory,
         measurements: &[[Interval; NM]],
     ) -> bool

@@ -92,18 +92,14 @@ impl<const NX: usize> Segment<NX> {
     }
 
     /// The step of a bisection that tests `at(t)` with the bracket `[lo, hi]` around `t`.
-    pub(crate) fn step(&self, lo: f64, t: f64, hi: f64) -> Step<NX> {
+    pub(crate) fn step(&self, lo: f64, t: f64, hi: f64) -> Step<'_, NX> {
         Step {
+            segment: self,
             point: self.at(t),
             start: self.at(0.0),
-            near: self.stretch(lo, t, hi),
-            from_start: self.stretch(0.0, 0.0, hi),
-            d: self.d,
-            slack: core::array::from_fn(|j| {
-                let r = 2.0 * self.stray[j];
-                Interval::new(-r, r)
-            }),
-            width: hi - lo,
+            lo,
+            t,
+            hi,
         }
     }
 
@@ -120,36 +116,7 @@ impl<const NX: usize> Segment<NX> {
             offset: bracket - Interval::point(t),
         }
     }
-}
 
-/// The points `at(s)`, `s` in `S = [lo, hi]`, as seen from one of them, `at(t)`.
-struct Stretch<const NX: usize> {
-    /// A box holding every `at(s)`, `s` in `S`.
-    boxed: [Interval; NX],
-    /// `S - t`.
-    offset: Interval,
-}
-
-/// One step of a bisection along a [`Segment`]: the point it tests and the stretches left to
-/// visit, seen from that point and from the segment's start `at(0)`.
-pub(crate) struct Step<const NX: usize> {
-    /// The point tested, `at(t)`.
-    pub(crate) point: [f64; NX],
-    /// The segment's start, `at(0)`.
-    pub(crate) start: [f64; NX],
-    /// The bracket `[lo, hi]` seen from `at(t)`.
-    near: Stretch<NX>,
-    /// `[0, hi]` seen from `at(0)`.
-    from_start: Stretch<NX>,
-    /// The segment's direction.
-    d: [f64; NX],
-    /// `[-2ρ_j, 2ρ_j]`: how far `at(s) - at(t)` can be from `(s - t) d`.
-    slack: [Interval; NX],
-    /// The bracket's width.
-    width: f64,
-}
-
-impl<const NX: usize> Step<NX> {
     /// The margin `min(-sup f(·, M⁻), inf f(·, M⁺))` over the stretch by the mean value form of
     /// the module documentation (non-negative when the configuration is proved for every point
     /// of the stretch), given the point test at the stretch's `at(t)` against the measurement box
@@ -169,35 +136,77 @@ impl<const NX: usize> Step<NX> {
         let g = model.jacobians_x_interval(&stretch.boxed, m)[0];
         let (mut along, mut aside) = (Interval::ZERO, Interval::ZERO);
         for j in 0..NX {
+            let r = 2.0 * self.stray[j];
             along += g[j] * Interval::point(self.d[j]);
-            aside += g[j] * self.slack[j];
+            aside += g[j] * Interval::new(-r, r);
         }
         let change = stretch.offset * along + aside;
         sign_test_margin(&[values[0] + change, values[1] + change])
     }
 }
 
+/// The points `at(s)`, `s` in `S = [lo, hi]`, as seen from one of them, `at(t)`.
+struct Stretch<const NX: usize> {
+    /// A box holding every `at(s)`, `s` in `S`.
+    boxed: [Interval; NX],
+    /// `S - t`.
+    offset: Interval,
+}
+
+/// One step of a bisection along a [`Segment`]: the point it tests, `at(t)`, and the bracket
+/// `[lo, hi]` around `t` that holds every point still to be tested.
+pub(crate) struct Step<'a, const NX: usize> {
+    /// The segment.
+    segment: &'a Segment<NX>,
+    /// The point tested, `at(t)`.
+    pub(crate) point: [f64; NX],
+    /// The segment's start, `at(0)`.
+    pub(crate) start: [f64; NX],
+    /// The bracket's lower end.
+    lo: f64,
+    /// The parameter tested.
+    t: f64,
+    /// The bracket's upper end.
+    hi: f64,
+}
+
 /// What the bisections of the segments from one start have learnt about each configuration
 /// (see the module documentation).
 ///
-/// The first time a segment's bisection reaches a configuration, it is tested over the stretch
-/// `[0, hi]` seen from the segment's start, with the point test there (the same start for every
-/// segment of one search, so one point test per configuration and search). If that fails, the
-/// configuration is tested at each step's point, and, when predicted to pass, over the bracket
-/// seen from that point: the point margin larger than the shortfall per unit of bracket width
-/// that the configuration's last failed stretch test showed, times the width (the first is
-/// always tried). The predictions only save time: a point is accepted only when each
-/// configuration passed its point test there or a stretch test over a box containing it.
+/// A configuration is tested over the stretch `[0, hi]` seen from the segment's start, with the
+/// point test there (the same start for every segment of one search, so one point test per
+/// configuration and search), the first time a segment's bisection reaches it and then whenever
+/// predicted to pass: the margin at the start larger than the shortfall per unit of `hi` that
+/// its last failed test from the start showed, times `hi`. Until one passes, the configuration is
+/// tested at each step's point, and, when predicted to pass (the same way, per unit of bracket
+/// width), over the bracket seen from that point.
+///
+/// A configuration that binds near the segment's end, or near its upper end `hi`, fails that test
+/// (its margin is near zero at the stretch's end). Its point tests on the accepted side of the
+/// bisection are what is left; they are replaced by one proof of the stretch `[lo, g]`, seen from
+/// `at(g)`, where `g` is just short of `hi` or of where the secant through its margins at the
+/// step's point and at its last tested point crosses zero, whichever comes first: along a segment
+/// the residual is smooth and nearly linear, so `g` soon lies within the bisection's last steps of
+/// the boundary, and the points below `g` need no test of this configuration. A guess beyond the
+/// boundary fails its point test and anchors the next secant.
+///
+/// The predictions only save time: a point is accepted only when each configuration passed its
+/// point test there or a stretch test over a box containing it.
 pub(crate) struct SegmentMemory {
     /// Per configuration: the point test at the segments' start (once computed).
     start: Vec<Option<[Interval; 2]>>,
-    /// Per configuration: tested over a stretch from the start on this segment.
-    from_start: Vec<bool>,
-    /// Per configuration: proved over a stretch that holds every point still to be tested.
-    proved: Vec<bool>,
-    /// Per configuration: at its last failed stretch test, the point margin less the stretch
-    /// margin, over the bracket width (0 before the first).
+    /// Per configuration: at its last failed test over a stretch `[0, hi]` from the start on this
+    /// segment, the margin at the start less the stretch margin, over `hi` (0 before the first).
+    from_start: Vec<f64>,
+    /// Per configuration: proved at every point still to be tested whose parameter is at most
+    /// this (`-∞`: none).
+    proved_to: Vec<f64>,
+    /// Per configuration: at its last failed stretch test over a bracket, the point margin less
+    /// the stretch margin, over the bracket width (0 before the first).
     shortfall: Vec<f64>,
+    /// Per configuration: the parameter and the point test's enclosures where it was last tested
+    /// on this segment.
+    last: Vec<Option<(f64, [Interval; 2])>>,
 }
 
 impl SegmentMemory {
@@ -205,9 +214,10 @@ impl SegmentMemory {
     pub(crate) fn new(p: usize) -> Self {
         SegmentMemory {
             start: vec![None; p],
-            from_start: vec![false; p],
-            proved: vec![false; p],
+            from_start: vec![0.0; p],
+            proved_to: vec![f64::NEG_INFINITY; p],
             shortfall: vec![0.0; p],
+            last: vec![None; p],
         }
     }
 
@@ -218,19 +228,21 @@ impl SegmentMemory {
             *self = SegmentMemory::new(p);
             return;
         }
-        self.from_start.fill(false);
-        self.proved.fill(false);
+        self.from_start.fill(0.0);
+        self.proved_to.fill(f64::NEG_INFINITY);
         self.shortfall.fill(0.0);
+        self.last.fill(None);
     }
 
     /// Whether configuration `k` (measurement box `m`, bounded) is proved at the step's point
-    /// (`point` as intervals): by an earlier stretch test, by a stretch test from the start, or
-    /// by the point test (followed, when predicted to pass, by a stretch test for the steps to
-    /// come). `start` is the segment's start `at(0)`. One residual per configuration (`NR = 1`).
+    /// (`point` as intervals): by an earlier stretch test, by a stretch test from the start
+    /// (`start`: the segment's start `at(0)` as intervals), or by the point test (followed, when
+    /// predicted to pass, by a stretch test for the steps to come). One residual per
+    /// configuration (`NR = 1`).
     pub(crate) fn passes<M, const NX: usize, const NM: usize, const NR: usize>(
         &mut self,
         model: &M,
-        step: &Step<NX>,
+        step: &Step<'_, NX>,
         point: &[Interval; NX],
         start: &[Interval; NX],
         k: usize,
@@ -239,32 +251,81 @@ impl SegmentMemory {
     where
         M: VectorModel<NX, NM, NR>,
     {
-        if self.proved[k] {
+        let segment = step.segment;
+        if step.t <= self.proved_to[k] {
             return true;
         }
-        if !self.from_start[k] {
-            self.from_start[k] = true;
-            let at_start = *self.start[k].get_or_insert_with(|| sign_test(model, start, m));
-            if sign_test_margin(&at_start) >= 0.0
-                && step.margin(&step.from_start, model, m, &at_start) >= 0.0
-            {
-                self.proved[k] = true;
+        let at_start = *self.start[k].get_or_insert_with(|| sign_test(model, start, m));
+        let margin_start = sign_test_margin(&at_start);
+        if margin_start > self.from_start[k] * step.hi {
+            let from_start = segment.stretch(0.0, 0.0, step.hi);
+            let over = segment.margin(&from_start, model, m, &at_start);
+            if over >= 0.0 {
+                self.proved_to[k] = step.hi;
                 return true;
             }
+            self.from_start[k] = (margin_start - over) / step.hi;
         }
         let values = sign_test(model, point, m);
         let margin = sign_test_margin(&values);
+        let previous = self.last[k].replace((step.t, values));
         if !(margin >= 0.0) {
             return false;
         }
-        if margin > self.shortfall[k] * step.width {
-            let over = step.margin(&step.near, model, m, &values);
+        let width = step.hi - step.lo;
+        if margin > self.shortfall[k] * width {
+            let near = segment.stretch(step.lo, step.t, step.hi);
+            let over = segment.margin(&near, model, m, &values);
             if over >= 0.0 {
-                self.proved[k] = true;
-            } else {
-                self.shortfall[k] = (margin - over) / step.width;
+                self.proved_to[k] = step.hi;
+                return true;
             }
+            self.shortfall[k] = (margin - over) / width;
+        }
+        if let Some(g) = previous.and_then(|p| guess(p, (step.t, &values), step.hi)) {
+            let values_g = sign_test(model, &segment.at(g).map(Interval::point), m);
+            if sign_test_margin(&values_g) >= 0.0 {
+                let below = segment.stretch(step.lo, g, g);
+                if segment.margin(&below, model, m, &values_g) >= 0.0 {
+                    self.proved_to[k] = g;
+                }
+            }
+            self.last[k] = Some((g, values_g));
         }
         true
     }
+}
+
+/// Where a configuration's next proof should end (see [`SegmentMemory`]): just short of `hi` or
+/// of the zero of the secant through its margins at its last tested point `previous` and at `t`
+/// (the point test's enclosures there, passed), whichever comes first. The secant follows the
+/// side that failed at `previous`, else the side with less room at `t`. `None` when the secant
+/// does not fall towards zero beyond `t`.
+fn guess(previous: (f64, [Interval; 2]), now: (f64, &[Interval; 2]), hi: f64) -> Option<f64> {
+    let ((tp, before), (t, values)) = (previous, now);
+    // The margin of a side: `f(·, M⁻) <= 0` (`-sup`) or `f(·, M⁺) >= 0` (`inf`).
+    let side = |v: &[Interval; 2], below: bool| {
+        if below {
+            -v[0].sup()
+        } else {
+            v[1].inf()
+        }
+    };
+    let below = if side(&before, true) < 0.0 {
+        true
+    } else if side(&before, false) < 0.0 {
+        false
+    } else {
+        side(values, true) <= side(values, false)
+    };
+    let (a, b) = (side(values, below), side(&before, below));
+    let slope = (a - b) / (t - tp);
+    if !(slope < 0.0 && a >= 0.0) {
+        return None;
+    }
+    let r = (t - a / slope).min(hi);
+    // A little short: the secant of a smooth margin errs by a small share of the bracket, and a
+    // guess beyond the boundary costs a test for a better secant.
+    let g = t + (r - t) * (1.0 - 1.0 / 1024.0);
+    (g > t && g < hi && g.is_finite()).then_some(g)
 }
