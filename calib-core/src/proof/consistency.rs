@@ -152,7 +152,7 @@ impl FailFirst {
         &mut self,
         model: &M,
         step: &Step<'_, NX>,
-        memory: &mut SegmentMemory,
+        memory: &mut SegmentMemory<NX>,
         measurements: &[[Interval; NM]],
     ) -> bool
     where

@@ -9,24 +9,28 @@
 //! passes there it is not tested again on this segment.
 //!
 //! **The stretch test.** The bisection's points are computed as
-//! `at(s) = clamp(w + s·d)` in floating point, `d = target - w` rounded, `s` in `[0, 1]`. Each lies
-//! within `ρ_j` of the line `ℓ(s) = w + s d` in coordinate `j` ([`Segment::new`] bounds `ρ`), so
-//! for every `s` in the bracket `S = [lo, hi]` the point `at(s)` lies in the box
-//! `X = w + S d + [-ρ, ρ]`. With `x̂ = at(t)` the point just tested and a measurement vector `M`,
-//! the mean value theorem gives, for every such `s`,
+//! `at(s) = clamp(w + s·d)` in floating point, `d = target - w` rounded, `s` in `[0, 1]`, clamped
+//! into the box `X` (the outer box) that holds the segment. Each lies within `ρ_j` of the line
+//! `ℓ(s) = w + s d` in coordinate `j` ([`Segment::new`] bounds `ρ`). With `x̂ = at(t)` a tested
+//! point, `S = [lo, hi]` a stretch of parameters holding `t` and a measurement vector `M`, the mean
+//! value theorem (on the segment from `x̂` to `at(s)`, inside the convex `X`) gives, for every `s`
+//! in `S`,
 //!
 //! `f(at(s), M) ∈ F(x̂, M) + (S - t) Σ_j G_j d_j + Σ_j G_j [-2ρ_j, 2ρ_j]`
 //!
 //! where `F(x̂, M)` is the point test's enclosure and `G` encloses `∂f/∂x` over `X` and the
-//! measurement box (`at(s) - x̂ = (s - t) d + e(s) - e(t)` with `|e_j| <= ρ_j`). Evaluated in outward-rounded
-//! interval arithmetic at the point test's two corners `M⁻, M⁺`, a right-hand side `<= 0` at `M⁻`
-//! and `>= 0` at `M⁺` proves the configuration for every point the bisection can still test (its
-//! brackets nest inside `S`): the same claim as the point test's, with the same corners.
+//! measurement box (`at(s) - x̂ = (s - t) d + e(s) - e(t)` with `|e_j| <= ρ_j`). Evaluated in
+//! outward-rounded interval arithmetic at the point test's two corners `M⁻, M⁺`, a right-hand side
+//! `<= 0` at `M⁻` and `>= 0` at `M⁺` proves the configuration for every point of the stretch, so
+//! for every point the bisection can still test when `S` holds its bracket (the brackets nest): the
+//! same claim as the point test's, with the same corners. `G` depends only on the configuration
+//! and `X`, so it is enclosed once per configuration and search; a stretch test then costs a few
+//! interval products.
 //!
 //! The directional term `(S - t) Σ G_j d_j` is what makes this pass early: along the segment the
 //! residual of a configuration that does not bind changes by about its own error band, while a
-//! natural interval evaluation over the box `X` adds up the large and opposite terms of the
-//! residual (`|e|² - (L + l)²` for a Gough leg) coordinate by coordinate and fails until the
+//! natural interval evaluation over a box around the stretch adds up the large and opposite terms
+//! of the residual (`|e|² - (L + l)²` for a Gough leg) coordinate by coordinate and fails until the
 //! bracket is tiny.
 
 use crate::num::interval::round::{add_up, mul_up};
@@ -103,54 +107,22 @@ impl<const NX: usize> Segment<NX> {
         }
     }
 
-    /// The stretch of the parameters `[lo, hi]` seen from `at(t)`, `t` in `[lo, hi]`.
-    fn stretch(&self, lo: f64, t: f64, hi: f64) -> Stretch<NX> {
-        let bracket = Interval::new(lo, hi);
-        Stretch {
-            boxed: core::array::from_fn(|j| {
-                let rho = self.stray[j];
-                Interval::point(self.start[j])
-                    + bracket * Interval::point(self.d[j])
-                    + Interval::new(-rho, rho)
-            }),
-            offset: bracket - Interval::point(t),
-        }
-    }
-
-    /// The margin `min(-sup f(·, M⁻), inf f(·, M⁺))` over the stretch by the mean value form of
-    /// the module documentation (non-negative when the configuration is proved for every point
-    /// of the stretch), given the point test at the stretch's `at(t)` against the measurement box
-    /// `m`: its enclosures `values` of `f(at(t), M⁻)` and `f(at(t), M⁺)` at the corners `M⁻, M⁺`
-    /// it picked. One enclosure of `∂f/∂x` over the stretch and the whole box `m` serves both
-    /// corners.
-    fn margin<M, const NM: usize, const NR: usize>(
-        &self,
-        stretch: &Stretch<NX>,
-        model: &M,
-        m: &[Interval; NM],
-        values: &[Interval; 2],
-    ) -> f64
-    where
-        M: VectorModel<NX, NM, NR>,
-    {
-        let g = model.jacobians_x_interval(&stretch.boxed, m)[0];
+    /// The margin `min(-sup f(·, M⁻), inf f(·, M⁺))` over the stretch `S` by the mean value form
+    /// of the module documentation (non-negative when the configuration is proved for every
+    /// point of the stretch), given `offset = S - t`, the point test at `at(t)` (its enclosures
+    /// `values` of `f(at(t), M⁻)` and `f(at(t), M⁺)` at the corners `M⁻, M⁺` it picked), and `g`,
+    /// an enclosure of `∂f/∂x` over the outer box and the whole measurement box (so for both
+    /// corners).
+    fn margin(&self, offset: Interval, g: &[Interval; NX], values: &[Interval; 2]) -> f64 {
         let (mut along, mut aside) = (Interval::ZERO, Interval::ZERO);
         for j in 0..NX {
             let r = 2.0 * self.stray[j];
             along += g[j] * Interval::point(self.d[j]);
             aside += g[j] * Interval::new(-r, r);
         }
-        let change = stretch.offset * along + aside;
+        let change = offset * along + aside;
         sign_test_margin(&[values[0] + change, values[1] + change])
     }
-}
-
-/// The points `at(s)`, `s` in `S = [lo, hi]`, as seen from one of them, `at(t)`.
-struct Stretch<const NX: usize> {
-    /// A box holding every `at(s)`, `s` in `S`.
-    boxed: [Interval; NX],
-    /// `S - t`.
-    offset: Interval,
 }
 
 /// One step of a bisection along a [`Segment`]: the point it tests, `at(t)`, and the bracket
@@ -192,7 +164,10 @@ pub(crate) struct Step<'a, const NX: usize> {
 ///
 /// The predictions only save time: a point is accepted only when each configuration passed its
 /// point test there or a stretch test over a box containing it.
-pub(crate) struct SegmentMemory {
+pub(crate) struct SegmentMemory<const NX: usize> {
+    /// Per configuration: `∂f/∂x` enclosed over the outer box and its measurement box (once
+    /// computed).
+    slopes: Vec<Option<[Interval; NX]>>,
     /// Per configuration: the point test at the segments' start (once computed).
     start: Vec<Option<[Interval; 2]>>,
     /// Per configuration: at its last failed test over a stretch `[0, hi]` from the start on this
@@ -209,10 +184,11 @@ pub(crate) struct SegmentMemory {
     last: Vec<Option<(f64, [Interval; 2])>>,
 }
 
-impl SegmentMemory {
+impl<const NX: usize> SegmentMemory<NX> {
     /// Nothing learnt, for `p` configurations and segments from one start.
     pub(crate) fn new(p: usize) -> Self {
         SegmentMemory {
+            slopes: vec![None; p],
             start: vec![None; p],
             from_start: vec![0.0; p],
             proved_to: vec![f64::NEG_INFINITY; p],
@@ -221,8 +197,8 @@ impl SegmentMemory {
         }
     }
 
-    /// A new segment from the same start, for `p` configurations: forgets all but the point
-    /// tests at the start.
+    /// A new segment from the same start in the same outer box, for `p` configurations: forgets
+    /// all but the slopes and the point tests at the start.
     pub(crate) fn reset(&mut self, p: usize) {
         if self.start.len() != p {
             *self = SegmentMemory::new(p);
@@ -239,7 +215,7 @@ impl SegmentMemory {
     /// (`start`: the segment's start `at(0)` as intervals), or by the point test (followed, when
     /// predicted to pass, by a stretch test for the steps to come). One residual per
     /// configuration (`NR = 1`).
-    pub(crate) fn passes<M, const NX: usize, const NM: usize, const NR: usize>(
+    pub(crate) fn passes<M, const NM: usize, const NR: usize>(
         &mut self,
         model: &M,
         step: &Step<'_, NX>,
@@ -255,11 +231,12 @@ impl SegmentMemory {
         if step.t <= self.proved_to[k] {
             return true;
         }
+        let g =
+            *self.slopes[k].get_or_insert_with(|| model.jacobians_x_interval(&segment.outer, m)[0]);
         let at_start = *self.start[k].get_or_insert_with(|| sign_test(model, start, m));
         let margin_start = sign_test_margin(&at_start);
         if margin_start > self.from_start[k] * step.hi {
-            let from_start = segment.stretch(0.0, 0.0, step.hi);
-            let over = segment.margin(&from_start, model, m, &at_start);
+            let over = segment.margin(Interval::new(0.0, step.hi), &g, &at_start);
             if over >= 0.0 {
                 self.proved_to[k] = step.hi;
                 return true;
@@ -274,23 +251,23 @@ impl SegmentMemory {
         }
         let width = step.hi - step.lo;
         if margin > self.shortfall[k] * width {
-            let near = segment.stretch(step.lo, step.t, step.hi);
-            let over = segment.margin(&near, model, m, &values);
+            let near = Interval::new(step.lo, step.hi) - Interval::point(step.t);
+            let over = segment.margin(near, &g, &values);
             if over >= 0.0 {
                 self.proved_to[k] = step.hi;
                 return true;
             }
             self.shortfall[k] = (margin - over) / width;
         }
-        if let Some(g) = previous.and_then(|p| guess(p, (step.t, &values), step.hi)) {
-            let values_g = sign_test(model, &segment.at(g).map(Interval::point), m);
-            if sign_test_margin(&values_g) >= 0.0 {
-                let below = segment.stretch(step.lo, g, g);
-                if segment.margin(&below, model, m, &values_g) >= 0.0 {
-                    self.proved_to[k] = g;
+        if let Some(end) = previous.and_then(|p| guess(p, (step.t, &values), step.hi)) {
+            let values_end = sign_test(model, &segment.at(end).map(Interval::point), m);
+            if sign_test_margin(&values_end) >= 0.0 {
+                let below = Interval::new(step.lo, end) - Interval::point(end);
+                if segment.margin(below, &g, &values_end) >= 0.0 {
+                    self.proved_to[k] = end;
                 }
             }
-            self.last[k] = Some((g, values_g));
+            self.last[k] = Some((end, values_end));
         }
         true
     }
