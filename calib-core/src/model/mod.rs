@@ -143,8 +143,8 @@ pub trait VectorModel<const NX: usize, const NM: usize, const NR: usize> {
         (e.map(|r| r.value), e.map(|r| r.dm))
     }
 
-    /// Row by row, an enclosure of `∂f_r/∂x` over the boxes (what the inner bounds' stretch
-    /// tests need, [`crate::is_consistent_point`]; `#[interval_model]` skips the measurement
+    /// Row by row, an enclosure of `∂f_r/∂x` over the boxes (what the inner bounds' search needs
+    /// to prove stretches of a segment at once; `#[interval_model]` skips the measurement
     /// derivatives).
     fn jacobians_x_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [[Interval; NX]; NR] {
         self.evaluate_rows_interval(x, m).map(|e| e.dx)

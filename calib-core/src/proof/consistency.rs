@@ -292,7 +292,9 @@ pub(crate) fn point_hull<'a, const NX: usize>(
 /// (the LP extreme points, clamped into `outer`) by bisection on the segment and returns, per
 /// target, the farthest certified point found. Every point tried lies in `outer` (a convex box
 /// containing the witness), so the hull of the witness and these points (the inner box) lies in
-/// the outer one.
+/// the outer one. A point is accepted when every configuration passed the sign test there or
+/// over a stretch of the segment holding it ([`crate::proof::segment`]: the bisection's answer,
+/// with most configurations proved once per segment instead of at every step).
 pub(crate) fn inner_points<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     witness: &[f64; NX],

@@ -5,8 +5,9 @@
 //! Near the segment's end one or a few configurations bind; the others pass every test with
 //! room to spare, and testing them again at each of the 24 steps was most of `gough certify
 //! --fast` (`benches/README.md`, issue 52). Here a configuration that passes at a point is also
-//! tested, once, over the whole stretch of the segment that the bisection has left to visit; if it
-//! passes there it is not tested again on this segment.
+//! tested over a stretch of the segment holding every point the bisection has left to visit (or
+//! those up to a guess of where it stops passing, [`SegmentMemory`]); if it passes there it is not
+//! tested again at those points.
 //!
 //! **The stretch test.** The bisection's points are computed as
 //! `at(s) = clamp(w + s·d)` in floating point, `d = target - w` rounded, `s` in `[0, 1]`, clamped
@@ -37,7 +38,8 @@ use crate::num::interval::round::{add_up, mul_up};
 use crate::proof::consistency::{sign_test, sign_test_margin};
 use crate::{Interval, VectorModel};
 
-/// A segment `ℓ(s) = w + s d` of the inner bounds' search, with the box of points still to test.
+/// A segment `ℓ(s) = w + s d` of the inner bounds' search and how far its computed points stray
+/// from it.
 pub(crate) struct Segment<const NX: usize> {
     /// The certified start `w`.
     start: [f64; NX],
