@@ -248,7 +248,7 @@ impl<const NX: usize> SegmentMemory<NX> {
         let values = sign_test(model, point, m);
         let margin = sign_test_margin(&values);
         let previous = self.last[k].replace((step.t, values));
-        if !(margin >= 0.0) {
+        if margin < 0.0 {
             return false;
         }
         let width = step.hi - step.lo;
