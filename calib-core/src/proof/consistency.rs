@@ -76,6 +76,21 @@ pub(crate) fn sign_test<M, const NX: usize, const NM: usize, const NR: usize>(
 where
     M: VectorModel<NX, NM, NR>,
 {
+    sign_test_from(model, x, m, None)
+}
+
+/// [`sign_test`], with `first = Some(side)` evaluating that side first (`0`: `M⁻`, `1`: `M⁺`) and,
+/// when it fails, not the other: its enclosure is then returned as `[0, 0]`, which fails neither
+/// side, so [`sign_test_margin`] still says the test failed.
+pub(crate) fn sign_test_from<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    m: &[Interval; NM],
+    first: Option<usize>,
+) -> [Interval; 2]
+where
+    M: VectorModel<NX, NM, NR>,
+{
     // The linearisation in M at the centre picks the corners most likely to change the sign.
     let xm = x.map(|v| v.mid());
     let mm = m.map(|v| v.mid());
@@ -86,10 +101,18 @@ where
             Interval::point(if (g[i] > 0.0) == up { hi } else { lo })
         })
     };
-    [
-        model.residuals_interval(x, &corner(false))[0],
-        model.residuals_interval(x, &corner(true))[0],
-    ]
+    let value = |side: usize| model.residuals_interval(x, &corner(side == 1))[0];
+    match first {
+        None => [value(0), value(1)],
+        Some(side) => {
+            let mut values = [Interval::ZERO; 2];
+            values[side] = value(side);
+            if sign_test_margin(&values) >= 0.0 {
+                values[1 - side] = value(1 - side);
+            }
+            values
+        }
+    }
 }
 
 /// `min(-sup f(x, M⁻), inf f(x, M⁺))` from the enclosures of [`sign_test`]: non-negative exactly

@@ -35,7 +35,7 @@
 //! bracket is tiny.
 
 use crate::num::interval::round::{add_up, mul_up};
-use crate::proof::consistency::{sign_test, sign_test_margin};
+use crate::proof::consistency::{sign_test, sign_test_from, sign_test_margin};
 use crate::{Interval, VectorModel};
 
 /// A segment `ℓ(s) = w + s d` of the inner bounds' search and how far its computed points stray
@@ -245,7 +245,9 @@ impl<const NX: usize> SegmentMemory<NX> {
             }
             self.from_start[k] = (margin_start - over) / step.hi;
         }
-        let values = sign_test(model, point, m);
+        // The side that failed last first: a refuted point then costs one evaluation.
+        let first = Some(self.last[k].map_or(0, |(_, v)| usize::from(v[1].inf() < 0.0)));
+        let values = sign_test_from(model, point, m, first);
         let margin = sign_test_margin(&values);
         let previous = self.last[k].replace((step.t, values));
         if margin < 0.0 {
@@ -262,7 +264,7 @@ impl<const NX: usize> SegmentMemory<NX> {
             self.shortfall[k] = (margin - over) / width;
         }
         if let Some(end) = previous.and_then(|p| guess(p, (step.t, &values), step.hi)) {
-            let values_end = sign_test(model, &segment.at(end).map(Interval::point), m);
+            let values_end = sign_test_from(model, &segment.at(end).map(Interval::point), m, first);
             if sign_test_margin(&values_end) >= 0.0 {
                 let below = Interval::new(step.lo, end) - Interval::point(end);
                 if segment.margin(below, &g, &values_end) >= 0.0 {
