@@ -143,6 +143,13 @@ pub trait VectorModel<const NX: usize, const NM: usize, const NR: usize> {
         (e.map(|r| r.value), e.map(|r| r.dm))
     }
 
+    /// Row by row, an enclosure of `∂f_r/∂x` over the boxes (what the inner bounds' search needs
+    /// to prove stretches of a segment at once; `#[interval_model]` skips the measurement
+    /// derivatives).
+    fn jacobians_x_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [[Interval; NX]; NR] {
+        self.evaluate_rows_interval(x, m).map(|e| e.dx)
+    }
+
     /// Row by row, an enclosure of `∂f_r/∂M` over the boxes (what the existence test of
     /// [`crate::is_certified_consistent`] needs; `#[interval_model]` skips the parameter
     /// derivatives).
@@ -228,6 +235,10 @@ impl<T: Model<NX, NM> + ?Sized, const NX: usize, const NM: usize> VectorModel<NX
     #[inline]
     fn jacobians_m_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [[Interval; NM]; 1] {
         [self.jacobian_m_interval(x, m)]
+    }
+    #[inline]
+    fn jacobians_x_interval(&self, x: &[Interval; NX], m: &[Interval; NM]) -> [[Interval; NX]; 1] {
+        [self.jacobian_x_interval(x, m)]
     }
 }
 

@@ -19,6 +19,7 @@
 
 use crate::num::linalg::gauss_jordan_inverse;
 use crate::proof::existence::configuration_fits;
+use crate::proof::segment::{Segment, SegmentMemory, Step};
 use crate::{Interval, Model, VectorModel};
 
 /// Whether every `x` in the box `x` (a point when the box is degenerate) is consistent with every
@@ -61,6 +62,35 @@ where
     if NR != 1 {
         return configuration_fits(model, x, m);
     }
+    sign_test_margin(&sign_test(model, x, m)) >= 0.0
+}
+
+/// The sign test of [`configuration_consistent`] for one residual per configuration (`NR = 1`)
+/// over the box `x`: enclosures of `f(x, M⁻)` and `f(x, M⁺)` at the two corners `M⁻`, `M⁺` of `m`
+/// that the linearisation in `M` at the centre picks (see [`sign_test_margin`]).
+pub(crate) fn sign_test<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    m: &[Interval; NM],
+) -> [Interval; 2]
+where
+    M: VectorModel<NX, NM, NR>,
+{
+    sign_test_from(model, x, m, None)
+}
+
+/// [`sign_test`], with `first = Some(side)` evaluating that side first (`0`: `M⁻`, `1`: `M⁺`) and,
+/// when it fails, not the other: its enclosure is then returned as `[0, 0]`, which fails neither
+/// side, so [`sign_test_margin`] still says the test failed.
+pub(crate) fn sign_test_from<M, const NX: usize, const NM: usize, const NR: usize>(
+    model: &M,
+    x: &[Interval; NX],
+    m: &[Interval; NM],
+    first: Option<usize>,
+) -> [Interval; 2]
+where
+    M: VectorModel<NX, NM, NR>,
+{
     // The linearisation in M at the centre picks the corners most likely to change the sign.
     let xm = x.map(|v| v.mid());
     let mm = m.map(|v| v.mid());
@@ -71,9 +101,24 @@ where
             Interval::point(if (g[i] > 0.0) == up { hi } else { lo })
         })
     };
-    let below = model.residuals_interval(x, &corner(false))[0];
-    let above = model.residuals_interval(x, &corner(true))[0];
-    below.sup() <= 0.0 && above.inf() >= 0.0
+    let value = |side: usize| model.residuals_interval(x, &corner(side == 1))[0];
+    match first {
+        None => [value(0), value(1)],
+        Some(side) => {
+            let mut values = [Interval::ZERO; 2];
+            values[side] = value(side);
+            if sign_test_margin(&values) >= 0.0 {
+                values[1 - side] = value(1 - side);
+            }
+            values
+        }
+    }
+}
+
+/// `min(-sup f(x, M⁻), inf f(x, M⁺))` from the enclosures of [`sign_test`]: non-negative exactly
+/// when the test passes (`f(x, M⁻) <= 0 <= f(x, M⁺)` over the box), and how much room is left.
+pub(crate) fn sign_test_margin(values: &[Interval; 2]) -> f64 {
+    (-values[0].sup()).min(values[1].inf())
 }
 
 /// [`is_consistent_point`] for a sequence of nearby points (a bisection, a walk towards a face):
@@ -114,6 +159,43 @@ impl FailFirst {
             .order
             .iter()
             .position(|&k| !configuration_consistent(model, &xi, &measurements[k]))
+        else {
+            return true;
+        };
+        self.order[..=pos].rotate_right(1);
+        false
+    }
+
+    /// [`FailFirst::is_consistent_point`] for the point of a bisection step along a segment (see
+    /// [`crate::proof::segment`]): the configurations `memory` proved over an earlier stretch of
+    /// the segment are not tested again, and those that pass may be proved for the steps to come.
+    /// Returns whether the step's point is certified consistent. Every measurement box must be
+    /// bounded (the caller checks them once, not at every step).
+    fn is_consistent_on_segment<M, const NX: usize, const NM: usize, const NR: usize>(
+        &mut self,
+        model: &M,
+        step: &Step<'_, NX>,
+        memory: &mut SegmentMemory<NX>,
+        measurements: &[[Interval; NM]],
+    ) -> bool
+    where
+        M: VectorModel<NX, NM, NR>,
+    {
+        if NR != 1 {
+            return self.is_consistent_point(model, &step.point, measurements);
+        }
+        if !step.point.iter().all(|v| v.is_finite()) {
+            return false;
+        }
+        let xi = step.point.map(Interval::point);
+        let start = step.start.map(Interval::point);
+        if self.order.len() != measurements.len() {
+            *self = FailFirst::new(measurements.len());
+        }
+        let Some(pos) = self
+            .order
+            .iter()
+            .position(|&k| !memory.passes(model, step, &xi, &start, k, &measurements[k]))
         else {
             return true;
         };
@@ -233,7 +315,9 @@ pub(crate) fn point_hull<'a, const NX: usize>(
 /// (the LP extreme points, clamped into `outer`) by bisection on the segment and returns, per
 /// target, the farthest certified point found. Every point tried lies in `outer` (a convex box
 /// containing the witness), so the hull of the witness and these points (the inner box) lies in
-/// the outer one.
+/// the outer one. A point is accepted when every configuration passed the sign test there or
+/// over a stretch of the segment holding it ([`crate::proof::segment`]: the bisection's answer,
+/// with most configurations proved once per segment instead of at every step).
 pub(crate) fn inner_points<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
     witness: &[f64; NX],
@@ -246,6 +330,10 @@ where
     M: VectorModel<NX, NM, NR>,
 {
     let mut order = FailFirst::new(measurements.len());
+    let mut memory = SegmentMemory::new(measurements.len());
+    let measured = measurements
+        .iter()
+        .all(|m| m.iter().all(|v| v.is_bounded()));
     let mut points = Vec::new();
     for target in targets {
         let target: &[f64; NX] =
@@ -255,15 +343,28 @@ where
                 (witness[i] + t * (target[i] - witness[i])).clamp(outer[i].inf(), outer[i].sup())
             })
         };
+        let segment = Segment::new(witness, target, outer).filter(|_| measured);
         let mut best = None;
         if order.is_consistent_point(model, target, measurements) {
             best = Some(*target);
         } else {
+            memory.reset(measurements.len());
             let (mut lo, mut hi) = (0.0, 1.0);
             for _ in 0..bisections {
                 let t = 0.5 * (lo + hi);
-                let p = at(t);
-                if order.is_consistent_point(model, &p, measurements) {
+                let (p, consistent) = match &segment {
+                    Some(segment) => {
+                        let step = segment.step(lo, t, hi);
+                        let ok =
+                            order.is_consistent_on_segment(model, &step, &mut memory, measurements);
+                        (step.point, ok)
+                    }
+                    None => {
+                        let p = at(t);
+                        (p, order.is_consistent_point(model, &p, measurements))
+                    }
+                };
+                if consistent {
                     lo = t;
                     best = Some(p);
                 } else {

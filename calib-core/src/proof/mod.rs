@@ -7,4 +7,5 @@ pub(crate) mod chebyshev;
 pub(crate) mod consistency;
 pub(crate) mod existence;
 pub(crate) mod second_order;
+pub(crate) mod segment;
 pub(crate) mod witness;
