@@ -80,30 +80,39 @@ const TRUTH: [f64; 4] = [1.0, 0.8, 0.01, -0.02];
 /// The joints' error bound (rad); the point's is ten times it.
 const JOINT_ERROR: f64 = 1e-4;
 
+/// The simulated arms' prior box.
+fn prior() -> [Interval; 4] {
+    [
+        Interval::new(0.9, 1.1),
+        Interval::new(0.7, 0.9),
+        Interval::new(-0.1, 0.1),
+        Interval::new(-0.1, 0.1),
+    ]
+}
+
+/// A reading of two joints and a point as measured: each value moved at random within its
+/// error bound (the joints' `JOINT_ERROR`, the point's ten times it) and boxed by it.
+fn measured<const NM: usize>(rng: &mut StdRng, read: [f64; NM]) -> [Interval; NM] {
+    core::array::from_fn(|k| {
+        let r = if k < 2 {
+            JOINT_ERROR
+        } else {
+            10.0 * JOINT_ERROR
+        };
+        Interval::mid_rad(read[k] + rng.random_range(-r..r), r)
+    })
+}
+
 /// Fourteen simulated measurements of the arm and the set certified from them.
 fn calibrated(rng: &mut StdRng) -> (Vec<[Interval; 4]>, CertifiedSet<4, 4>) {
     let boxes: Vec<[Interval; 4]> = (0..14)
         .map(|_| {
             let q = [rng.random_range(-1.5..1.5), rng.random_range(-2.0..2.0)];
             let p = tip(&TRUTH, &q);
-            let read = [q[0], q[1], p[0], p[1]];
-            core::array::from_fn(|k| {
-                let r = if k < 2 {
-                    JOINT_ERROR
-                } else {
-                    10.0 * JOINT_ERROR
-                };
-                Interval::mid_rad(read[k] + rng.random_range(-r..r), r)
-            })
+            measured(rng, [q[0], q[1], p[0], p[1]])
         })
         .collect();
-    let prior = [
-        Interval::new(0.9, 1.1),
-        Interval::new(0.7, 0.9),
-        Interval::new(-0.1, 0.1),
-        Interval::new(-0.1, 0.1),
-    ];
-    let r = certify(&PlanarTip, &prior, &boxes, &Settings::default());
+    let r = certify(&PlanarTip, &prior(), &boxes, &Settings::default());
     assert_eq!(r.status, Status::Consistent);
     let witness = r.witness.expect("a certified point");
     let set = CertifiedSet::new(&PlanarTip, &Cover::single(r.outer), &boxes, &[witness], 4);
@@ -415,24 +424,10 @@ fn wide_boxes_of_angular_inputs_keep_the_bracket_sound() {
         .map(|_| {
             let q = [rng.random_range(-0.6..0.6), rng.random_range(-0.8..0.8)];
             let p = spatial(&TRUTH, &q);
-            let read = [q[0], q[1], p[0], p[1], p[2]];
-            core::array::from_fn(|k| {
-                let r = if k < 2 {
-                    JOINT_ERROR
-                } else {
-                    10.0 * JOINT_ERROR
-                };
-                Interval::mid_rad(read[k] + rng.random_range(-r..r), r)
-            })
+            measured(&mut rng, [q[0], q[1], p[0], p[1], p[2]])
         })
         .collect();
-    let prior = [
-        Interval::new(0.9, 1.1),
-        Interval::new(0.7, 0.9),
-        Interval::new(-0.1, 0.1),
-        Interval::new(-0.1, 0.1),
-    ];
-    let r = certify(&SpatialTip, &prior, &boxes, &Settings::default());
+    let r = certify(&SpatialTip, &prior(), &boxes, &Settings::default());
     assert_eq!(r.status, Status::Consistent);
     let (r_outer, witness) = (r.outer, r.witness.expect("a certified point"));
     let set = engine_set(&boxes, &r_outer, &witness);
