@@ -117,7 +117,13 @@ where
 
 /// `min(-sup f(x, M⁻), inf f(x, M⁺))` from the enclosures of [`sign_test`]: non-negative exactly
 /// when the test passes (`f(x, M⁻) <= 0 <= f(x, M⁺)` over the box), and how much room is left.
+/// An empty enclosure (an evaluation with no value, e.g. a square root of a negative range) or
+/// one with a NaN end fails: `-∞`.
 pub(crate) fn sign_test_margin(values: &[Interval; 2]) -> f64 {
+    let usable = |v: &Interval| !v.is_empty() && !v.inf().is_nan() && !v.sup().is_nan();
+    if !values.iter().all(usable) {
+        return f64::NEG_INFINITY;
+    }
     (-values[0].sup()).min(values[1].inf())
 }
 

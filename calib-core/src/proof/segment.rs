@@ -116,6 +116,10 @@ impl<const NX: usize> Segment<NX> {
     /// an enclosure of `∂f/∂x` over the outer box and the whole measurement box (so for both
     /// corners).
     fn margin(&self, offset: Interval, g: &[Interval; NX], values: &[Interval; 2]) -> f64 {
+        // A gradient with no enclosure proves nothing (an empty one would make the change empty).
+        if !g.iter().all(|v| v.is_bounded() && !v.is_empty()) {
+            return f64::NEG_INFINITY;
+        }
         let (mut along, mut aside) = (Interval::ZERO, Interval::ZERO);
         for j in 0..NX {
             let r = 2.0 * self.stray[j];

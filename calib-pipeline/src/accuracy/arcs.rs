@@ -29,6 +29,7 @@
 //! exact for the triangles, so the excess over the arcs is that of `ρ` (second order in the
 //! box's width) and the parallelotope's on the columns' variation (first order).
 
+use super::sphere::add_up;
 use super::{slot, Prediction};
 use calib_core::{Interval, Parallelotope, VectorModel};
 use rayon::prelude::*;
@@ -102,6 +103,9 @@ impl<const NX: usize, const NU: usize, const R: usize> Arcs<NX, NU, R> {
         let model = prediction.model();
         let centre_rows = model.evaluate_rows(nominal, &slot(&u.map(|v| v.mid()), 0.0));
         let centre: [[f64; NX]; R] = core::array::from_fn(|r| centre_rows[r].dx);
+        if !centre.iter().flatten().all(|v| v.is_finite()) {
+            return None;
+        }
         let count: usize = per_input.iter().map(Vec::len).product();
         let vertices: Vec<_> = (0..count)
             .into_par_iter()
@@ -170,7 +174,6 @@ impl<const NX: usize, const NU: usize, const R: usize> Arcs<NX, NU, R> {
             Some(main) => main(&o),
             None => parallelotope.max_linear(&o),
         };
-        let add_up = |a: f64, b: f64| (Interval::point(a) + Interval::point(b)).sup();
         let mut bound: Vec<f64> = splits
             .par_iter()
             .map(|v| add_up(first, self.ranges.beyond(v, &none)))

@@ -1174,9 +1174,10 @@ where
     }
 
     fn split_weights(&self, u: &[Interval; NU]) -> Option<[f64; NU]> {
-        // Arcs too wide for their triangles are split first.
-        if P::ANGULAR_INPUTS && u.iter().any(|v| v.wid() > WIDEST_ARC) {
-            return Some(u.map(|v| if v.wid() > WIDEST_ARC { 1.0 } else { 0.0 }));
+        // Arcs too wide for their triangles (with the inputs' own errors) are split first.
+        let widened = self.problem.widened(u, true);
+        if P::ANGULAR_INPUTS && widened.iter().any(|v| v.wid() > WIDEST_ARC) {
+            return Some(widened.map(|v| if v.wid() > WIDEST_ARC { 1.0 } else { 0.0 }));
         }
         Some(self.problem.error_variation(u))
     }

@@ -195,7 +195,9 @@ pub fn cover_bound(best: f64, enough: f64, mut along: impl FnMut(usize, &[f64; 3
             .map(|&i| value[i])
             .fold(f64::NEG_INFINITY, f64::max);
         let cos = face_cos_radius(f.map(|i| directions[i]));
-        if top <= 0.0 {
+        if top.is_nan() || top == f64::INFINITY {
+            f64::INFINITY
+        } else if top <= 0.0 {
             // Every direction of the face bounds d·u by 0 or less: no d points into its cone.
             0.0
         } else if cos > 0.0 {

@@ -576,4 +576,9 @@ fn the_sphere_cover_bounds_the_norm_of_every_point_and_comes_within_two_percent(
         assert!(bound >= 1.0, "{bound} below the spike's norm 1");
         assert!(bound <= 1.02, "{bound}: the refinement stopped early");
     }
+    // A failed bound (infinite along every direction) gives no bound, not a panic.
+    assert_eq!(
+        cover_bound(f64::INFINITY, 1.0, |_, _| f64::INFINITY),
+        f64::INFINITY
+    );
 }
