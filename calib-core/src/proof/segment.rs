@@ -326,6 +326,30 @@ mod tests {
         BigRational::from_float(x).expect("finite")
     }
 
+    /// A stretch is proved only from enclosures that hold something: an empty value or an
+    /// empty or unbounded gradient gives no margin (an empty change would have passed).
+    #[test]
+    fn empty_enclosures_prove_no_stretch() {
+        let outer = [Interval::new(-1.0, 1.0); 2];
+        let segment = Segment::new(&[0.0, 0.0], &[0.5, 0.5], &outer).expect("a segment");
+        let passing = [Interval::new(-2.0, -1.0), Interval::new(1.0, 2.0)];
+        let g = [Interval::new(-0.1, 0.1); 2];
+        let offset = Interval::new(0.0, 0.1);
+        assert!(segment.margin(offset, &g, &passing) >= 0.0);
+        for bad in [Interval::EMPTY, Interval::ENTIRE] {
+            assert_eq!(
+                segment.margin(offset, &[bad, g[1]], &passing),
+                f64::NEG_INFINITY
+            );
+        }
+        let empty_value = [Interval::EMPTY, passing[1]];
+        assert_eq!(segment.margin(offset, &g, &empty_value), f64::NEG_INFINITY);
+        assert_eq!(
+            crate::proof::consistency::sign_test_margin(&empty_value),
+            f64::NEG_INFINITY
+        );
+    }
+
     /// The stray bound the stretch proofs rest on, checked in exact arithmetic: every computed
     /// point `at(s)` lies within `ρ_j` of the exact line `w + s d`, for boxes of many scales,
     /// starts inside and outside the box, and targets inside it and on its faces.
