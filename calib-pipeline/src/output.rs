@@ -7,18 +7,35 @@ use crate::{DataError, OptionError};
 
 /// Writes `text` to `path` atomically: to a temporary file beside it, then renamed (a reader sees
 /// the old file or the whole new one, never a part).
+///
+/// Only a regular file is replaced. A path that names something else (`/dev/null`, `/dev/stdout`,
+/// a named pipe) is written to as it is: renaming over it would put a regular file in place of
+/// the device, for every program on the machine when run as root. A symbolic link is followed,
+/// and the file it leads to is replaced (the link stays a link).
 pub fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
-    let dir = path
+    let target = match std::fs::canonicalize(path) {
+        Ok(resolved) => {
+            if !std::fs::metadata(&resolved)?.is_file() {
+                return std::fs::OpenOptions::new()
+                    .write(true)
+                    .open(&resolved)
+                    .and_then(|mut f| std::io::Write::write_all(&mut f, text.as_bytes()));
+            }
+            resolved
+        }
+        Err(_) => path.to_path_buf(),
+    };
+    let dir = target
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    let name = path
+    let name = target
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
     std::fs::write(&tmp, text)?;
-    std::fs::rename(&tmp, path).inspect_err(|_| {
+    std::fs::rename(&tmp, &target).inspect_err(|_| {
         let _ = std::fs::remove_file(&tmp);
     })
 }

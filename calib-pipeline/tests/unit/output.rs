@@ -46,6 +46,43 @@ fn writes_whole_files_and_leaves_no_temporary_behind() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A named pipe stands for every path that is not a regular file (`/dev/null` among them, which
+/// this test must not risk replacing): it is written to, not renamed over, and stays a pipe.
+#[cfg(unix)]
+#[test]
+fn a_path_that_is_not_a_regular_file_is_written_to_not_replaced() {
+    use std::os::unix::fs::FileTypeExt;
+    let dir = std::env::temp_dir().join(format!("calib-pipeline-fifo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let fifo = dir.join("pipe");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo is needed here");
+    // Opened for reading and writing, a pipe's open does not wait for the other end (Linux).
+    let mut end = std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .open(&fifo)
+        .unwrap();
+    write_atomically(&fifo, "through the pipe").unwrap();
+    let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
+    assert!(kind.is_fifo(), "the pipe was replaced by {kind:?}");
+    let mut got = [0u8; 16];
+    std::io::Read::read_exact(&mut end, &mut got).unwrap();
+    assert_eq!(&got, b"through the pipe");
+    // A symbolic link: the file it leads to is replaced, the link stays.
+    let file = dir.join("file.json");
+    std::fs::write(&file, "old").unwrap();
+    let link = dir.join("link.json");
+    std::os::unix::fs::symlink(&file, &link).unwrap();
+    write_atomically(&link, "new").unwrap();
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "new");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn outputs_are_checked_before_any_work_and_the_error_names_the_file() {
     let dir = std::env::temp_dir().join(format!("calib-outputs-{}", std::process::id()));
