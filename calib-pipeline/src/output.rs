@@ -8,21 +8,23 @@ use crate::{DataError, OptionError};
 /// Writes `text` to `path` atomically: to a temporary file beside it, then renamed (a reader sees
 /// the old file or the whole new one, never a part).
 ///
-/// Only a regular file is replaced. A path that names something else (`/dev/null`, `/dev/stdout`,
-/// a named pipe) is written to as it is: renaming over it would put a regular file in place of
-/// the device, for every program on the machine when run as root. A symbolic link is followed,
-/// and the file it leads to is replaced (the link stays a link).
+/// Only a regular file is replaced. A path that names anything else (`/dev/null`, a named pipe),
+/// or that leads to the process's own descriptors (`/dev/stdout`, `/dev/fd/N`, `/proc/…`), is
+/// written to as it is, at its end: renaming over it would put a regular file in place of the
+/// device or of the link, for every program on the machine when run as root. A symbolic link
+/// elsewhere is followed, and the file it leads to is replaced (the link stays a link).
 pub fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
-    let target = match std::fs::canonicalize(path) {
-        Ok(resolved) => {
-            if !std::fs::metadata(&resolved)?.is_file() {
-                return std::fs::OpenOptions::new()
-                    .write(true)
-                    .open(&resolved)
-                    .and_then(|mut f| std::io::Write::write_all(&mut f, text.as_bytes()));
-            }
-            resolved
+    let descriptor = ["/proc", "/dev/fd", "/dev/stdout", "/dev/stderr"]
+        .iter()
+        .any(|p| path.starts_with(p));
+    let target = match std::fs::metadata(path) {
+        Ok(m) if descriptor || !m.is_file() => {
+            return std::fs::OpenOptions::new()
+                .append(true)
+                .open(path)
+                .and_then(|mut f| std::io::Write::write_all(&mut f, text.as_bytes()));
         }
+        Ok(_) => std::fs::canonicalize(path)?,
         Err(_) => path.to_path_buf(),
     };
     let dir = target

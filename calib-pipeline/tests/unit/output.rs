@@ -83,6 +83,31 @@ fn a_path_that_is_not_a_regular_file_is_written_to_not_replaced() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `--json /dev/stdout` with standard output sent to a file: the path leads to one of the
+/// process's descriptors (here `/proc/self/fd/N` of a file this test holds open, as a shell's
+/// `> out.txt` would). The text is added after what was written through the descriptor, and the
+/// file is the same file (not one renamed in its place, which the descriptor would not see).
+#[cfg(target_os = "linux")]
+#[test]
+fn a_descriptor_by_name_is_appended_to_not_replaced() {
+    use std::os::unix::fs::MetadataExt;
+    use std::os::unix::io::AsRawFd;
+    let dir = std::env::temp_dir().join(format!("calib-pipeline-fd-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("out.txt");
+    let mut held = std::fs::File::create(&out).unwrap();
+    std::io::Write::write_all(&mut held, b"printed first\n").unwrap();
+    let by_name = std::path::PathBuf::from(format!("/proc/self/fd/{}", held.as_raw_fd()));
+    write_atomically(&by_name, "written by name\n").unwrap();
+    assert_eq!(
+        std::fs::read_to_string(&out).unwrap(),
+        "printed first\nwritten by name\n"
+    );
+    let same = held.metadata().unwrap().ino() == std::fs::metadata(&out).unwrap().ino();
+    assert!(same, "the file was replaced under its descriptor");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn outputs_are_checked_before_any_work_and_the_error_names_the_file() {
     let dir = std::env::temp_dir().join(format!("calib-outputs-{}", std::process::id()));
