@@ -48,7 +48,7 @@ fn writes_whole_files_and_leaves_no_temporary_behind() {
 
 /// A named pipe stands for every path that is not a regular file (`/dev/null` among them, which
 /// this test must not risk replacing): it is written to, not renamed over, and stays a pipe.
-#[cfg(unix)]
+#[cfg(target_os = "linux")]
 #[test]
 fn a_path_that_is_not_a_regular_file_is_written_to_not_replaced() {
     use std::os::unix::fs::FileTypeExt;
