@@ -275,3 +275,107 @@ fn over_the_certified_set_no_consistent_geometry_exceeds_the_bound() {
         b.lower
     );
 }
+
+/// At a task's configurations (a finite list, `tool_accuracy_at`): no consistent geometry with
+/// any joint error exceeds the upper bound at any of them (by an independent forward
+/// kinematics), the worst instances after and before calibration are rechecked at one of the
+/// task's configurations, and a malformed task is refused.
+#[test]
+fn at_a_tasks_configurations_no_consistent_geometry_exceeds_the_bound() {
+    use calib_arm::accuracy::tool_accuracy_at;
+    use calib_arm::calibrated::{calibrated_arm, PointChoice};
+    use calib_arm::certification::{arm_settings, certify_arm, padded_index, RunOptions};
+    use calib_arm::simulate::{simulate, Uncertainty};
+    let arm = builtin_arm();
+    let sim = simulate(&arm, 30, 8, Uncertainty::TRACKER, 1.0, &[]);
+    let run = certify_arm(
+        &arm,
+        &sim.readings,
+        &sim.uncertainty,
+        RunOptions {
+            depth: calib_pipeline::Depth::Fast,
+            lsq: false,
+        },
+        &arm_settings(),
+    )
+    .expect("an arm");
+    let joints: Vec<Vec<f64>> = sim.readings.iter().map(|r| r.joints_deg.clone()).collect();
+    let c = calibrated_arm(&arm, &run, &joints, PointChoice::LeastSquares).expect("consistent");
+    let mut rng = StdRng::seed_from_u64(9);
+    let task: Vec<Vec<f64>> = (0..25)
+        .map(|_| {
+            (0..arm.joints.len())
+                .map(|_| rng.random_range(-170.0..170.0))
+                .collect()
+        })
+        .collect();
+    let joint_deg = sim.uncertainty.joint_deg;
+    let settings = ToolAccuracySettings::default();
+    let r = tool_accuracy_at(
+        &c.arm,
+        Some(c.set.clone()),
+        Some(&arm),
+        &task,
+        joint_deg,
+        &settings,
+    )
+    .expect("a report");
+    let (after, before) = (&r.after, r.before.as_ref().expect("before"));
+    for b in [after, before] {
+        assert!(
+            b.upper.is_finite() && b.upper >= b.lower && b.lower > 0.0,
+            "{b:?}"
+        );
+        assert_eq!(b.boxes, task.len());
+    }
+    let controller = to_model(&c.arm, &c.arm.nominal());
+    let index = padded_index(arm.joints.len());
+    let mut geometries = vec![to_model(&arm, &sim.truth)];
+    geometries.extend(
+        c.set
+            .points()
+            .iter()
+            .map(|p| index.iter().map(|&k| p.x[k]).collect::<Vec<f64>>()),
+    );
+    for (k, q) in task.iter().cycle().take(1500).enumerate() {
+        let q: Vec<f64> = q.iter().map(|v| v.to_radians()).collect();
+        let mut real = geometries[k % geometries.len()].clone();
+        for (j, v) in real.iter_mut().enumerate() {
+            if is_theta(&arm, j) {
+                *v += rng.random_range(-1.0..=1.0) * joint_deg.to_radians();
+            }
+        }
+        let (p, p0) = (forward(&real, &q), forward(&controller, &q));
+        let e = norm([p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]]);
+        assert!(
+            e <= after.upper * (1.0 + 1e-9) + 1e-12,
+            "{e} above {}",
+            after.upper
+        );
+    }
+    // The worst instances are attained at one of the task's configurations.
+    for (b, robot) in [(after, &c.arm), (before, &arm)] {
+        let (w, _) = rechecked_worst(b, &to_model(robot, &robot.nominal()), &r.space);
+        assert!(
+            task.iter().any(|q| q
+                .iter()
+                .zip(&w.joints_deg)
+                .all(|(a, b)| (a - b).abs() <= 1e-9 * (1.0 + a.abs()))),
+            "{:?} is not a configuration of the task",
+            w.joints_deg
+        );
+    }
+    assert!(r.improvement().is_some_and(|f| f > 1.0), "{r:?}");
+    // A configuration with a joint too few, one that is not finite, or none: refused.
+    let mut short = task.clone();
+    short[3].pop();
+    let mut nan = task.clone();
+    nan[0][2] = f64::NAN;
+    for bad in [short, nan, vec![]] {
+        let e = tool_accuracy_at(&c.arm, None, None, &bad, joint_deg, &settings);
+        assert!(
+            matches!(e, Err(calib_arm::ArmError::TaskConfiguration { .. })),
+            "{e:?}"
+        );
+    }
+}

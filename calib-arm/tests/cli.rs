@@ -661,6 +661,61 @@ fn the_calibrated_arm_contains_the_certified_box_and_its_accuracy_is_bracketed()
         / a["position"]["upper"].as_f64().expect("upper");
     assert_eq!(a["improvement"].as_f64(), Some(factor), "{a}");
     accuracy_page_states(&p("accuracy.html"), &a, &p("joints.toml"));
+    // At the measured configurations, each as given: a bracket per robot over exactly them, the
+    // worst instances at one of them.
+    let at_rows = |source: &str, file: &str| {
+        arm(&[
+            "accuracy",
+            "--robot",
+            &p("cal.toml"),
+            "--before",
+            &p("robot.toml"),
+            source,
+            &p(file),
+            "--uncertainty",
+            &p("uncertainty.toml"),
+            "--json",
+            &p("task.json"),
+        ])
+    };
+    let o = at_rows("--measurements", "measurements.csv");
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(
+        text(&o).contains("at the 12 configurations"),
+        "{}",
+        text(&o)
+    );
+    let t: Value = serde_json::from_str(&std::fs::read_to_string(p("task.json")).expect("task"))
+        .expect("json");
+    let rows: Vec<Vec<f64>> = data.readings.iter().map(|r| r.joints_deg.clone()).collect();
+    for key in ["position", "before"] {
+        assert_eq!(t[key]["boxes"].as_u64(), Some(12), "{t}");
+        let q: Vec<f64> = t[key]["worst"]["joints_deg"]
+            .as_array()
+            .expect("joints")
+            .iter()
+            .map(|v| v.as_f64().expect("a joint"))
+            .collect();
+        assert!(
+            rows.iter()
+                .any(|r| r.iter().zip(&q).all(|(a, b)| (a - b).abs() <= 1e-9)),
+            "{key}: {q:?} is not a measured configuration"
+        );
+    }
+    let factor = t["before"]["lower"].as_f64().expect("lower")
+        / t["position"]["upper"].as_f64().expect("upper");
+    assert_eq!(t["improvement"].as_f64(), Some(factor), "{t}");
+    // A task file with a joint missing is named, with its line, and nothing is written.
+    std::fs::write(p("task.csv"), "q1,q2,q3\n1,2,3\n4,5\n").expect("write");
+    std::fs::remove_file(p("task.json")).expect("remove");
+    let o = at_rows("--task", "task.csv");
+    assert!(!o.status.success());
+    assert!(
+        text(&o).contains("task.csv") && text(&o).contains("line 3"),
+        "{}",
+        text(&o)
+    );
+    assert!(!Path::new(&p("task.json")).exists());
     // Predictions over the set: the true tracked point (truth.json, the simulator's geometry)
     // lies in every certified range, every measured point in its range with the error bounds.
     let predict = |measurements: &str| {

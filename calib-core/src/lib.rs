@@ -101,7 +101,9 @@ pub use set::certified_set::{
     SetMaximumSettings, SetObjective, SetPiece, SetQuery, SlotQueries, DEFAULT_MAX_PIECES,
 };
 pub use set::least_squares::{least_squares_in_set, SetFit, CROSS_VALIDATION_FOLDS, PRIOR_WEIGHTS};
-pub use set::maximum::{bracket_ratio, maximize, Maximum, MaximumSettings, Objective, Ranked};
+pub use set::maximum::{
+    bracket_ratio, maximize, maximize_over_list, Maximum, MaximumSettings, Objective, Ranked,
+};
 pub use set::parallelotope::Parallelotope;
 
 /// What the code `#[interval_model]` generates calls: not part of the API, and versioned so that a

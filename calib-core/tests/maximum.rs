@@ -317,3 +317,74 @@ fn a_local_search_raises_the_lower_bound_and_moves_the_argmax() {
     assert!(m.converged && m.lower == 0.25 && m.argmax == [0.5], "{m:?}");
     assert!(0.25 <= m.upper && m.upper <= 0.25 * 1.01, "{m:?}");
 }
+
+/// Over a finite list of thin boxes of random wavy functions: the upper bound is at least the
+/// function at every listed point (sampled inside each box too), the lower bound is the value at
+/// the reported point (rechecked in floating point) and at most the upper bound, the frontier is
+/// one of the boxes, and the answer does not depend on the list's order.
+#[test]
+fn lists_are_bracketed_soundly() {
+    let mut rng = StdRng::seed_from_u64(51);
+    for _ in 0..40 {
+        let f = Wavy::<3>::random(&mut rng);
+        let points: Vec<[f64; 3]> = (0..rng.random_range(1..60))
+            .map(|_| core::array::from_fn(|_| rng.random_range(-2.0..2.0)))
+            .collect();
+        let width = if rng.random_bool(0.5) { 0.0 } else { 1e-6 };
+        let list: Vec<[Interval; 3]> = points
+            .iter()
+            .map(|p| p.map(|v| Interval::mid_rad(v, width)))
+            .collect();
+        let m = calib_core::maximize_over_list(|| f.clone(), &list, &MaximumSettings::default());
+        assert_eq!(m.boxes, list.len());
+        for b in &list {
+            for _ in 0..4 {
+                let x: [f64; 3] =
+                    core::array::from_fn(|j| rng.random_range(b[j].inf()..=b[j].sup()));
+                assert!(f.eval(&x) <= m.upper, "{:?} above {}", x, m.upper);
+            }
+        }
+        assert!(list.contains(&m.frontier));
+        let value = f.eval(&m.argmax);
+        assert!(
+            (value - m.lower).abs() <= 1e-9 * (1.0 + value.abs()),
+            "{value} {m:?}"
+        );
+        assert!(m.lower <= m.upper);
+        let best = points
+            .iter()
+            .map(|p| f.eval(p))
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(m.lower >= best - 1e-9 * (1.0 + best.abs()), "{best} {m:?}");
+        let mut reversed = list.clone();
+        reversed.reverse();
+        let r =
+            calib_core::maximize_over_list(|| f.clone(), &reversed, &MaximumSettings::default());
+        assert_eq!((r.upper, r.lower), (m.upper, m.lower));
+    }
+}
+
+/// A failed enclosure on one box of the list leaves the upper bound unproved (`+∞`), and an
+/// empty list gives the trivial bracket.
+#[test]
+fn a_failed_box_of_a_list_proves_nothing() {
+    let list = [
+        [Interval::point(1.0)],
+        [Interval::point(-1.0)],
+        [Interval::point(4.0)],
+    ];
+    let m = calib_core::maximize_over_list(|| Fragile, &list, &MaximumSettings::default());
+    assert_eq!(m.upper, f64::INFINITY);
+    assert!(!m.converged && m.frontier == list[1], "{m:?}");
+    assert!(
+        m.lower <= 2.0 && m.lower > 1.999 && m.argmax == [4.0],
+        "{m:?}"
+    );
+    let m = calib_core::maximize_over_list(|| Fragile, &list[..1], &MaximumSettings::default());
+    assert!(
+        m.converged && m.lower <= 1.0 && 1.0 <= m.upper && m.upper < 1.001,
+        "{m:?}"
+    );
+    let m = calib_core::maximize_over_list(|| Fragile, &[], &MaximumSettings::default());
+    assert_eq!((m.lower, m.upper), (f64::NEG_INFINITY, f64::INFINITY));
+}

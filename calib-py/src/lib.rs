@@ -1045,9 +1045,10 @@ fn write_accuracy_page(
 /// Brackets the tool-point error of an arm's robot file over a joint box, as `arm accuracy`
 /// does (over the file's certified set when it carries one, else over its boxes; with
 /// `before`, the uncalibrated robot over its boxes and the improvement as a proved factor);
-/// returns the JSON of `arm accuracy --json`.
+/// returns the JSON of `arm accuracy --json`. With `task` (a CSV of configurations `q1..qN`,
+/// degrees), at those configurations instead, each as given (`arm accuracy --task`).
 #[pyfunction]
-#[pyo3(signature = (robot, joints=None, before=None, uncertainty=None, tolerance=0.04, max_boxes=20_000, max_set_boxes=300, report=None))]
+#[pyo3(signature = (robot, joints=None, before=None, uncertainty=None, tolerance=0.04, max_boxes=20_000, max_set_boxes=300, report=None, task=None))]
 #[allow(clippy::too_many_arguments)]
 fn arm_accuracy(
     py: Python<'_>,
@@ -1059,9 +1060,10 @@ fn arm_accuracy(
     max_boxes: usize,
     max_set_boxes: usize,
     report: Option<PathBuf>,
+    task: Option<PathBuf>,
 ) -> PyResult<String> {
-    use calib_arm::accuracy::{tool_accuracy, ToolAccuracySettings};
-    use calib_arm::joint_space::{read_joint_space, JointSpace};
+    use calib_arm::accuracy::{tool_accuracy, tool_accuracy_at, ToolAccuracySettings};
+    use calib_arm::joint_space::{read_joint_space, read_task, JointSpace};
     if !(tolerance > 0.0 && tolerance.is_finite()) {
         return Err(value_error(format!(
             "tolerance: expected a number > 0, found {tolerance}"
@@ -1071,10 +1073,15 @@ fn arm_accuracy(
     let inputs = accuracy_inputs(&[
         ("robot file", Some(&robot)),
         ("joint space", joints.as_ref()),
+        ("task", task.as_ref()),
         ("robot before calibration", before.as_ref()),
         ("error bounds", uncertainty.as_ref()),
     ]);
     let n = arm.joints.len();
+    let task = task
+        .map(|p| read_task(&p, n))
+        .transpose()
+        .map_err(value_error)?;
     let before = before
         .map(|p| calib_arm::files::read_robot(&p))
         .transpose()
@@ -1095,7 +1102,10 @@ fn arm_accuracy(
     };
     let page = report;
     let report = py
-        .detach(|| tool_accuracy(&arm, set, before.as_ref(), space, joint_deg, &settings))
+        .detach(|| match &task {
+            Some(list) => tool_accuracy_at(&arm, set, before.as_ref(), list, joint_deg, &settings),
+            None => tool_accuracy(&arm, set, before.as_ref(), space, joint_deg, &settings),
+        })
         .map_err(value_error)?;
     if let Some(path) = &page {
         write_accuracy_page(

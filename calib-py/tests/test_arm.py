@@ -140,6 +140,22 @@ def test_accuracy_arm_is_the_cli_report_over_the_certified_set(tmp_path):
     assert after["upper"] <= upper <= after["upper"] + 1e-5
     assert after["lower"] - 1e-5 <= lower <= after["lower"]
     assert hashlib.sha256(cell.read_bytes()).hexdigest() in html
+    # At a task's configurations, each as given: the command line's report.
+    task = tmp_path / "task.csv"
+    task.write_text("q1,q2,q3\n12,-25,41\n18,-22,49\n-60,80,10\n")
+    mine = certicalib.accuracy_arm(cal, task=task, before=robot, uncertainty=unc)
+    subprocess.run([repo_binary("arm"), "accuracy", "--robot", str(cal), "--task", str(task),
+                    "--before", str(robot), "--uncertainty", str(unc), "--json", str(out)],
+                   check=True, capture_output=True)
+    cli = json.loads(out.read_text())
+    for r in (mine, cli):
+        for key in ("position", "before"):
+            r[key].pop("seconds")
+    assert mine == cli
+    worst = mine["position"]["worst"]["joints_deg"]
+    assert mine["position"]["boxes"] == 3 and any(
+        all(abs(a - b) < 1e-9 for a, b in zip(worst, q))
+        for q in ([12, -25, 41], [18, -22, 49], [-60, 80, 10]))
 
 
 def test_write_calibrated_for_a_task_gives_the_cli_file(tmp_path):

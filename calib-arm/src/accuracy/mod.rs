@@ -30,7 +30,9 @@ use crate::params::{self, Unit};
 use crate::robot::Arm;
 use crate::units::{deg_to_rad, rad_to_deg, to_deg, to_rad};
 use crate::ArmError;
-use calib_core::{maximize, Interval, MaximumSettings, Objective, VectorModel};
+use calib_core::{
+    maximize, maximize_over_list, Interval, Maximum, MaximumSettings, Objective, VectorModel,
+};
 use directions::{max_over_directions, DirectionCache, Sensitivities};
 use serde_json::json;
 
@@ -420,6 +422,13 @@ impl ToolAccuracyProblem {
         self.instance_at(&q, &theta)
     }
 
+    /// The instance at the joints `x` themselves (no search away from them): the best vertex of
+    /// the box there.
+    fn instance_without_search(&self, x: &SearchPoint) -> ToolInstance {
+        let q = self.joints_of(x);
+        self.instance_at(&q, &self.best_vertex_any(&q).0)
+    }
+
     fn instance_at(&self, q: &[f64; MAX_JOINTS], theta: &[Interval; NX]) -> ToolInstance {
         let e = self.error_enclosure(q, theta);
         let value = (e[0].sqr() + e[1].sqr() + e[2].sqr()).sqrt().inf();
@@ -470,7 +479,7 @@ struct ToolError<'a> {
 
 impl ToolError<'_> {
     /// Records a proved lower bound of the maximum.
-    fn attained(&self, v: f64) {
+    fn record_attained(&self, v: f64) {
         if v.is_finite() {
             self.enough
                 .set(self.enough.get().max(v * (1.0 + self.rel_tol)));
@@ -487,6 +496,18 @@ impl Objective<MAX_JOINTS> for ToolError<'_> {
         )
     }
 
+    fn attained(&self, x: &SearchPoint) -> f64 {
+        let p = self.problem;
+        let q = p.joints_of(x);
+        let lower = p.dual_value(&q, &p.best_vertex_any(&q).0);
+        if lower.is_nan() || lower < 0.0 || q != *x {
+            // Only joints inside the box give a lower bound at x itself.
+            return f64::NEG_INFINITY;
+        }
+        self.record_attained(lower);
+        lower
+    }
+
     fn at(&self, x: &SearchPoint) -> Interval {
         let p = self.problem;
         let upper = p.upper(&x.map(Interval::point), &self.directions, self.enough.get());
@@ -496,7 +517,7 @@ impl Objective<MAX_JOINTS> for ToolError<'_> {
             // Only joints inside the box give a lower bound at x itself.
             return Interval::new(0.0, upper);
         }
-        self.attained(lower);
+        self.record_attained(lower);
         Interval::new(lower.min(upper), upper)
     }
 
@@ -513,7 +534,7 @@ impl Objective<MAX_JOINTS> for ToolError<'_> {
     fn improve(&self, x: &SearchPoint) -> Option<(SearchPoint, f64)> {
         let (q, theta) = self.problem.search(x);
         let v = self.problem.dual_value(&q, &theta);
-        self.attained(v);
+        self.record_attained(v);
         Some((q, v))
     }
 }
@@ -539,22 +560,7 @@ pub fn certify_tool_accuracy(
         },
     );
     let worst = problem.instance(&m.argmax);
-    let lower = worst.value;
-    ToolBracket {
-        upper: m.upper.max(lower),
-        lower,
-        worst: Some(worst).filter(|w| w.value > 0.0),
-        frontier_deg: m.frontier[..problem.joints]
-            .iter()
-            .map(|v| {
-                let d = rad_to_deg(*v);
-                [d.inf(), d.sup()]
-            })
-            .collect(),
-        converged: m.converged || lower >= m.upper / (1.0 + settings.rel_tol),
-        boxes: m.boxes,
-        seconds: start.elapsed().as_secs_f64(),
-    }
+    bracket_of(problem, &m, worst, settings, start)
 }
 
 /// `arm accuracy` as a library step: the calibrated `arm`'s bracket over its certified `set`
@@ -599,6 +605,142 @@ pub fn tool_accuracy(
         before,
         over_set,
     })
+}
+
+/// `arm accuracy --task`: [`tool_accuracy`] over a finite list of configurations (degrees, one
+/// joint each per joint of the arm) instead of a joint box: the bracket's upper bound is proved
+/// at every configuration (the exact decimal angles, enclosed; the joints' error included), its
+/// lower bound attained at one of them — after calibration over the certified set (or the box),
+/// before over the box. The report's joint space is the configurations' hull. An error when a
+/// configuration has the wrong number of joints or a joint that is not finite, or the task is
+/// empty.
+pub fn tool_accuracy_at(
+    arm: &Arm,
+    set: Option<crate::certification::ArmSet>,
+    before: Option<&Arm>,
+    configurations_deg: &[Vec<f64>],
+    joint_deg: f64,
+    settings: &ToolAccuracySettings,
+) -> Result<ToolAccuracyReport, ArmError> {
+    let joints = arm.joints.len();
+    if configurations_deg.is_empty() {
+        return Err(ArmError::TaskConfiguration {
+            index: 0,
+            found: 0,
+            joints,
+        });
+    }
+    for (k, q) in configurations_deg.iter().enumerate() {
+        let found = q.iter().filter(|v| v.is_finite()).count();
+        if q.len() != joints || found != joints {
+            return Err(ArmError::TaskConfiguration {
+                index: k + 1,
+                found,
+                joints,
+            });
+        }
+    }
+    // The hull, a little wider than rounding: every configuration lies strictly inside the box
+    // where instances are taken.
+    let space = JointSpace {
+        ranges_deg: (0..joints)
+            .map(|i| {
+                let (lo, hi) = configurations_deg
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| {
+                        (l.min(q[i]), h.max(q[i]))
+                    });
+                let pad = 1e-9 * (1.0 + lo.abs().max(hi.abs()));
+                [lo - pad, hi + pad]
+            })
+            .collect(),
+    };
+    let list: Vec<[Interval; MAX_JOINTS]> = configurations_deg
+        .iter()
+        .map(|q| {
+            core::array::from_fn(|i| match q.get(i) {
+                Some(v) => over_set::joint_box(*v, *v),
+                None => Interval::ZERO,
+            })
+        })
+        .collect();
+    let over_set = set.is_some();
+    let after_problem = match set {
+        Some(set) => After::Set(Box::new(over_set::SetToolAccuracy::new(
+            arm, set, &space, joint_deg,
+        )?)),
+        None => After::Box(Box::new(ToolAccuracyProblem::new(arm, &space, joint_deg)?)),
+    };
+    let before_problem = before
+        .map(|b| ToolAccuracyProblem::new(b, &space, joint_deg))
+        .transpose()?;
+    let after = match &after_problem {
+        After::Set(p) => over_set::certify_set_accuracy_at(p, &list, settings),
+        After::Box(p) => certify_tool_accuracy_at(p, &list, settings),
+    };
+    let before = before_problem
+        .as_ref()
+        .map(|p| certify_tool_accuracy_at(p, &list, settings));
+    Ok(ToolAccuracyReport {
+        space,
+        joint_deg,
+        after,
+        before,
+        over_set,
+    })
+}
+
+/// [`certify_tool_accuracy`] over the configurations `list` (thin joint boxes, radians, padded)
+/// instead of the problem's joint box ([`calib_core::maximize_over_list`]).
+fn certify_tool_accuracy_at(
+    problem: &ToolAccuracyProblem,
+    list: &[[Interval; MAX_JOINTS]],
+    settings: &ToolAccuracySettings,
+) -> ToolBracket {
+    let start = Instant::now();
+    let m = maximize_over_list(
+        || ToolError {
+            problem,
+            enough: Cell::new(0.0),
+            rel_tol: settings.rel_tol,
+            directions: DirectionCache::default(),
+        },
+        list,
+        &MaximumSettings {
+            rel_tol: settings.rel_tol,
+            abs_tol: 0.0,
+            max_boxes: list.len(),
+        },
+    );
+    let worst = problem.instance_without_search(&m.argmax);
+    bracket_of(problem, &m, worst, settings, start)
+}
+
+/// The bracket of a maximisation by [`ToolError`]: its lower bound re-attained by the instance
+/// `worst` (rounded down), its frontier in degrees.
+fn bracket_of(
+    problem: &ToolAccuracyProblem,
+    m: &Maximum<MAX_JOINTS>,
+    worst: ToolInstance,
+    settings: &ToolAccuracySettings,
+    start: Instant,
+) -> ToolBracket {
+    let lower = worst.value;
+    ToolBracket {
+        upper: m.upper.max(lower),
+        lower,
+        worst: Some(worst).filter(|w| w.value > 0.0),
+        frontier_deg: m.frontier[..problem.joints]
+            .iter()
+            .map(|v| {
+                let d = rad_to_deg(*v);
+                [d.inf(), d.sup()]
+            })
+            .collect(),
+        converged: m.converged || lower >= m.upper / (1.0 + settings.rel_tol),
+        boxes: m.boxes,
+        seconds: start.elapsed().as_secs_f64(),
+    }
 }
 
 /// The calibrated robot's problem: over its certified set, or over its box.

@@ -14,7 +14,8 @@ use crate::units::{deg_to_rad, rad_to_deg, to_deg};
 use crate::{Arm7Point, ArmError};
 use calib_core::{CertifiedSet, Interval, Jet, Quadratic};
 use calib_pipeline::accuracy::{
-    bracket_over_set, BracketSettings, Instance, Prediction, SetAccuracy,
+    bracket_over_inputs, bracket_over_set, Bracket, BracketSettings, Instance, Prediction,
+    SetAccuracy,
 };
 
 /// The arm's tool point as a prediction: `p(q; θ)` from the padded model, the joints in the
@@ -152,19 +153,45 @@ pub fn certify_set_accuracy(
             max_boxes: settings.max_set_boxes,
         },
     );
-    ToolBracket {
-        upper: b.upper,
-        lower: b.lower,
-        worst: b.worst.as_ref().map(|w| problem.tool_instance(w)),
-        frontier_deg: b.frontier[..problem.joints]
-            .iter()
-            .map(|v| {
-                let d = rad_to_deg(*v);
-                [d.inf(), d.sup()]
-            })
-            .collect(),
-        converged: b.converged,
-        boxes: b.boxes,
-        seconds: b.seconds,
+    problem.tool_bracket(&b)
+}
+
+/// [`certify_set_accuracy`] over the configurations `list` (thin joint boxes, radians, padded)
+/// instead of the problem's joint box ([`bracket_over_inputs`]).
+pub fn certify_set_accuracy_at(
+    problem: &SetToolAccuracy,
+    list: &[[Interval; MAX_JOINTS]],
+    settings: &super::ToolAccuracySettings,
+) -> ToolBracket {
+    let b = bracket_over_inputs(
+        &problem.engine,
+        list,
+        &BracketSettings {
+            rel_tol: settings.rel_tol,
+            max_boxes: list.len(),
+        },
+    );
+    problem.tool_bracket(&b)
+}
+
+impl SetToolAccuracy {
+    /// The engine's bracket in the arm's terms.
+    fn tool_bracket(&self, b: &Bracket<NX, MAX_JOINTS, 3>) -> ToolBracket {
+        let problem = self;
+        ToolBracket {
+            upper: b.upper,
+            lower: b.lower,
+            worst: b.worst.as_ref().map(|w| problem.tool_instance(w)),
+            frontier_deg: b.frontier[..problem.joints]
+                .iter()
+                .map(|v| {
+                    let d = rad_to_deg(*v);
+                    [d.inf(), d.sup()]
+                })
+                .collect(),
+            converged: b.converged,
+            boxes: b.boxes,
+            seconds: b.seconds,
+        }
     }
 }

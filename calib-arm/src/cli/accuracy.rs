@@ -1,10 +1,12 @@
 //! `arm accuracy`.
 
 use super::output::spinner;
-use calib_arm::accuracy::{tool_accuracy, ToolAccuracyReport, ToolAccuracySettings, ToolBracket};
+use calib_arm::accuracy::{
+    tool_accuracy, tool_accuracy_at, ToolAccuracyReport, ToolAccuracySettings, ToolBracket,
+};
 use calib_arm::certification::names;
 use calib_arm::files::{read_calibrated, read_robot, read_uncertainty};
-use calib_arm::joint_space::{read_joint_space, JointSpace};
+use calib_arm::joint_space::{read_joint_space, read_task, JointSpace};
 use calib_arm::params;
 use calib_arm::simulate::JOINT_LIMIT_DEG;
 use calib_pipeline::{html, write_atomically};
@@ -19,8 +21,20 @@ pub struct Args {
     robot: PathBuf,
     /// The joint space: q1 = [lo, hi], q2 = …, one range per joint (degrees). Default: every
     /// joint within ±170° (the simulator's).
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["task", "measurements"])]
     joints: Option<PathBuf>,
+    /// Instead of a joint box, the configurations a task uses: a CSV with columns q1..qN
+    /// (degrees), one row per configuration. Each is bounded as given (no configuration
+    /// between them), so the brackets say what calibration bought where the robot works.
+    #[arg(long, value_name = "FILE", conflicts_with = "measurements")]
+    task: Option<PathBuf>,
+    /// Instead of a joint box, the joint readings of measured configurations (a file `certify`
+    /// reads, e.g. held-out rows with --rows; the tracked points are not used): each
+    /// configuration is bounded as given, as with --task.
+    #[arg(long, value_name = "FILE")]
+    measurements: Option<PathBuf>,
+    #[command(flatten)]
+    columns: super::ColumnArgs,
     /// The error bounds (uncertainty.toml): joint_deg, how far a joint may be from its command,
     /// widens every theta_i. Default: exact joints.
     #[arg(long, value_name = "FILE")]
@@ -77,6 +91,16 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             .into());
         }
     }
+    // The configurations of a task, read before any work (a bad file is named at once).
+    let task = match (&a.task, &a.measurements) {
+        (Some(path), _) => Some(read_task(path, joints)?),
+        (None, Some(path)) => {
+            a.columns.positions_only("accuracy --measurements")?;
+            let m = a.columns.read(path, joints)?;
+            Some(m.readings.into_iter().map(|r| r.joints_deg).collect())
+        }
+        (None, None) => None,
+    };
     let space = match &a.joints {
         Some(path) => read_joint_space(path, joints)?,
         None => JointSpace::simulator(joints),
@@ -102,14 +126,29 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             a.robot.display()
         );
     }
-    let bar = spinner(&format!(
-        "bounding the tool-point error over the joint space ({} boxes at most per robot)",
-        a.max_boxes
-    ));
-    let report = tool_accuracy(&arm, set, before.as_ref(), space, joint_deg, &settings);
-    bar.finish_and_clear();
+    let report = match &task {
+        Some(list) => {
+            let bar = spinner(&format!(
+                "bounding the tool-point error at {} configurations",
+                list.len()
+            ));
+            let report = tool_accuracy_at(&arm, set, before.as_ref(), list, joint_deg, &settings);
+            bar.finish_and_clear();
+            report
+        }
+        None => {
+            let bar = spinner(&format!(
+                "bounding the tool-point error over the joint space ({} boxes at most per \
+                 robot)",
+                a.max_boxes
+            ));
+            let report = tool_accuracy(&arm, set, before.as_ref(), space, joint_deg, &settings);
+            bar.finish_and_clear();
+            report
+        }
+    };
     let report = report?;
-    print_report(&report, &a);
+    print_report(&report, &a, task.as_ref().map(Vec::len));
     if let Some(path) = &a.json {
         let units: Vec<params::Unit> = params::names(joints).into_iter().map(|(_, u)| u).collect();
         write_atomically(path, &report.to_json(&names(joints), &units))
@@ -129,6 +168,8 @@ fn page(report: &ToolAccuracyReport, a: &Args) -> Result<String, Box<dyn std::er
     let mut files = vec![("robot file", a.robot.as_path())];
     for (role, path) in [
         ("joint space", &a.joints),
+        ("task", &a.task),
+        ("measured configurations", &a.measurements),
         ("robot before calibration", &a.before),
         ("error bounds", &a.uncertainty),
     ] {
@@ -143,7 +184,9 @@ fn page(report: &ToolAccuracyReport, a: &Args) -> Result<String, Box<dyn std::er
     )?)
 }
 
-fn print_report(r: &ToolAccuracyReport, a: &Args) {
+/// The report in the terminal; `task`: how many configurations, when the error was bounded at a
+/// task's configurations rather than over a joint box.
+fn print_report(r: &ToolAccuracyReport, a: &Args, task: Option<usize>) {
     let space: Vec<String> = r
         .space
         .ranges_deg
@@ -156,17 +199,29 @@ fn print_report(r: &ToolAccuracyReport, a: &Args) {
     } else {
         "every geometry θ* in the robot file's box"
     };
-    println!(
-        "tool-point error |p(q; θ*) - p(q; θ̂)| (mm, tracker frame) over the joint space {}°{}, \
-         {over}, joint error ±{}°:",
-        space.join(", "),
-        if a.joints.is_none() {
-            format!(" (the default: ±{JOINT_LIMIT_DEG}° per joint)")
-        } else {
-            String::new()
-        },
-        r.joint_deg
-    );
+    match task {
+        Some(n) => println!(
+            "tool-point error |p(q; θ*) - p(q; θ̂)| (mm, tracker frame) at the {n} configurations \
+             of {} (each as given; their hull {}°), {over}, joint error ±{}°:",
+            a.task
+                .as_ref()
+                .or(a.measurements.as_ref())
+                .map_or(String::new(), |p| p.display().to_string()),
+            space.join(", "),
+            r.joint_deg
+        ),
+        None => println!(
+            "tool-point error |p(q; θ*) - p(q; θ̂)| (mm, tracker frame) over the joint space \
+             {}°{}, {over}, joint error ±{}°:",
+            space.join(", "),
+            if a.joints.is_none() {
+                format!(" (the default: ±{JOINT_LIMIT_DEG}° per joint)")
+            } else {
+                String::new()
+            },
+            r.joint_deg
+        ),
+    }
     println!(
         "  {:<8} {:>14} {:>16} {:>7} {:>9} {:>8}",
         "robot", "upper (proved)", "lower (attained)", "ratio", "boxes", "seconds"
@@ -180,10 +235,12 @@ fn print_report(r: &ToolAccuracyReport, a: &Args) {
             b.ratio(),
             b.boxes,
             b.seconds,
-            if b.converged {
-                ""
-            } else {
-                "  (box budget reached: raise --max-boxes / --max-set-boxes to tighten)"
+            match (b.converged, task) {
+                (true, _) => "",
+                (false, None) => {
+                    "  (box budget reached: raise --max-boxes / --max-set-boxes to tighten)"
+                }
+                (false, Some(_)) => "  (each configuration bounded once: the bracket holds)",
             }
         )
     };
@@ -208,7 +265,18 @@ fn print_report(r: &ToolAccuracyReport, a: &Args) {
             w.value
         );
     }
-    if !r.after.converged {
+    if task.is_some() {
+        let q: Vec<String> = r
+            .after
+            .frontier_deg
+            .iter()
+            .map(|[lo, hi]| format!("{:.3}", 0.5 * (lo + hi)))
+            .collect();
+        println!(
+            "the upper bound after calibration is reached at q = ({})° (its bound there)",
+            q.join(", ")
+        );
+    } else if !r.after.converged {
         let f: Vec<String> = r
             .after
             .frontier_deg

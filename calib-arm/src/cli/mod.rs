@@ -98,6 +98,13 @@ enum Command {
     /// box shrinks: over a whole ±170° space the upper bound may stay several times the lower;
     /// over the cell a task uses (±10° of every joint) it converges within 1.05 in about half a
     /// minute (see --max-boxes).
+    ///
+    /// At the configurations the robot works at, each bounded as given:
+    ///   arm accuracy --robot calibrated.toml --before robot.toml \
+    ///                --measurements held_out.csv --uncertainty uncertainty.toml
+    /// (--rows and the column options as for certify; or --task task.csv, columns q1..qN in
+    /// degrees). On the real UR10's 1,435 held-out rows: at most 5.5 mm after calibration, at
+    /// least 21.2 mm before.
     #[command(verbatim_doc_comment)]
     Accuracy(accuracy::Args),
     /// Predict the tracked point at joint readings, over every parameter vector the calibration

@@ -66,6 +66,18 @@ pub trait Objective<const N: usize> {
         None
     }
 
+    /// A value `f` is proved to reach at the point `x` (`-∞` for none), for searches that need
+    /// only the lower bound there ([`maximize_over_list`]): by default the lower end of
+    /// [`Objective::at`]; an objective whose `at` also computes a costly upper end may skip it.
+    fn attained(&self, x: &[f64; N]) -> f64 {
+        let v = self.at(x);
+        if v.is_empty() || v.inf().is_nan() {
+            f64::NEG_INFINITY
+        } else {
+            v.inf()
+        }
+    }
+
     /// The widths boxes are split against: each step halves the side widest relative to these.
     /// By default the domain's own (every coordinate refined in proportion to its range); an
     /// objective whose coordinates share a unit (angles, say) may return equal widths so that
@@ -290,6 +302,90 @@ pub fn maximize<O: Objective<N>, const N: usize>(
             });
         }
     }
+}
+
+/// Brackets `max f` over a finite list of thin boxes (a task's configurations, held-out rows,
+/// each the enclosure of a point given in other units) instead of one box: per box, the upper
+/// end of [`Objective::enclose_up_to`] (proved over the box; loose only below the lower bound
+/// found so far) and [`Objective::attained`] at its midpoint. No point
+/// is searched beyond the list ([`Objective::improve`] is not called). The boxes are shared among
+/// the threads, each with its own objective from `objective` (objectives may keep per-thread
+/// state). `frontier` is the box with the largest upper end, `argmax` the midpoint attaining
+/// `lower`, `boxes` the number of boxes; `converged` when `upper <= (1 + rel_tol) lower` (or
+/// within `abs_tol`). An empty list gives the trivial bracket `[-∞, +∞]`; an empty, unbounded or
+/// NaN box, or an enclosure that fails, leaves `upper` at `+∞`.
+///
+/// ```
+/// use calib_core::{maximize_over_list, Interval, MaximumSettings, Objective};
+///
+/// /// `x (1 - x)`.
+/// struct Parabola;
+/// impl Objective<1> for Parabola {
+///     fn enclose(&self, x: &[Interval; 1]) -> Interval {
+///         x[0] * (Interval::point(1.0) - x[0])
+///     }
+/// }
+/// let list = [0.1, 0.4, 0.9].map(|v| [Interval::point(v)]);
+/// let m = maximize_over_list(|| Parabola, &list, &MaximumSettings::default());
+/// assert!(m.lower <= 0.24 && 0.24 <= m.upper && m.argmax == [0.4] && m.converged);
+/// ```
+pub fn maximize_over_list<O, const N: usize>(
+    objective: impl Fn() -> O + Sync,
+    boxes: &[[Interval; N]],
+    settings: &MaximumSettings,
+) -> Maximum<N>
+where
+    O: Objective<N>,
+{
+    use rayon::prelude::*;
+    let first = boxes.first().copied().unwrap_or([Interval::ZERO; N]);
+    let mut out = Maximum {
+        upper: f64::INFINITY,
+        lower: f64::NEG_INFINITY,
+        argmax: first.map(|v| v.mid()),
+        frontier: first,
+        boxes: boxes.len(),
+        converged: false,
+    };
+    if boxes.is_empty() {
+        return out;
+    }
+    // Per box: (upper, lower at the midpoint); a failed enclosure gives (+∞, -∞).
+    let values: Vec<(f64, f64)> = boxes
+        .par_iter()
+        .map_init(
+            || (objective(), f64::NEG_INFINITY),
+            |(f, found), b| {
+                if b.iter().any(|v| v.is_empty() || !v.is_bounded()) {
+                    return (f64::INFINITY, f64::NEG_INFINITY);
+                }
+                let lower = f.attained(&b.map(|v| v.mid()));
+                *found = found.max(lower);
+                let v = f.enclose_up_to(b, *found);
+                let upper = if v.is_empty() || v.sup().is_nan() {
+                    f64::INFINITY
+                } else {
+                    v.sup()
+                };
+                (upper, lower)
+            },
+        )
+        .collect();
+    out.upper = f64::NEG_INFINITY;
+    for (b, &(upper, lower)) in boxes.iter().zip(&values) {
+        if upper > out.upper {
+            out.upper = upper;
+            out.frontier = *b;
+        }
+        if lower > out.lower {
+            out.lower = lower;
+            out.argmax = b.map(|v| v.mid());
+        }
+    }
+    out.upper = out.upper.max(out.lower);
+    let gap = out.upper - out.lower;
+    out.converged = gap <= settings.abs_tol || gap <= settings.rel_tol * out.lower.abs();
+    out
 }
 
 /// `b` split at the coordinate of the largest `width × weight` ([`Objective::split_weights`]);

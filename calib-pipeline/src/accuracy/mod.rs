@@ -21,7 +21,7 @@ mod arcs;
 mod over_set;
 mod sphere;
 
-pub use over_set::{bracket_over_set, SetAccuracy};
+pub use over_set::{bracket_over_inputs, bracket_over_set, SetAccuracy};
 
 #[doc(hidden)]
 pub use arcs::arc_vertices;

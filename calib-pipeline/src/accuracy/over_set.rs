@@ -37,8 +37,8 @@ use super::arcs::{Arcs, WIDEST_ARC};
 use super::sphere::{add_up, cover_bound, farthest_corner, frame, norm, COVER_DIRECTIONS};
 use super::{slot, Attained, Bracket, BracketSettings, Instance, Predicted, Prediction};
 use calib_core::{
-    maximize, CertifiedSet, Evaluation, Interval, Jet, MaximumSettings, Objective, Parallelotope,
-    Quadratic, SlotQueries, VectorModel,
+    maximize, maximize_over_list, CertifiedSet, Evaluation, Interval, Jet, MaximumSettings,
+    Objective, Parallelotope, Quadratic, SlotQueries, VectorModel,
 };
 use std::cell::{Cell, RefCell};
 use std::sync::{Mutex, MutexGuard};
@@ -80,6 +80,11 @@ pub struct SetAccuracy<
 /// Input points spread over the box whose error directions the catalogue is pushed along, per
 /// coordinate of the prediction (a scalar prediction gets three times as many as a point).
 const CATALOGUE_PUSHES: usize = 18;
+
+/// Input boxes at most this wide (in the inputs' own units, their errors included: a joint
+/// reading within ±0.001° is 3.5·10⁻⁵ rad wide) are thin: bounded by the interval slopes alone
+/// when the prediction has no curvature enclosure (see [`SetAccuracy::terms`]).
+const THIN_INPUTS: f64 = 1e-4;
 
 /// Input points whose gradients shape the parallelotope.
 const HINT_INPUTS: usize = 24;
@@ -307,7 +312,11 @@ where
             .map(Box::new),
             _ => None,
         };
-        let columns = if widest <= P::SECOND_ORDER_WIDTH {
+        // On thin inputs without a curvature enclosure the columns would be taken over the
+        // set's box either way, and their variation with the inputs is negligible: the interval
+        // slopes serve, without the costly second-order models.
+        let thin = widest <= THIN_INPUTS && curvature.is_none();
+        let columns = if widest <= P::SECOND_ORDER_WIDTH && !thin {
             let at = match curvature {
                 Some(_) => self.nominal.map(Interval::point),
                 None => self.hull,
@@ -1165,6 +1174,14 @@ where
         }
     }
 
+    fn attained(&self, x: &[f64; NU]) -> f64 {
+        let v = self.problem.instance(x).value;
+        if v > self.lower.get() {
+            self.lower.set(v);
+        }
+        v
+    }
+
     fn split_reference(&self, domain: &[Interval; NU]) -> [Interval; NU] {
         let widest = domain
             .iter()
@@ -1237,6 +1254,68 @@ where
         worst: Some(worst).filter(|w| w.value > 0.0),
         frontier: m.frontier,
         converged: m.converged,
+        boxes: m.boxes,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// Brackets the prediction error of `problem` over a finite list of inputs (a task's
+/// configurations, held-out rows) instead of its input box, each input given as its enclosure
+/// (a thin box: a reading converted to the model's units): per input the bound the branch and
+/// bound takes on that box (the inputs' own errors included) and an instance of the catalogue's
+/// geometries ([`calib_core::maximize_over_list`]); then the set is pushed along the error's
+/// gradient at the input attaining the lower bound and at the one with the largest upper bound,
+/// which may raise the lower bound there. `problem`'s input box should hold the list (the
+/// catalogue and the parallelotope are spread over it); an input outside it is still bounded
+/// soundly. `boxes` is the number of inputs; `frontier` the input with the largest upper bound.
+pub fn bracket_over_inputs<
+    P,
+    const NX: usize,
+    const NMS: usize,
+    const NP: usize,
+    const NU: usize,
+    const R: usize,
+>(
+    problem: &SetAccuracy<'_, P, NX, NMS, NP, NU, R>,
+    inputs: &[[Interval; NU]],
+    settings: &BracketSettings,
+) -> Bracket<NX, NU, R>
+where
+    P: Prediction<NX, NMS, NP, NU, R>,
+{
+    let start = Instant::now();
+    let m = maximize_over_list(
+        || SetError {
+            problem,
+            lower: Cell::new(0.0),
+            lps: RefCell::new(problem.programs()),
+        },
+        inputs,
+        &MaximumSettings {
+            rel_tol: settings.rel_tol,
+            abs_tol: 0.0,
+            max_boxes: inputs.len(),
+        },
+    );
+    // The lower bound: the best instance at the worst inputs after pushes there.
+    let mut candidates: Vec<[f64; NU]> = vec![m.argmax, m.frontier.map(|v| v.mid())];
+    candidates.dedup();
+    for u in &candidates {
+        problem.push_at(u);
+    }
+    let worst = candidates
+        .iter()
+        .map(|u| problem.instance(u))
+        .max_by(|a, b| a.value.total_cmp(&b.value))
+        .filter(|w| w.value > 0.0);
+    let lower = worst.as_ref().map_or(0.0, |w| w.value).max(0.0);
+    let upper = m.upper.max(lower);
+    Bracket {
+        upper,
+        lower,
+        worst,
+        frontier: m.frontier,
+        converged: upper <= (1.0 + settings.rel_tol) * lower,
         boxes: m.boxes,
         seconds: start.elapsed().as_secs_f64(),
     }

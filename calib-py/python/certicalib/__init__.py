@@ -449,7 +449,8 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
 def accuracy_arm(robot: PathLike, *, joints: Optional[PathLike] = None,
                  before: Optional[PathLike] = None, uncertainty: Optional[PathLike] = None,
                  tolerance: float = 0.04, max_boxes: int = 20_000,
-                 max_set_boxes: int = 300, report: Optional[PathLike] = None) -> Dict[str, Any]:
+                 max_set_boxes: int = 300, report: Optional[PathLike] = None,
+                 task: Optional[PathLike] = None) -> Dict[str, Any]:
     r"""Bracket how far an arm's tool point can be from where the controller computes it (from
     ``robot``'s values), over every configuration of ``joints`` (a ``joints.toml``: ``q1 = [lo,
     hi]``, … degrees; default ±170° per joint), every geometry of ``robot``'s certified set (its
@@ -460,7 +461,9 @@ def accuracy_arm(robot: PathLike, *, joints: Optional[PathLike] = None,
     with ``joints_deg`` and ``theta``), ``improvement``. ``tolerance`` stops a bracket at
     ``upper <= (1 + tolerance) lower``; ``max_boxes`` and ``max_set_boxes`` bound the joint boxes
     over a box and over a certified set. ``report``: also write the accuracy certificate there
-    (what ``arm accuracy --report`` writes: one HTML page).
+    (what ``arm accuracy --report`` writes: one HTML page). ``task``: instead of ``joints``, the
+    configurations a task uses (a CSV with columns ``q1..qN``, degrees), each bounded as given
+    (``arm accuracy --task``); ``boxes`` then counts configurations.
 
     >>> import os, tempfile
     >>> d = tempfile.mkdtemp()
@@ -475,7 +478,7 @@ def accuracy_arm(robot: PathLike, *, joints: Optional[PathLike] = None,
         return None if p is None else os.fspath(p)
     return json.loads(_native.arm_accuracy(os.fspath(robot), opt(joints), opt(before),
                                            opt(uncertainty), float(tolerance), int(max_boxes),
-                                           int(max_set_boxes), opt(report)))
+                                           int(max_set_boxes), opt(report), opt(task)))
 
 
 class ArmReport:
