@@ -56,6 +56,54 @@ fn rechecked_worst<'a>(
     (w, theta)
 }
 
+/// The built-in arm simulated at 30 configurations (seed `seed`), certified in one contraction
+/// and calibrated: the arm, the simulation, the calibrated file's arm and set.
+fn calibrated_simulation(
+    seed: u64,
+) -> (
+    Arm,
+    calib_arm::Simulation,
+    calib_arm::calibrated::CalibratedArm,
+) {
+    use calib_arm::calibrated::{calibrated_arm, PointChoice};
+    use calib_arm::certification::{arm_settings, certify_arm, RunOptions};
+    use calib_arm::simulate::{simulate, Uncertainty};
+    let arm = builtin_arm();
+    let sim = simulate(&arm, 30, seed, Uncertainty::TRACKER, 1.0, &[]);
+    let run = certify_arm(
+        &arm,
+        &sim.readings,
+        &sim.uncertainty,
+        RunOptions {
+            depth: calib_pipeline::Depth::Fast,
+            lsq: false,
+        },
+        &arm_settings(),
+    )
+    .expect("an arm");
+    let joints: Vec<Vec<f64>> = sim.readings.iter().map(|r| r.joints_deg.clone()).collect();
+    let c = calibrated_arm(&arm, &run, &joints, PointChoice::LeastSquares).expect("consistent");
+    (arm, sim, c)
+}
+
+/// The geometries known to be consistent (model units, unpadded): the simulated truth and the
+/// certified set's points.
+fn consistent_geometries(
+    arm: &Arm,
+    sim: &calib_arm::Simulation,
+    c: &calib_arm::calibrated::CalibratedArm,
+) -> Vec<Vec<f64>> {
+    let index = calib_arm::certification::padded_index(arm.joints.len());
+    let mut geometries = vec![to_model(arm, &sim.truth)];
+    geometries.extend(
+        c.set
+            .points()
+            .iter()
+            .map(|p| index.iter().map(|&k| p.x[k]).collect::<Vec<f64>>()),
+    );
+    geometries
+}
+
 #[test]
 fn the_upper_bound_holds_and_the_worst_instance_is_rechecked() {
     let mut rng = StdRng::seed_from_u64(11);
@@ -192,24 +240,7 @@ fn a_joint_space_of_the_wrong_size_is_refused() {
 #[test]
 fn over_the_certified_set_no_consistent_geometry_exceeds_the_bound() {
     use calib_arm::accuracy::over_set::{certify_set_accuracy, SetToolAccuracy};
-    use calib_arm::calibrated::{calibrated_arm, PointChoice};
-    use calib_arm::certification::{arm_settings, certify_arm, padded_index, RunOptions};
-    use calib_arm::simulate::{simulate, Uncertainty};
-    let arm = builtin_arm();
-    let sim = simulate(&arm, 30, 3, Uncertainty::TRACKER, 1.0, &[]);
-    let run = certify_arm(
-        &arm,
-        &sim.readings,
-        &sim.uncertainty,
-        RunOptions {
-            depth: calib_pipeline::Depth::Fast,
-            lsq: false,
-        },
-        &arm_settings(),
-    )
-    .expect("an arm");
-    let joints: Vec<Vec<f64>> = sim.readings.iter().map(|r| r.joints_deg.clone()).collect();
-    let c = calibrated_arm(&arm, &run, &joints, PointChoice::LeastSquares).expect("consistent");
+    let (arm, sim, c) = calibrated_simulation(3);
     let mut rng = StdRng::seed_from_u64(5);
     let ranges_deg: Vec<[f64; 2]> = (0..arm.joints.len())
         .map(|_| {
@@ -237,14 +268,7 @@ fn over_the_certified_set_no_consistent_geometry_exceeds_the_bound() {
     // (model units, unpadded), each with random joint errors; errors by an independent forward
     // kinematics, at random joints of the box.
     let controller = to_model(&c.arm, &c.arm.nominal());
-    let index = padded_index(arm.joints.len());
-    let mut geometries = vec![to_model(&arm, &sim.truth)];
-    geometries.extend(
-        c.set
-            .points()
-            .iter()
-            .map(|p| index.iter().map(|&k| p.x[k]).collect::<Vec<f64>>()),
-    );
+    let geometries = consistent_geometries(&arm, &sim, &c);
     let mut largest: f64 = 0.0;
     for k in 0..2000 {
         let q: Vec<f64> = space
@@ -283,24 +307,7 @@ fn over_the_certified_set_no_consistent_geometry_exceeds_the_bound() {
 #[test]
 fn at_a_tasks_configurations_no_consistent_geometry_exceeds_the_bound() {
     use calib_arm::accuracy::tool_accuracy_at;
-    use calib_arm::calibrated::{calibrated_arm, PointChoice};
-    use calib_arm::certification::{arm_settings, certify_arm, padded_index, RunOptions};
-    use calib_arm::simulate::{simulate, Uncertainty};
-    let arm = builtin_arm();
-    let sim = simulate(&arm, 30, 8, Uncertainty::TRACKER, 1.0, &[]);
-    let run = certify_arm(
-        &arm,
-        &sim.readings,
-        &sim.uncertainty,
-        RunOptions {
-            depth: calib_pipeline::Depth::Fast,
-            lsq: false,
-        },
-        &arm_settings(),
-    )
-    .expect("an arm");
-    let joints: Vec<Vec<f64>> = sim.readings.iter().map(|r| r.joints_deg.clone()).collect();
-    let c = calibrated_arm(&arm, &run, &joints, PointChoice::LeastSquares).expect("consistent");
+    let (arm, sim, c) = calibrated_simulation(8);
     let mut rng = StdRng::seed_from_u64(9);
     let task: Vec<Vec<f64>> = (0..25)
         .map(|_| {
@@ -329,14 +336,7 @@ fn at_a_tasks_configurations_no_consistent_geometry_exceeds_the_bound() {
         assert_eq!(b.boxes, task.len());
     }
     let controller = to_model(&c.arm, &c.arm.nominal());
-    let index = padded_index(arm.joints.len());
-    let mut geometries = vec![to_model(&arm, &sim.truth)];
-    geometries.extend(
-        c.set
-            .points()
-            .iter()
-            .map(|p| index.iter().map(|&k| p.x[k]).collect::<Vec<f64>>()),
-    );
+    let geometries = consistent_geometries(&arm, &sim, &c);
     for (k, q) in task.iter().cycle().take(1500).enumerate() {
         let q: Vec<f64> = q.iter().map(|v| v.to_radians()).collect();
         let mut real = geometries[k % geometries.len()].clone();

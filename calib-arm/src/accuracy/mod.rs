@@ -577,15 +577,7 @@ pub fn tool_accuracy(
     settings: &ToolAccuracySettings,
 ) -> Result<ToolAccuracyReport, ArmError> {
     let over_set = set.is_some();
-    let after_problem = match set {
-        Some(set) => After::Set(Box::new(over_set::SetToolAccuracy::new(
-            arm, set, &space, joint_deg,
-        )?)),
-        None => After::Box(Box::new(ToolAccuracyProblem::new(arm, &space, joint_deg)?)),
-    };
-    let before_problem = before
-        .map(|b| ToolAccuracyProblem::new(b, &space, joint_deg))
-        .transpose()?;
+    let (after_problem, before_problem) = problems(arm, set, before, &space, joint_deg)?;
     let (after, before) = std::thread::scope(|s| {
         let b = s.spawn(|| {
             before_problem
@@ -665,15 +657,7 @@ pub fn tool_accuracy_at(
         })
         .collect();
     let over_set = set.is_some();
-    let after_problem = match set {
-        Some(set) => After::Set(Box::new(over_set::SetToolAccuracy::new(
-            arm, set, &space, joint_deg,
-        )?)),
-        None => After::Box(Box::new(ToolAccuracyProblem::new(arm, &space, joint_deg)?)),
-    };
-    let before_problem = before
-        .map(|b| ToolAccuracyProblem::new(b, &space, joint_deg))
-        .transpose()?;
+    let (after_problem, before_problem) = problems(arm, set, before, &space, joint_deg)?;
     let after = match &after_problem {
         After::Set(p) => over_set::certify_set_accuracy_at(p, &list, settings),
         After::Box(p) => certify_tool_accuracy_at(p, &list, settings),
@@ -730,17 +714,44 @@ fn bracket_of(
         upper: m.upper.max(lower),
         lower,
         worst: Some(worst).filter(|w| w.value > 0.0),
-        frontier_deg: m.frontier[..problem.joints]
-            .iter()
-            .map(|v| {
-                let d = rad_to_deg(*v);
-                [d.inf(), d.sup()]
-            })
-            .collect(),
+        frontier_deg: frontier_deg(&m.frontier, problem.joints),
         converged: m.converged || lower >= m.upper / (1.0 + settings.rel_tol),
         boxes: m.boxes,
         seconds: start.elapsed().as_secs_f64(),
     }
+}
+
+/// The problems of [`tool_accuracy`] and [`tool_accuracy_at`] on `space`: the calibrated
+/// `arm` over its certified `set` (its box without one) and, with `before`, the uncalibrated
+/// robot over its box.
+fn problems(
+    arm: &Arm,
+    set: Option<crate::certification::ArmSet>,
+    before: Option<&Arm>,
+    space: &JointSpace,
+    joint_deg: f64,
+) -> Result<(After, Option<ToolAccuracyProblem>), ArmError> {
+    let after = match set {
+        Some(set) => After::Set(Box::new(over_set::SetToolAccuracy::new(
+            arm, set, space, joint_deg,
+        )?)),
+        None => After::Box(Box::new(ToolAccuracyProblem::new(arm, space, joint_deg)?)),
+    };
+    let before = before
+        .map(|b| ToolAccuracyProblem::new(b, space, joint_deg))
+        .transpose()?;
+    Ok((after, before))
+}
+
+/// A frontier box of padded joints (radians) in degrees, for the arm's `joints`.
+pub(crate) fn frontier_deg(frontier: &[Interval; MAX_JOINTS], joints: usize) -> Vec<[f64; 2]> {
+    frontier[..joints]
+        .iter()
+        .map(|v| {
+            let d = rad_to_deg(*v);
+            [d.inf(), d.sup()]
+        })
+        .collect()
 }
 
 /// The calibrated robot's problem: over its certified set, or over its box.

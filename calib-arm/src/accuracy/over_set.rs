@@ -10,7 +10,7 @@ use crate::certification::{padded_index, ArmSet, MAX_JOINTS, NM, NX};
 use crate::joint_space::JointSpace;
 use crate::model::arm7_point;
 use crate::robot::Arm;
-use crate::units::{deg_to_rad, rad_to_deg, to_deg};
+use crate::units::{deg_to_rad, to_deg};
 use crate::{Arm7Point, ArmError};
 use calib_core::{CertifiedSet, Interval, Jet, Quadratic};
 use calib_pipeline::accuracy::{
@@ -177,18 +177,11 @@ pub fn certify_set_accuracy_at(
 impl SetToolAccuracy {
     /// The engine's bracket in the arm's terms.
     fn tool_bracket(&self, b: &Bracket<NX, MAX_JOINTS, 3>) -> ToolBracket {
-        let problem = self;
         ToolBracket {
             upper: b.upper,
             lower: b.lower,
-            worst: b.worst.as_ref().map(|w| problem.tool_instance(w)),
-            frontier_deg: b.frontier[..problem.joints]
-                .iter()
-                .map(|v| {
-                    let d = rad_to_deg(*v);
-                    [d.inf(), d.sup()]
-                })
-                .collect(),
+            worst: b.worst.as_ref().map(|w| self.tool_instance(w)),
+            frontier_deg: super::frontier_deg(&b.frontier, self.joints),
             converged: b.converged,
             boxes: b.boxes,
             seconds: b.seconds,
