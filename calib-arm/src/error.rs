@@ -40,17 +40,20 @@ pub enum ArmError {
     /// A joint error (degrees) that is not a finite value `>= 0`.
     #[error("joint error {0}: expected a finite value >= 0")]
     JointError(f64),
-    /// A task of configurations with none, or one with another number of joints than the arm,
-    /// or a joint that is not a finite number of degrees.
+    /// A task's configuration with another number of joints than the arm, or a joint that is not
+    /// a finite number of degrees.
     #[error("the task's configuration {index} has {found} finite joints; the arm has {joints}")]
     TaskConfiguration {
-        /// The configuration (1-based; 0 for an empty task).
+        /// The configuration (1-based).
         index: usize,
         /// Its finite joints.
         found: usize,
         /// The arm's joints.
         joints: usize,
     },
+    /// A task without configurations.
+    #[error("the task has no configurations")]
+    EmptyTask,
     /// An accuracy problem over a certified set that is empty.
     #[error("the certified set is empty")]
     EmptySet,

@@ -705,6 +705,15 @@ fn the_calibrated_arm_contains_the_certified_box_and_its_accuracy_is_bracketed()
     let factor = t["before"]["lower"].as_f64().expect("lower")
         / t["position"]["upper"].as_f64().expect("upper");
     assert_eq!(t["improvement"].as_f64(), Some(factor), "{t}");
+    // The report says the bounds hold at these configurations, not over their hull.
+    assert_eq!(t["configurations"].as_u64(), Some(12), "{t}");
+    // A joint box given as a task is refused: its bounds would hold at sample points only.
+    let o = at_rows("--task", "joints.toml");
+    assert!(
+        !o.status.success() && text(&o).contains("--joints"),
+        "{}",
+        text(&o)
+    );
     // A task file with a joint missing is named, with its line, and nothing is written.
     std::fs::write(p("task.csv"), "q1,q2,q3\n1,2,3\n4,5\n").expect("write");
     std::fs::remove_file(p("task.json")).expect("remove");

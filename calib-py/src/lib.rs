@@ -1077,6 +1077,11 @@ fn arm_accuracy(
         ("robot before calibration", before.as_ref()),
         ("error bounds", uncertainty.as_ref()),
     ]);
+    if task.is_some() && joints.is_some() {
+        return Err(value_error(
+            "joints and task: give a joint box or a task's configurations, not both",
+        ));
+    }
     let n = arm.joints.len();
     let task = task
         .map(|p| read_task(&p, n))

@@ -596,14 +596,15 @@ pub fn tool_accuracy(
         after,
         before,
         over_set,
+        configurations: None,
     })
 }
 
 /// `arm accuracy --task`: [`tool_accuracy`] over a finite list of configurations (degrees, one
 /// joint each per joint of the arm) instead of a joint box: the bracket's upper bound is proved
-/// at every configuration (the exact decimal angles, enclosed; the joints' error included), its
-/// lower bound attained at one of them — after calibration over the certified set (or the box),
-/// before over the box. The report's joint space is the configurations' hull. An error when a
+/// at every configuration (the decimal angles enclosed; the joints' error included), its
+/// lower bound attained at one of them (at the nearest doubles of its angles) — after
+/// calibration over the certified set (or the box), before over the box. The report's joint space is the configurations' hull. An error when a
 /// configuration has the wrong number of joints or a joint that is not finite, or the task is
 /// empty.
 pub fn tool_accuracy_at(
@@ -616,11 +617,7 @@ pub fn tool_accuracy_at(
 ) -> Result<ToolAccuracyReport, ArmError> {
     let joints = arm.joints.len();
     if configurations_deg.is_empty() {
-        return Err(ArmError::TaskConfiguration {
-            index: 0,
-            found: 0,
-            joints,
-        });
+        return Err(ArmError::EmptyTask);
     }
     for (k, q) in configurations_deg.iter().enumerate() {
         let found = q.iter().filter(|v| v.is_finite()).count();
@@ -651,7 +648,8 @@ pub fn tool_accuracy_at(
         .iter()
         .map(|q| {
             core::array::from_fn(|i| match q.get(i) {
-                Some(v) => over_set::joint_box(*v, *v),
+                // The decimal the user wrote lies within half an ulp of its double.
+                Some(v) => over_set::joint_box(v.next_down(), v.next_up()),
                 None => Interval::ZERO,
             })
         })
@@ -671,6 +669,7 @@ pub fn tool_accuracy_at(
         after,
         before,
         over_set,
+        configurations: Some(configurations_deg.len()),
     })
 }
 
@@ -775,6 +774,9 @@ pub struct ToolAccuracyReport {
     /// Whether the calibrated robot's bracket is taken over its certified set (else over the
     /// robot file's box: a file without a set).
     pub over_set: bool,
+    /// With a task ([`tool_accuracy_at`]): how many configurations were bounded, each as given
+    /// (`space` is then their hull, not a box the bounds hold over).
+    pub configurations: Option<usize>,
 }
 
 impl ToolAccuracyReport {
@@ -847,6 +849,11 @@ impl ToolAccuracyReport {
             "before": before,
             "improvement": self.improvement().map(finite),
         });
+        let mut report = report;
+        if let Some(n) = self.configurations {
+            // The bounds hold at these configurations only; `joint_space` is their hull.
+            report["configurations"] = json!(n);
+        }
         serde_json::to_string_pretty(&report).unwrap_or_default() + "\n"
     }
 }

@@ -15,7 +15,7 @@ impl ToolAccuracyReport {
             paragraphs.push(format!("{}.", capitalised(&words)));
         }
         for (name, b) in self.brackets() {
-            if !b.converged {
+            if !b.converged && self.configurations.is_none() {
                 paragraphs.push(format!(
                     "{}: the box budget ran out before the bracket closed; a larger error could \
                      still hide near {}° (the joint box giving the upper bound). Raise \
@@ -34,8 +34,14 @@ impl ToolAccuracyReport {
             })
             .collect();
         Section {
-            heading: "What calibration bought: the tool-point error over the joint space"
-                .to_string(),
+            heading: match self.configurations {
+                Some(_) => "What calibration bought: the tool-point error at the task's \
+                            configurations"
+                    .to_string(),
+                None => {
+                    "What calibration bought: the tool-point error over the joint space".to_string()
+                }
+            },
             paragraphs,
             tables: vec![self.bracket_table(), self.worst_table()],
             figures: vec![brackets_figure(
@@ -62,13 +68,23 @@ impl ToolAccuracyReport {
         } else {
             "every geometry θ* in the robot file's box (the file has no certified set)"
         };
+        let place = match self.configurations {
+            Some(n) => format!(
+                "at each of the task's {n} configurations as given (not between them; their hull \
+                 is {}°)",
+                ranges(&self.space.ranges_deg)
+            ),
+            None => format!(
+                "over the whole joint space {}°",
+                ranges(&self.space.ranges_deg)
+            ),
+        };
         format!(
-            "Over the joint space {}° (each joint within ±{}° of its reading), for {geometries}, \
+            "For every joint within ±{}° of its reading and {geometries}, \
              the tool point the controller computes from the calibrated values, p(q; θ̂), differs \
              from where the real robot puts it, p(q; θ*), by at most the upper bound — proved \
-             over the whole joint space — and by at least the lower bound, attained at an \
-             explicit configuration by a geometry proved consistent with the measurements.{}",
-            ranges(&self.space.ranges_deg),
+             {place} — and by at least the lower bound, attained at an explicit configuration by \
+             a geometry proved consistent with the measurements.{}",
             self.joint_deg,
             if self.before.is_some() {
                 " Before calibration: the same error of the uncalibrated file's values, over \

@@ -92,14 +92,29 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         }
     }
     // The configurations of a task, read before any work (a bad file is named at once).
-    let task = match (&a.task, &a.measurements) {
-        (Some(path), _) => Some(read_task(path, joints)?),
+    // Readings converted from radians carry their rounding (`slack`), added to the joints' error.
+    let (task, reading_slack) = match (&a.task, &a.measurements) {
+        (Some(path), _) => {
+            if path.extension().is_some_and(|e| e == "toml") {
+                return Err(format!(
+                    "{}: --task takes a CSV of configurations (q1..qN, degrees); a joint box \
+                     (joints.toml) goes to --joints, where the bounds hold over all of it",
+                    path.display()
+                )
+                .into());
+            }
+            (Some(read_task(path, joints)?), 0.0)
+        }
         (None, Some(path)) => {
             a.columns.positions_only("accuracy --measurements")?;
             let m = a.columns.read(path, joints)?;
-            Some(m.readings.into_iter().map(|r| r.joints_deg).collect())
+            let slack = m.slack.joint_deg;
+            (
+                Some(m.readings.into_iter().map(|r| r.joints_deg).collect()),
+                slack,
+            )
         }
-        (None, None) => None,
+        (None, None) => (None, 0.0),
     };
     let space = match &a.joints {
         Some(path) => read_joint_space(path, joints)?,
@@ -111,6 +126,11 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
         .map(read_uncertainty)
         .transpose()?
         .map_or(0.0, |u| u.joint_deg);
+    let joint_deg = if reading_slack > 0.0 {
+        (joint_deg + reading_slack).next_up()
+    } else {
+        joint_deg
+    };
     let settings = ToolAccuracySettings {
         rel_tol: a.tolerance,
         max_boxes: a.max_boxes,
@@ -273,7 +293,7 @@ fn print_report(r: &ToolAccuracyReport, a: &Args, task: Option<usize>) {
             .map(|[lo, hi]| format!("{:.3}", 0.5 * (lo + hi)))
             .collect();
         println!(
-            "the upper bound after calibration is reached at q = ({})° (its bound there)",
+            "the upper bound after calibration is largest at q = ({})° (its bound there)",
             q.join(", ")
         );
     } else if !r.after.converged {

@@ -308,9 +308,11 @@ pub fn maximize<O: Objective<N>, const N: usize>(
 /// each the enclosure of a point given in other units) instead of one box: per box, the upper
 /// end of [`Objective::enclose_up_to`] (proved over the box; loose only below the lower bound
 /// found so far) and [`Objective::attained`] at its midpoint. No point
-/// is searched beyond the list ([`Objective::improve`] is not called). The boxes are shared among
-/// the threads, each with its own objective from `objective` (objectives may keep per-thread
-/// state). `frontier` is the box with the largest upper end, `argmax` the midpoint attaining
+/// is searched beyond the list ([`Objective::improve`] is not called). Two passes, each shared
+/// among the threads with objectives from `objective` (objectives may keep per-thread state; a
+/// thread may make more than one): every box's attained value, then every box's enclosure with
+/// the largest of them as `enough` — so which boxes get a tight bound does not depend on the
+/// threads' schedule. `frontier` is the box with the largest upper end, `argmax` the midpoint attaining
 /// `lower`, `boxes` the number of boxes; `converged` when `upper <= (1 + rel_tol) lower` (or
 /// within `abs_tol`). An empty list gives the trivial bracket `[-∞, +∞]`; an empty, unbounded or
 /// NaN box, or an enclosure that fails, leaves `upper` at `+∞`.
@@ -350,29 +352,41 @@ where
     if boxes.is_empty() {
         return out;
     }
-    // Per box: (upper, lower at the midpoint); a failed enclosure gives (+∞, -∞).
-    let values: Vec<(f64, f64)> = boxes
+    let usable = |b: &[Interval; N]| b.iter().all(|v| !v.is_empty() && v.is_bounded());
+    // Per box: the value attained at its midpoint (-∞ for none), then its upper bound (+∞ for
+    // a failed enclosure).
+    let lowers: Vec<f64> = boxes
         .par_iter()
-        .map_init(
-            || (objective(), f64::NEG_INFINITY),
-            |(f, found), b| {
-                if b.iter().any(|v| v.is_empty() || !v.is_bounded()) {
-                    return (f64::INFINITY, f64::NEG_INFINITY);
-                }
-                let lower = f.attained(&b.map(|v| v.mid()));
-                *found = found.max(lower);
-                let v = f.enclose_up_to(b, *found);
-                let upper = if v.is_empty() || v.sup().is_nan() {
-                    f64::INFINITY
-                } else {
-                    v.sup()
-                };
-                (upper, lower)
-            },
-        )
+        .map_init(&objective, |f, b| {
+            let v = if usable(b) {
+                f.attained(&b.map(|v| v.mid()))
+            } else {
+                f64::NEG_INFINITY
+            };
+            if v.is_nan() {
+                f64::NEG_INFINITY
+            } else {
+                v
+            }
+        })
+        .collect();
+    let enough = lowers.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let uppers: Vec<f64> = boxes
+        .par_iter()
+        .map_init(&objective, |f, b| {
+            if !usable(b) {
+                return f64::INFINITY;
+            }
+            let v = f.enclose_up_to(b, enough);
+            if v.is_empty() || v.sup().is_nan() {
+                f64::INFINITY
+            } else {
+                v.sup()
+            }
+        })
         .collect();
     out.upper = f64::NEG_INFINITY;
-    for (b, &(upper, lower)) in boxes.iter().zip(&values) {
+    for ((b, &upper), &lower) in boxes.iter().zip(&uppers).zip(&lowers) {
         if upper > out.upper {
             out.upper = upper;
             out.frontier = *b;
@@ -384,7 +398,10 @@ where
     }
     out.upper = out.upper.max(out.lower);
     let gap = out.upper - out.lower;
-    out.converged = gap <= settings.abs_tol || gap <= settings.rel_tol * out.lower.abs();
+    // Without an attained value nothing has converged (an infinite gap is not within any share
+    // of an infinite lower bound).
+    out.converged = out.lower.is_finite()
+        && (gap <= settings.abs_tol || gap <= settings.rel_tol * out.lower.abs());
     out
 }
 

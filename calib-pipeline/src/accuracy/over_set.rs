@@ -82,9 +82,9 @@ pub struct SetAccuracy<
 const CATALOGUE_PUSHES: usize = 18;
 
 /// Input boxes at most this wide (in the inputs' own units, their errors included: a joint
-/// reading within ±0.001° is 3.5·10⁻⁵ rad wide) are thin: bounded by the interval slopes alone
+/// reading within ±0.05° is 1.7·10⁻³ rad wide) are thin: bounded by the interval slopes alone
 /// when the prediction has no curvature enclosure (see [`SetAccuracy::terms`]).
-const THIN_INPUTS: f64 = 1e-4;
+const THIN_INPUTS: f64 = 2e-3;
 
 /// Input points whose gradients shape the parallelotope.
 const HINT_INPUTS: usize = 24;
@@ -1266,8 +1266,10 @@ where
 /// geometries ([`calib_core::maximize_over_list`]); then the set is pushed along the error's
 /// gradient at the input attaining the lower bound and at the one with the largest upper bound,
 /// which may raise the lower bound there. `problem`'s input box should hold the list (the
-/// catalogue and the parallelotope are spread over it); an input outside it is still bounded
-/// soundly. `boxes` is the number of inputs; `frontier` the input with the largest upper bound.
+/// catalogue and the parallelotope are spread over it; an input outside it is still bounded
+/// soundly, but one the prediction's [`Prediction::narrow`] excludes counts as error 0, as in
+/// the branch and bound). `boxes` is the number of inputs; `frontier` the input with the largest
+/// upper bound. An empty list gives the trivial bracket (`upper` `+∞`, no instance).
 pub fn bracket_over_inputs<
     P,
     const NX: usize,
@@ -1284,6 +1286,17 @@ where
     P: Prediction<NX, NMS, NP, NU, R>,
 {
     let start = Instant::now();
+    if inputs.is_empty() {
+        return Bracket {
+            upper: f64::INFINITY,
+            lower: 0.0,
+            worst: None,
+            frontier: [Interval::ZERO; NU],
+            converged: false,
+            boxes: 0,
+            seconds: start.elapsed().as_secs_f64(),
+        };
+    }
     let m = maximize_over_list(
         || SetError {
             problem,
