@@ -780,6 +780,18 @@ pub struct ToolAccuracyReport {
 }
 
 impl ToolAccuracyReport {
+    /// The joints' error bound (degrees) as printed: as written when short, else rounded up to
+    /// six decimals (a bound widened by a conversion's rounding, 0.001000000000113687, prints
+    /// 0.001001).
+    pub fn joint_error_text(&self) -> String {
+        let exact = format!("{}", self.joint_deg);
+        if exact.len() <= 10 {
+            exact
+        } else {
+            calib_pipeline::html::rounded_to(self.joint_deg, 6, false)
+        }
+    }
+
     /// How much calibration improved the worst tool-point error: `before.lower / after.upper`,
     /// a proved factor (the uncalibrated error reaches `before.lower`, the calibrated one stays
     /// below `after.upper`).

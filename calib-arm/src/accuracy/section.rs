@@ -85,7 +85,7 @@ impl ToolAccuracyReport {
              from where the real robot puts it, p(q; θ*), by at most the upper bound — proved \
              {place} — and by at least the lower bound, attained at an explicit configuration by \
              a geometry proved consistent with the measurements.{}",
-            self.joint_deg,
+            self.joint_error_text(),
             if self.before.is_some() {
                 " Before calibration: the same error of the uncalibrated file's values, over \
                  every geometry in its prior box."

@@ -228,7 +228,7 @@ fn print_report(r: &ToolAccuracyReport, a: &Args, task: Option<usize>) {
                 .or(a.measurements.as_ref())
                 .map_or(String::new(), |p| p.display().to_string()),
             space.join(", "),
-            r.joint_deg
+            r.joint_error_text()
         ),
         None => println!(
             "tool-point error |p(q; θ*) - p(q; θ̂)| (mm, tracker frame) over the joint space \
@@ -239,7 +239,7 @@ fn print_report(r: &ToolAccuracyReport, a: &Args, task: Option<usize>) {
             } else {
                 String::new()
             },
-            r.joint_deg
+            r.joint_error_text()
         ),
     }
     println!(
