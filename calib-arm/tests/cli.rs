@@ -725,6 +725,27 @@ fn the_calibrated_arm_contains_the_certified_box_and_its_accuracy_is_bracketed()
         text(&o)
     );
     assert!(!Path::new(&p("task.json")).exists());
+    // The measurement file's column options with a task would be ignored: refused, named.
+    std::fs::write(p("task.csv"), "q1,q2,q3\n1,2,3\n4,5,6\n").expect("write");
+    for (flag, value) in [("--rows", "1"), ("--joint-unit", "rad")] {
+        let o = arm(&[
+            "accuracy",
+            "--robot",
+            &p("cal.toml"),
+            "--task",
+            &p("task.csv"),
+            flag,
+            value,
+            "--json",
+            &p("task.json"),
+        ]);
+        assert!(
+            !o.status.success() && text(&o).contains(flag) && text(&o).contains("--measurements"),
+            "{}",
+            text(&o)
+        );
+        assert!(!Path::new(&p("task.json")).exists());
+    }
     // Predictions over the set: the true tracked point (truth.json, the simulator's geometry)
     // lies in every certified range, every measured point in its range with the error bounds.
     let predict = |measurements: &str| {

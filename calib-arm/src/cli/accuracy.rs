@@ -91,6 +91,21 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             .into());
         }
     }
+    // The column options describe the file of --measurements; with a task or a joint box they
+    // would be ignored (a task's `--joint-unit rad`, its `--rows`), so they are refused.
+    if a.measurements.is_none() {
+        if let Some(flag) = a.columns.first_given() {
+            let list = if a.task.is_some() {
+                "--task reads q1..qN in degrees, every row"
+            } else {
+                "a joint box is read from --joints"
+            };
+            return Err(format!(
+                "{flag} describes the file of --measurements, which is not given: {list}"
+            )
+            .into());
+        }
+    }
     // The configurations of a task, read before any work (a bad file is named at once).
     // Readings converted from radians carry their rounding (`slack`), added to the joints' error.
     let (task, reading_slack) = match (&a.task, &a.measurements) {

@@ -256,6 +256,26 @@ impl ColumnArgs {
         Ok(c)
     }
 
+    /// The first column option given a value other than its default (`--rows`, say), for a
+    /// command that reads no measurement file this time and must not ignore it silently.
+    fn first_given(&self) -> Option<&'static str> {
+        use calib_arm::tracker_file::{JointUnit, LengthUnit, OrientationConvention};
+        [
+            (self.joint_columns.is_some(), "--joint-columns"),
+            (self.point_columns.is_some(), "--point-columns"),
+            (self.joint_unit != JointUnit::Deg, "--joint-unit"),
+            (self.length_unit != LengthUnit::Mm, "--length-unit"),
+            (self.rows.is_some(), "--rows"),
+            (self.orientation_columns.is_some(), "--orientation-columns"),
+            (
+                self.orientation_convention != OrientationConvention::EulerXyzDeg,
+                "--orientation-convention",
+            ),
+        ]
+        .into_iter()
+        .find_map(|(given, flag)| given.then_some(flag))
+    }
+
     /// An error for a command (`arm COMMAND`) that uses positions only when orientation columns
     /// are given.
     fn positions_only(&self, command: &str) -> Result<(), String> {
