@@ -746,6 +746,13 @@ fn the_calibrated_arm_contains_the_certified_box_and_its_accuracy_is_bracketed()
         );
         assert!(!Path::new(&p("task.json")).exists());
     }
+    // Likewise over the default joint box.
+    let o = arm(&["accuracy", "--robot", &p("cal.toml"), "--rows", "1"]);
+    assert!(
+        !o.status.success() && text(&o).contains("--rows") && text(&o).contains("--joints"),
+        "{}",
+        text(&o)
+    );
     // Predictions over the set: the true tracked point (truth.json, the simulator's geometry)
     // lies in every certified range, every measured point in its range with the error bounds.
     let predict = |measurements: &str| {

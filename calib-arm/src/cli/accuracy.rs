@@ -98,7 +98,7 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             let list = if a.task.is_some() {
                 "--task reads q1..qN in degrees, every row"
             } else {
-                "a joint box is read from --joints"
+                "the joint box comes from --joints (default: every joint within ±170°)"
             };
             return Err(format!(
                 "{flag} describes the file of --measurements, which is not given: {list}"
