@@ -201,10 +201,10 @@ pub struct ColumnArgs {
     #[arg(long, value_name = "X,Y,Z", value_delimiter = ',', num_args = 1)]
     point_columns: Option<Vec<String>>,
     /// The joint readings' unit.
-    #[arg(long, value_enum, value_name = "UNIT", default_value = "deg")]
+    #[arg(long, value_enum, value_name = "UNIT", default_value_t = ColumnArgs::JOINT_UNIT)]
     joint_unit: calib_arm::tracker_file::JointUnit,
     /// The tracked point's unit.
-    #[arg(long, value_enum, value_name = "UNIT", default_value = "mm")]
+    #[arg(long, value_enum, value_name = "UNIT", default_value_t = ColumnArgs::LENGTH_UNIT)]
     length_unit: calib_arm::tracker_file::LengthUnit,
     /// Use only these data rows (1-based, the header is not a row): A-B, A- or A. E.g. 1-60 to
     /// calibrate on the first 60 configurations, 61- to check the rest with `predict`.
@@ -224,12 +224,21 @@ pub struct ColumnArgs {
         long,
         value_enum,
         value_name = "CONVENTION",
-        default_value = "euler-xyz-deg"
+        default_value_t = ColumnArgs::ORIENTATION_CONVENTION
     )]
     orientation_convention: calib_arm::tracker_file::OrientationConvention,
 }
 
 impl ColumnArgs {
+    /// `--joint-unit`'s default.
+    const JOINT_UNIT: calib_arm::tracker_file::JointUnit = calib_arm::tracker_file::JointUnit::Deg;
+    /// `--length-unit`'s default.
+    const LENGTH_UNIT: calib_arm::tracker_file::LengthUnit =
+        calib_arm::tracker_file::LengthUnit::Mm;
+    /// `--orientation-convention`'s default.
+    const ORIENTATION_CONVENTION: calib_arm::tracker_file::OrientationConvention =
+        calib_arm::tracker_file::OrientationConvention::EulerXyzDeg;
+
     /// The layout for an arm with `joints` joints.
     fn columns(
         &self,
@@ -259,16 +268,15 @@ impl ColumnArgs {
     /// The first column option given a value other than its default (`--rows`, say), for a
     /// command that reads no measurement file this time and must not ignore it silently.
     fn first_given(&self) -> Option<&'static str> {
-        use calib_arm::tracker_file::{JointUnit, LengthUnit, OrientationConvention};
         [
             (self.joint_columns.is_some(), "--joint-columns"),
             (self.point_columns.is_some(), "--point-columns"),
-            (self.joint_unit != JointUnit::Deg, "--joint-unit"),
-            (self.length_unit != LengthUnit::Mm, "--length-unit"),
+            (self.joint_unit != Self::JOINT_UNIT, "--joint-unit"),
+            (self.length_unit != Self::LENGTH_UNIT, "--length-unit"),
             (self.rows.is_some(), "--rows"),
             (self.orientation_columns.is_some(), "--orientation-columns"),
             (
-                self.orientation_convention != OrientationConvention::EulerXyzDeg,
+                self.orientation_convention != Self::ORIENTATION_CONVENTION,
                 "--orientation-convention",
             ),
         ]
