@@ -14,8 +14,8 @@
 use calib_arm::accuracy::{certify_tool_accuracy, ToolAccuracyProblem, ToolAccuracySettings};
 use calib_arm::joint_space::JointSpace;
 use calib_gough::accuracy::{
-    certify_accuracy, pose_error_bounds, pose_error_instances, pose_errors, AccuracyProblem,
-    AccuracySettings, PoseBoundSettings,
+    certify_accuracy, pose_error_instances, pose_errors, AccuracyProblem, AccuracySettings,
+    PoseBoundSettings,
 };
 use calib_gough::design::{builtin_robot, design, DesignRequest};
 use calib_gough::files::LegSpec;
@@ -85,45 +85,6 @@ fn bench(c: &mut Criterion) {
                     &problem,
                     Uncertainty::PAPER.len,
                     &PoseBoundSettings::default(),
-                ))
-            })
-        },
-    );
-    // The paving of the moves (second-order models): the built-in hexapod with the boxes 21 poses
-    // leave (`a_z`, `l` at ± 0.1 cm: centimetre moves), one box of poses (± 0.5 cm, 1°), a fixed
-    // count of boxes of moves; boxes of moves per second = 4,000 / the time.
-    let centimetre: Vec<LegSpec> = robot
-        .iter()
-        .map(|s| LegSpec {
-            nominal: s.nominal,
-            radius: [0.02, 0.02, 0.1, 0.01, 0.01, 0.05, 0.1],
-        })
-        .collect();
-    let box_of_poses = Workspace {
-        x: [-0.5, 0.5],
-        y: [-0.5, 0.5],
-        z: [59.5, 60.5],
-        tilt_deg: 1.0,
-        stroke: None,
-    };
-    let problem = AccuracyProblem::new(&centimetre, &box_of_poses);
-    let settings = PoseBoundSettings {
-        max_pose_boxes: 1,
-        max_move_boxes: 4000,
-        max_seconds: f64::INFINITY,
-        ..PoseBoundSettings::default()
-    };
-    g.bench_function(
-        "accuracy/paving of the moves, 4,000 boxes, centimetre errors",
-        |b| {
-            b.iter(|| {
-                // Lower bounds far below the errors: the paving never meets its target and
-                // examines all its boxes.
-                black_box(pose_error_bounds(
-                    &problem,
-                    Uncertainty::PAPER.len,
-                    [1e-3; 2],
-                    &settings,
                 ))
             })
         },

@@ -19,7 +19,6 @@ pub mod enclosure;
 #[doc(hidden)]
 pub mod model;
 #[doc(hidden)]
-pub mod move_paving;
 pub(crate) mod over_set;
 #[doc(hidden)]
 pub mod pose_bound;
@@ -337,10 +336,10 @@ pub fn unproved_words(b: &PoseErrorBounds, tilt_deg: f64) -> Option<String> {
         };
         format!(
             "the budget ended with {settled} of the workspace settled (by volume of its box of \
-             poses; {} boxes of poses, {} boxes of moves), the reached pose not yet enclosed \
-             for commanded poses near {near}: a larger budget (`--pose-seconds`), narrower \
+             poses; {} boxes of poses), the reached pose not yet enclosed for commanded poses \
+             near {near}: a larger budget (`--pose-seconds`), narrower \
              geometry boxes (from more measurements) or a smaller workspace may prove it",
-            b.pose_boxes, b.move_boxes
+            b.pose_boxes
         )
     })
 }

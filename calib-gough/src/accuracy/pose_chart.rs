@@ -1,10 +1,10 @@
 //! A chart that follows the commanded pose: the platform's pose errors over a box of poses in one
 //! step, when the legs' Jacobian changes little across the box and the move.
 //!
-//! [`super::pose_bound`]'s chart `δ = M y` is fixed for the whole box of poses (`M ≈ J⁻¹` at its
-//! centre). Over a box of width `w` the legs' Jacobian `J(X)` changes by `O(w)`, and in the fixed
-//! chart so does every leg's change: `G_i(X, M y) - y_i ≈ ((J(X) - J_c) M y)_i`, which the
-//! condition number of `J` amplifies. Regions then close only on small boxes of poses.
+//! A chart `δ = M y` fixed for the whole box of poses (`M ≈ J⁻¹` at its centre) would not do:
+//! over a box of width `w` the legs' Jacobian `J(X)` changes by `O(w)`, and in a fixed chart so
+//! does every leg's change, `G_i(X, M y) - y_i ≈ ((J(X) - J_c) M y)_i`, which the condition
+//! number of `J` amplifies. Regions then close only on small boxes of poses.
 //!
 //! Here the chart moves with the pose: `M(X) = M_c - M_c (J(X) - J_c) M_c`, the first-order
 //! inverse of `J(X)`, enclosed as affine forms whose noise symbols are the pose's coordinates
