@@ -4,8 +4,7 @@
 //! certificate's leg-length brackets (all six legs to 1.04, ± 0.01 cm and ± 0.1 cm boxes; issue
 //! target ≤ 30 s on 2 cores), its platform pose-error instances (search and proof of the reached
 //! pose, position and orientation) and both errors bracketed (instances and upper bounds) for a
-//! tightly calibrated robot (± 0.001 cm) on a small workspace (± 0.3 cm, 0.5°); the paving of the
-//! moves where they are centimetres (4,000 boxes of moves for one box of poses); and the serial
+//! tightly calibrated robot (± 0.001 cm) on a small workspace (± 0.3 cm, 0.5°); and the serial
 //! arm's tool-point accuracy on a ± 3° cell of all six joints (the built-in arm, 1/20 of its
 //! prior box, ± 0.001° joints), bracketed within 1.05.
 //!
