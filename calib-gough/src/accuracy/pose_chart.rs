@@ -13,13 +13,14 @@
 //! `‖M_c (J(X) - J_c)‖∞ < 1`, so `D(X) = M(X) · [-R, R]` is a parallelepiped around `δ = 0`
 //! whose boundary is the image of the box's faces.
 //!
-//! **The remainder.** `G_i(X, 0, θ*) = 0`, so by the mean value theorem along the segment from
-//! `0` to `δ = M(X) y`, `G_i - y_i = (∇_δ G_i(X, ξ, θ*) M(X) - e_i) · y` with `ξ = M(X) (τ y)`,
-//! `τ ∈ [0, 1]`. Evaluated with the same noise symbols for the pose in `∇_δ G_i` and in `M(X)`,
-//! and with noise symbols for `τ y` (so that `ξ` keeps the parallelepiped's shape: its box would
-//! triple the remainder), the first-order parts cancel (`J(X) M(X) = I + O(w²)`), and
-//! `|G_i - y_i| <= Σ_c |S_ic| h_c =: ρ_i` over `|y_c| <= h_c` is second order in the box's width
-//! and the move.
+//! **The remainder.** `G_i(X, 0, θ*) = 0`, so along the segment from `0` to `δ = M(X) y`,
+//! `G_i - y_i = (∫₀¹ ∇_δ G_i(X, M(X) τ y, θ*) dτ · M(X) - e_i) · y`. The integrand is evaluated
+//! with the same noise symbols for the pose in `∇_δ G_i` and in `M(X)`, and with noise symbols
+//! for `τ y` (so that `ξ = M(X) τ y` keeps the parallelepiped's shape: its box would triple the
+//! remainder). The first-order parts in the pose cancel (`J(X) M(X) = I + O(w²)`); the terms in
+//! `τ y`, the move's curvature, average to half their reach over `τ` (for a fixed `y`, `τ y`
+//! runs from 0 to `y`). So `|G_i - y_i| <= Σ_c |S_ic| h_c =: ρ_i` over `|y_c| <= h_c` is second
+//! order in the box's width and the move.
 //!
 //! **Closing and bounding.** With `R_i = f U_i` and `ρ_i(R) < R_i - U_i` for every leg, every
 //! move on face `i` of `D(X)` has `|G_i| >= R_i - ρ_i > U_i`: no move on the boundary lies in
@@ -74,6 +75,18 @@ pub fn mul_up(a: f64, b: f64) -> f64 {
     } else {
         f64::INFINITY
     }
+}
+
+/// `max |S|` over the pose's noise symbols of the slope `S = ∫₀¹ s(X, τ y) dτ`, where the form
+/// `s` encloses `s(X, τ y)` with noise symbols `0..6` for the pose and `6..12` for `τ y` over
+/// `[-h, h]`: for a fixed `y`, `τ y` runs along the segment from 0 to `y`, so its symbols'
+/// average over `τ` is `y / 2h` and their terms count half, `|c + Σ_k a_k ε_k| + ½ Σ_c |a_c| +
+/// e`, rounded up (`+∞` when not finite).
+fn averaged_mag(s: &Form) -> f64 {
+    let a = s.coefficients();
+    let pose = a[..6].iter().fold(s.centre().abs(), |t, v| add_up(t, v.abs()));
+    let moves = a[6..].iter().fold(0.0, |t, v| add_up(t, v.abs()));
+    add_up(add_up(pose, mul_up(0.5, moves)), s.error())
 }
 
 impl PoseChart {
@@ -135,7 +148,7 @@ impl PoseChart {
             (0..6).fold(0.0, |s, c| {
                 let id = Form::from_interval(Interval::point(if c == i { 1.0 } else { 0.0 }));
                 let slope = (0..6).fold(-id, |s, k| s + grad[k] * self.m[k][c]);
-                add_up(s, mul_up(slope.range().mag(), h[c]))
+                add_up(s, mul_up(averaged_mag(&slope), h[c]))
             })
         })
     }
