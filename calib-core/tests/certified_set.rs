@@ -82,6 +82,52 @@ fn every_consistent_vector_lies_in_a_piece_and_under_every_support_bound() {
     }
 }
 
+/// On a set refined into many pieces, the bound that visits pieces by their box bound and stops
+/// early is the bound of every piece solved: the smaller of each piece's program and box bounds,
+/// recomputed piece by piece (the box bound in plain interval arithmetic), largest over the
+/// pieces — and it holds every consistent sample.
+#[test]
+fn the_early_stopping_bound_is_every_pieces_bound() {
+    let (mut set, m) = the_set(3);
+    let settings = Settings::default();
+    while set.pieces().len() < 48 {
+        let widest = (0..set.pieces().len())
+            .max_by(|&a, &b| {
+                let w = |i: usize| set.pieces()[i].bounds()[0].wid();
+                w(a).total_cmp(&w(b))
+            })
+            .expect("pieces");
+        assert!(set.refine(&Line, widest, &settings), "a piece splits");
+    }
+    let samples = consistent_samples(&set, &m, 20_000);
+    assert!(samples.len() > 100, "{} samples", samples.len());
+    let mut rng = StdRng::seed_from_u64(5);
+    let (mut q, mut each) = (set.query(), set.query());
+    for _ in 0..200 {
+        let slopes: [Interval; 2] = core::array::from_fn(|_| {
+            Interval::mid_rad(rng.random_range(-1.0..1.0), rng.random_range(0.0..0.01))
+        });
+        let about = [rng.random_range(-1.0..1.0), rng.random_range(0.0..3.0)];
+        let got = q.max_linear(&slopes, &about).upper;
+        let every = (0..set.pieces().len())
+            .map(|i| {
+                let b = set.pieces()[i].bounds();
+                let by_box = (slopes[0] * (b[0] - Interval::point(about[0]))
+                    + slopes[1] * (b[1] - Interval::point(about[1])))
+                .sup();
+                each.piece_max(i, &slopes, &about).0.min(by_box)
+            })
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert_eq!(got, every, "slopes {slopes:?} about {about:?}");
+        for x in &samples {
+            let lo = (0..2).fold(Interval::ZERO, |s, j| {
+                s + slopes[j] * (Interval::point(x[j]) - Interval::point(about[j]))
+            });
+            assert!(lo.inf() <= got, "{x:?}: {lo:?} above {got}");
+        }
+    }
+}
+
 #[test]
 fn the_set_is_thin_where_its_box_is_wide() {
     let (set, m) = the_set(7);

@@ -295,6 +295,7 @@ impl<const NX: usize, const NM: usize> CertifiedSet<NX, NM> {
             set: self,
             engines,
             working: vec![None; self.pieces.len()],
+            order: Vec::new(),
             dual: Vec::new(),
             primal: [0.0; NX],
             own_rows: false,
@@ -308,6 +309,7 @@ impl<const NX: usize, const NM: usize> CertifiedSet<NX, NM> {
             set: self,
             engines: (0..self.pieces.len()).map(|_| engine()).collect(),
             working: vec![None; self.pieces.len()],
+            order: Vec::new(),
             dual: Vec::new(),
             primal: [0.0; NX],
             own_rows: false,
@@ -523,6 +525,8 @@ pub struct SetQuery<'a, const NX: usize, const NM: usize> {
     /// Per piece solved by row generation, its working subset of rows and their polyhedron
     /// (rebuilt only when rows are added, so that the engine warm-starts between queries).
     working: Vec<Option<(Vec<usize>, Polyhedron)>>,
+    /// The pieces' box bounds and indices, largest first ([`SetQuery::max_linear`]).
+    order: Vec<(f64, usize)>,
     dual: Vec<f64>,
     primal: [f64; NX],
     /// Whether only the measurements' own rows are used ([`CertifiedSet::query_own_rows`]).
@@ -538,14 +542,36 @@ impl<const NX: usize, const NM: usize> SetQuery<'_, NX, NM> {
     /// An upper bound of `Σ_j s_j (x_j - z_j)` over the set, where `slopes` `s_j` are intervals
     /// (see the module documentation: the midpoints enter a linear program per piece, the radii
     /// are bounded over each piece's box).
+    ///
+    /// Each piece's bound is the smaller of its program's and its box's (interval arithmetic
+    /// over the piece's box, which contains it). Pieces are visited by their box bound, largest
+    /// first, and the visit stops at the first whose box bound is not above the best bound so
+    /// far: it and every later piece are bounded by it. So a set refined into many small pieces
+    /// solves programs only where the maximum may lie, and the bound is the same as if every
+    /// piece were solved.
     pub fn max_linear(&mut self, slopes: &[Interval; NX], about: &[f64; NX]) -> LinearMax<NX> {
         let mut best = LinearMax {
             upper: f64::NEG_INFINITY,
             piece: None,
             argmax: None,
         };
-        for i in 0..self.set.pieces.len() {
-            let (upper, argmax) = self.piece_max(i, slopes, about);
+        let mut order = core::mem::take(&mut self.order);
+        order.clear();
+        order.extend(self.set.pieces.iter().enumerate().map(|(i, piece)| {
+            let bound = (0..NX)
+                .fold(Interval::ZERO, |s, j| {
+                    s + slopes[j] * (piece.bounds[j] - Interval::point(about[j]))
+                })
+                .sup();
+            (if bound.is_nan() { f64::INFINITY } else { bound }, i)
+        }));
+        order.sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        for &(by_box, i) in &order {
+            if best.piece.is_some() && by_box <= best.upper {
+                break;
+            }
+            let (by_program, argmax) = self.piece_max(i, slopes, about);
+            let upper = by_program.min(by_box);
             if upper > best.upper || best.piece.is_none() {
                 best = LinearMax {
                     upper,
@@ -554,6 +580,7 @@ impl<const NX: usize, const NM: usize> SetQuery<'_, NX, NM> {
                 };
             }
         }
+        self.order = order;
         best
     }
 
