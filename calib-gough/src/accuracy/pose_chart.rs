@@ -84,7 +84,9 @@ pub fn mul_up(a: f64, b: f64) -> f64 {
 /// e`, rounded up (`+∞` when not finite).
 fn averaged_mag(s: &Form) -> f64 {
     let a = s.coefficients();
-    let pose = a[..6].iter().fold(s.centre().abs(), |t, v| add_up(t, v.abs()));
+    let pose = a[..6]
+        .iter()
+        .fold(s.centre().abs(), |t, v| add_up(t, v.abs()));
     let moves = a[6..].iter().fold(0.0, |t, v| add_up(t, v.abs()));
     add_up(add_up(pose, mul_up(0.5, moves)), s.error())
 }
