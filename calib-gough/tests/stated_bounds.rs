@@ -18,15 +18,18 @@
 //! angle and a reading within the stated bounds that fit the geometry exactly.
 
 use calib_core::{hull, CertifiedSet, Interval, Settings};
-use calib_gough::accuracy::AccuracyProblem;
+use calib_gough::accuracy::{axis_angle, AccuracyProblem, REFINED_SET_PIECES};
 use calib_gough::calibrated::{calibrated_robot, measured_workspace, Task};
 use calib_gough::certification::{certify_legs, CertifyOptions};
 use calib_gough::files::{read_measurements, read_robot, read_uncertainty, LegSpec};
 use calib_gough::geometry::rodrigues_box;
 use calib_gough::measurement::measured;
 use calib_gough::{
-    builtin_hexapod, leg_boxes, simulate, Configuration, LegModel, Orientation, Uncertainty,
+    builtin_hexapod, leg_boxes, leg_reading, simulate, Configuration, Leg, LegModel, Orientation,
+    Pose, Uncertainty,
 };
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 
 /// `[v - h, v + h]` shrunk by a relative 1e-6 of `h`: two doubles inside the stated interval.
@@ -169,6 +172,76 @@ fn sample21_every_geometry_handed_out_fits_the_stated_bounds() {
     assert!(geometries.len() > 6 * 4);
     let bad = misfits(&geometries, &data.configs, &u);
     assert!(bad.is_empty(), "{} misfits: {:#?}", bad.len(), bad);
+}
+
+/// `gough accuracy --refine-set`: the geometries the refined sets hand out fit the stated bounds,
+/// and the refined sets' leg-length bounds over small boxes of poses hold the error of every
+/// certified geometry (both catalogues, each proved consistent) at poses sampled in the box —
+/// recomputed by `leg_reading` — while lower in sum than the bounds over the sets as stored.
+#[test]
+fn sample21_refined_sets_hand_out_fitting_geometries_and_bound_them_tighter() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/data/sample21");
+    let robot = read_robot(&dir.join("robot.toml")).unwrap();
+    let u = read_uncertainty(&dir.join("uncertainty.toml")).unwrap();
+    let data = read_measurements(&dir.join("measurements.csv"), robot.len()).unwrap();
+    let results = certify_legs(
+        &robot,
+        &data.configs,
+        &u,
+        &CertifyOptions::default(),
+        &|| {},
+    )
+    .unwrap();
+    let calibrated = calibrated_robot(&robot, &results, &data.configs, &u, None).unwrap();
+    let workspace = measured_workspace(&data.configs);
+    let plain = AccuracyProblem::over_sets(&calibrated.legs, &calibrated.sets, &workspace);
+    let mut refined = plain.clone();
+    refined.refine_sets(REFINED_SET_PIECES);
+    let mut geometries = Vec::new();
+    for leg in 0..robot.len() {
+        let set = refined.leg_set(leg).expect("over the set");
+        assert!(set.set().pieces().len() > 4, "leg {leg}: refined");
+        for (k, x) in set.catalogue().iter().enumerate() {
+            geometries.push((format!("refined accuracy geometry {k}"), leg, *x));
+        }
+    }
+    let bad = misfits(&geometries, &data.configs, &u);
+    assert!(bad.is_empty(), "{} misfits: {:#?}", bad.len(), bad);
+    let domain = plain.domain();
+    let mut rng = StdRng::seed_from_u64(12);
+    let (mut sum_plain, mut sum_refined) = (0.0, 0.0);
+    for _ in 0..20 {
+        let b: [Interval; 6] = core::array::from_fn(|k| {
+            let w = domain[k].wid() * 0.01;
+            let lo = domain[k].inf() + rng.random::<f64>() * (domain[k].wid() - w);
+            Interval::new(lo, lo + w)
+        });
+        for (leg, spec) in calibrated.legs.iter().enumerate() {
+            let bound = refined.leg_bounds(leg, &b).sup();
+            sum_plain += plain.leg_bounds(leg, &b).sup();
+            sum_refined += bound;
+            let catalogues = [&plain, &refined].map(|p| p.leg_set(leg).unwrap().catalogue());
+            for theta in catalogues.iter().flat_map(|c| c.iter()) {
+                for _ in 0..3 {
+                    let x: [f64; 6] =
+                        core::array::from_fn(|k| b[k].inf() + rng.random::<f64>() * b[k].wid());
+                    let (p, axis, angle_deg) = axis_angle(&x);
+                    let pose = Pose { p, axis, angle_deg };
+                    let error = (leg_reading(&Leg::from_params(theta), &pose)
+                        - leg_reading(&spec.nominal, &pose))
+                    .abs();
+                    assert!(
+                        error <= bound + 1e-12,
+                        "leg {leg}: {error} above {bound} on {b:?}"
+                    );
+                }
+            }
+        }
+    }
+    assert!(
+        sum_refined < 0.97 * sum_plain,
+        "refined {sum_refined} against {sum_plain} as stored"
+    );
 }
 
 #[test]

@@ -945,7 +945,7 @@ fn design(
 /// Brackets the leg-length errors of a robot file over a workspace, as `gough accuracy` does;
 /// returns the JSON of `gough accuracy --json`.
 #[pyfunction]
-#[pyo3(signature = (robot, workspace, before=None, uncertainty=None, tolerance=0.04, max_boxes=300_000, pose_seconds=30.0, max_set_boxes=1000, report=None))]
+#[pyo3(signature = (robot, workspace, before=None, uncertainty=None, tolerance=0.04, max_boxes=300_000, pose_seconds=30.0, max_set_boxes=1000, report=None, refine_set=false))]
 #[allow(clippy::too_many_arguments)]
 fn accuracy(
     py: Python<'_>,
@@ -958,8 +958,11 @@ fn accuracy(
     pose_seconds: f64,
     max_set_boxes: usize,
     report: Option<PathBuf>,
+    refine_set: bool,
 ) -> PyResult<String> {
-    use calib_gough::accuracy::{accuracy_report, AccuracyProblem, AccuracySettings};
+    use calib_gough::accuracy::{
+        accuracy_report, AccuracyProblem, AccuracySettings, REFINED_SET_PIECES,
+    };
     let file = calib_gough::files::read_robot_file(&robot).map_err(value_error)?;
     let sets = calib_gough::files::leg_sets(&robot, &file).map_err(value_error)?;
     let inputs = accuracy_inputs(&[
@@ -997,8 +1000,12 @@ fn accuracy(
     };
     let page = report;
     let report = py.detach(|| {
+        let mut problem = AccuracyProblem::over_sets(&file.legs, &sets, &workspace);
+        if refine_set {
+            problem.refine_sets(REFINED_SET_PIECES);
+        }
         accuracy_report(
-            &AccuracyProblem::over_sets(&file.legs, &sets, &workspace),
+            &problem,
             before
                 .as_deref()
                 .map(|b| AccuracyProblem::new(b, &workspace))

@@ -197,6 +197,11 @@ def test_write_calibrated_carries_the_set_that_accuracy_works_over(tmp_path):
     assert acc["over"] == "certified set"
     for leg in acc["leg_length"]:
         assert 0 < leg["lower"] <= leg["upper"]
+    refined = certicalib.accuracy(cal, ws, uncertainty=tmp_path / "uncertainty.toml",
+                                  pose_seconds=1, max_set_boxes=100, refine_set=True)
+    assert refined["over"] == "certified set"
+    for leg in refined["leg_length"]:
+        assert 0 < leg["lower"] <= leg["upper"]
     # Held-out readings (a second simulation of the same robot: its truth is the same) lie in
     # their predictions over the set; the package gives the command line's JSON.
     held = tmp_path / "held"

@@ -29,7 +29,10 @@ use crate::workspace::Workspace;
 use crate::LegModel;
 use calib_core::LpBackend;
 use calib_core::SetQuery;
-use calib_core::{CertifiedSet, Interval, Jet, Model, Quadratic};
+use calib_core::{
+    maximize_over_set, CertifiedSet, Interval, Jet, LinearFunction, Model, Quadratic,
+    SetMaximumSettings,
+};
 use rand::{Rng, SeedableRng};
 use std::cell::RefCell;
 use std::sync::Arc;
@@ -68,6 +71,8 @@ pub struct LegSet {
     /// enough.
     coarse: CertifiedSet<7, 8>,
     catalogue: Vec<[f64; 7]>,
+    /// `±∂ΔL/∂θ` at the catalogue's poses: where the accuracy's bounds look.
+    directions: Vec<[f64; 7]>,
 }
 
 /// A second-order Taylor model over a box of poses: a noise symbol per pose coordinate.
@@ -89,8 +94,15 @@ type EnginePool = (Vec<Box<dyn LpBackend>>, Vec<Box<dyn LpBackend>>);
 /// bound solves `2^n` programs per piece).
 const FINE_PIECES: usize = 4;
 
-/// Poses per leg whose `±∂ΔL/∂θ` directions the catalogue's geometries are pushed along.
+/// Poses per leg whose `±∂ΔL/∂θ` directions the catalogue's geometries are pushed along (and a
+/// refined set is refined along: [`AccuracyProblem::refine_sets`]).
 const CATALOGUE_POSES: usize = 40;
+/// Pieces refined at most per direction by [`AccuracyProblem::refine_sets`].
+const REFINEMENTS_PER_DIRECTION: usize = 16;
+
+/// The pieces `gough accuracy --refine-set` refines each leg's set to
+/// ([`AccuracyProblem::refine_sets`]; the bounds use 4 as stored).
+pub const REFINED_SET_PIECES: usize = 36;
 
 impl LegSet {
     /// The catalogue for `set` on the poses of `domain` (see the module documentation).
@@ -106,6 +118,7 @@ impl LegSet {
         );
         let mut rng = rand::rngs::StdRng::seed_from_u64(0xca7a);
         let t = domain[3].sup();
+        let mut directions = Vec::with_capacity(2 * CATALOGUE_POSES);
         for k in 0..CATALOGUE_POSES {
             // Corners of the positions and the largest rotations first, then random poses.
             let x: PoseVector = core::array::from_fn(|c| {
@@ -132,6 +145,7 @@ impl LegSet {
             let g = LegLengthError.jacobian_x(nominal, &m);
             for sign in [1.0, -1.0] {
                 set.extreme_point(&model, &g.map(|v| sign * v));
+                directions.push(g.map(|v| sign * v));
             }
         }
         let catalogue: Vec<[f64; 7]> = set.points().iter().map(|p| p.x).collect();
@@ -146,6 +160,39 @@ impl LegSet {
             set,
             coarse,
             catalogue,
+            directions,
+        }
+    }
+
+    /// The same leg's set refined where the maxima of `w·θ` lie, for each of its directions `w`
+    /// in turn (corners of the workspace first; at most [`REFINEMENTS_PER_DIRECTION`] pieces
+    /// each, until the maximum is bracketed within 0.5% of the set's range of `w·θ`), until it
+    /// has `pieces` pieces, with the certified points found on the way in its catalogue. Every
+    /// refined piece still holds every solution in its box ([`CertifiedSet::refine`]).
+    fn refined(&self, pieces: usize) -> LegSet {
+        let mut set = self.set.clone();
+        let model = LegModel::of_set(&set);
+        for w in &self.directions {
+            if set.pieces().len() >= pieces {
+                break;
+            }
+            let width = set.query().range(w).wid();
+            if !width.is_finite() {
+                continue;
+            }
+            let settings = SetMaximumSettings {
+                rel_tol: 0.0,
+                abs_tol: 0.005 * width,
+                max_refinements: REFINEMENTS_PER_DIRECTION.min(pieces - set.pieces().len()),
+                ..SetMaximumSettings::default()
+            };
+            maximize_over_set(&model, &mut set, &LinearFunction(*w), &settings);
+        }
+        LegSet {
+            catalogue: set.points().iter().map(|p| p.x).collect(),
+            set,
+            coarse: self.coarse.clone(),
+            directions: self.directions.clone(),
         }
     }
 
@@ -238,6 +285,21 @@ impl AccuracyProblem {
             }
         }
         problem
+    }
+
+    /// Refines each leg's certified set where the workspace's leg-length errors are largest,
+    /// to `pieces` pieces: a set as stored is a few polyhedra, each the linearisation of the
+    /// measurements over a wide box, which overstate `max ±∂ΔL/∂θ · θ` by up to 25% at a pose;
+    /// refined along the directions the bounds ask (the gradients at the workspace's corners
+    /// first), they come within 0.5% there. Every bound stays proved over the whole set; each
+    /// costs more (a linear program per piece where a maximum may lie), which pays where the
+    /// gradients barely turn across the workspace (a small one).
+    pub fn refine_sets(&mut self, pieces: usize) {
+        for leg in &mut self.legs {
+            if let Some(set) = &leg.set {
+                leg.set = Some(Arc::new(set.refined(pieces)));
+            }
+        }
     }
 
     /// Whether leg `i`'s errors are taken over its certified set (else over its box).

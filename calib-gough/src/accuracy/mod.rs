@@ -27,7 +27,7 @@ pub mod pose_chart;
 #[doc(hidden)]
 pub mod pose_error;
 
-pub use enclosure::{AccuracyProblem, Instance, LegSet, PoseBox, PoseVector};
+pub use enclosure::{AccuracyProblem, Instance, LegSet, PoseBox, PoseVector, REFINED_SET_PIECES};
 pub use model::{
     leg_curvature, leg_length_error, leg_reading, LegCurvature, LegLengthError, LegReading,
 };

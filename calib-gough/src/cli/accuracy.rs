@@ -3,6 +3,7 @@
 use calib_gough::accuracy::{
     accuracy_report, improvement, improvement_words, over_words, pose_words, unproved_words,
     Accuracy, AccuracyProblem, AccuracyReport, AccuracySettings, PoseErrorInstance, PoseErrors,
+    REFINED_SET_PIECES,
 };
 use calib_gough::files::{leg_sets, read_robot, read_robot_file, read_uncertainty};
 use calib_gough::report::write_atomically;
@@ -45,6 +46,13 @@ pub struct Args {
     /// many seconds per robot: they stay proved, only less tight (the output says so).
     #[arg(long, value_name = "S", default_value_t = AccuracySettings::default().pose_seconds)]
     pose_seconds: f64,
+    /// Refine each leg's certified set where the workspace's leg-length errors are largest
+    /// before bounding (to 36 pieces; the bounds use 4 as stored): tighter leg-length and
+    /// platform pose bounds, each box of poses costing more. Worth it on a small workspace,
+    /// where the errors' directions barely turn; over a wide one the time grows for little
+    /// (measurements in benches/README.md).
+    #[arg(long)]
+    refine_set: bool,
     /// With --report: cells per side of the certificate's map of where the error is large (x–y,
     /// in 3 slabs of heights; each cell is a short proof per leg, so the map's cost grows as the
     /// square).
@@ -104,9 +112,17 @@ pub fn run(a: Args) -> Result<i32, Box<dyn std::error::Error>> {
             a.robot.display()
         );
     }
+    let mut problem = AccuracyProblem::over_sets(&file.legs, &sets, &workspace);
+    if a.refine_set {
+        problem.refine_sets(REFINED_SET_PIECES);
+        println!(
+            "each leg's certified set refined to {REFINED_SET_PIECES} pieces where the \
+             workspace's leg-length errors are largest (--refine-set)\n"
+        );
+    }
     let report = with_spinner(settings.pose_seconds, before.is_some(), || {
         accuracy_report(
-            &AccuracyProblem::over_sets(&file.legs, &sets, &workspace),
+            &problem,
             before
                 .as_deref()
                 .map(|b| AccuracyProblem::new(b, &workspace))

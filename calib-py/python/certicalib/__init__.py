@@ -408,7 +408,8 @@ def design(out: PathLike, *, robot: Optional[PathLike] = None,
 def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike] = None,
              uncertainty: Optional[PathLike] = None, tolerance: float = 0.04,
              max_boxes: int = 300_000, pose_seconds: float = 30.0,
-             max_set_boxes: int = 1000, report: Optional[PathLike] = None) -> Dict[str, Any]:
+             max_set_boxes: int = 1000, report: Optional[PathLike] = None,
+             refine_set: bool = False) -> Dict[str, Any]:
     r"""Bracket, per leg, how far the leg length the controller commands (from ``robot``'s values)
     can be from the length the real leg needs, over every pose of ``workspace`` (a
     ``workspace.toml``) and every geometry in ``robot``'s boxes — as ``gough accuracy`` does.
@@ -426,6 +427,9 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
     per robot on the pose errors' upper bounds (they stay proved, only less tight),
     ``max_set_boxes`` each leg's boxes of poses over a certified set. ``report``: also write the
     accuracy certificate there (what ``gough accuracy --report`` writes: one HTML page).
+    ``refine_set``: refine each leg's certified set where the workspace's errors are largest
+    first (``gough accuracy --refine-set``): tighter bounds at more time per box, worth it on a
+    small workspace.
 
     >>> import os, tempfile
     >>> d = tempfile.mkdtemp()
@@ -443,7 +447,8 @@ def accuracy(robot: PathLike, workspace: PathLike, *, before: Optional[PathLike]
         return None if p is None else os.fspath(p)
     return json.loads(_native.accuracy(os.fspath(robot), os.fspath(workspace), opt(before),
                                        opt(uncertainty), float(tolerance), int(max_boxes),
-                                       float(pose_seconds), int(max_set_boxes), opt(report)))
+                                       float(pose_seconds), int(max_set_boxes), opt(report),
+                                       bool(refine_set)))
 
 
 def accuracy_arm(robot: PathLike, *, joints: Optional[PathLike] = None,

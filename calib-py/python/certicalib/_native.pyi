@@ -31,7 +31,7 @@ def lsq(robot: _Path, measurements: _Path) -> str: ...
 def accuracy(
     robot: _Path, workspace: _Path, before: Optional[_Path] = ..., uncertainty: Optional[_Path] = ...,
     tolerance: float = ..., max_boxes: int = ..., pose_seconds: float = ...,
-    max_set_boxes: int = ..., report: Optional[_Path] = ...,
+    max_set_boxes: int = ..., report: Optional[_Path] = ..., refine_set: bool = ...,
 ) -> str: ...
 def design(
     out: _Path, robot: Optional[_Path] = ..., uncertainty: Optional[_Path] = ...,
