@@ -21,7 +21,7 @@ use calib_core::{hull, CertifiedSet, Interval, Settings};
 use calib_gough::accuracy::{axis_angle, AccuracyProblem, REFINED_SET_PIECES};
 use calib_gough::calibrated::{calibrated_robot, measured_workspace, Task};
 use calib_gough::certification::{certify_legs, CertifyOptions};
-use calib_gough::files::{read_measurements, read_robot, read_uncertainty, LegSpec};
+use calib_gough::files::{read_measurements, read_robot, read_uncertainty, LegSpec, Measurements};
 use calib_gough::geometry::rodrigues_box;
 use calib_gough::measurement::measured;
 use calib_gough::{
@@ -161,12 +161,18 @@ fn handed_out(
     out
 }
 
-#[test]
-fn sample21_every_geometry_handed_out_fits_the_stated_bounds() {
+/// `docs/data/sample21`: the robot file, the error bounds and the measurements.
+fn sample21() -> (Vec<LegSpec>, Uncertainty, Measurements) {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/data/sample21");
     let robot = read_robot(&dir.join("robot.toml")).unwrap();
     let u = read_uncertainty(&dir.join("uncertainty.toml")).unwrap();
     let data = read_measurements(&dir.join("measurements.csv"), robot.len()).unwrap();
+    (robot, u, data)
+}
+
+#[test]
+fn sample21_every_geometry_handed_out_fits_the_stated_bounds() {
+    let (robot, u, data) = sample21();
     assert!(!data.rodrigues);
     let geometries = handed_out(&robot, &data.configs, &u);
     assert!(geometries.len() > 6 * 4);
@@ -180,10 +186,7 @@ fn sample21_every_geometry_handed_out_fits_the_stated_bounds() {
 /// recomputed by `leg_reading` — while lower in sum than the bounds over the sets as stored.
 #[test]
 fn sample21_refined_sets_hand_out_fitting_geometries_and_bound_them_tighter() {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/data/sample21");
-    let robot = read_robot(&dir.join("robot.toml")).unwrap();
-    let u = read_uncertainty(&dir.join("uncertainty.toml")).unwrap();
-    let data = read_measurements(&dir.join("measurements.csv"), robot.len()).unwrap();
+    let (robot, u, data) = sample21();
     let results = certify_legs(
         &robot,
         &data.configs,

@@ -30,7 +30,7 @@ use crate::LegModel;
 use calib_core::LpBackend;
 use calib_core::SetQuery;
 use calib_core::{
-    maximize_over_set, CertifiedSet, Interval, Jet, LinearFunction, Model, Quadratic,
+    maximize_over_set, CertifiedSet, Interval, Jet, LinearFunction, Model, Quadratic, SetMaximum,
     SetMaximumSettings,
 };
 use rand::{Rng, SeedableRng};
@@ -171,22 +171,12 @@ impl LegSet {
     /// refined piece still holds every solution in its box ([`CertifiedSet::refine`]).
     fn refined(&self, pieces: usize) -> LegSet {
         let mut set = self.set.clone();
-        let model = LegModel::of_set(&set);
         for w in &self.directions {
             if set.pieces().len() >= pieces {
                 break;
             }
-            let width = set.query().range(w).wid();
-            if !width.is_finite() {
-                continue;
-            }
-            let settings = SetMaximumSettings {
-                rel_tol: 0.0,
-                abs_tol: 0.005 * width,
-                max_refinements: REFINEMENTS_PER_DIRECTION.min(pieces - set.pieces().len()),
-                ..SetMaximumSettings::default()
-            };
-            maximize_over_set(&model, &mut set, &LinearFunction(*w), &settings);
+            let budget = REFINEMENTS_PER_DIRECTION.min(pieces - set.pieces().len());
+            refined_maximum(&mut set, w, budget);
         }
         LegSet {
             catalogue: set.points().iter().map(|p| p.x).collect(),
@@ -205,6 +195,33 @@ impl LegSet {
     pub fn catalogue(&self) -> &[[f64; 7]] {
         &self.catalogue
     }
+}
+
+/// `max w·θ` over a leg's set, bracketed within 0.5% of the set's range of `w·θ` by refining the
+/// piece attaining it, at most `refinements` times ([`maximize_over_set`]: the refined pieces and
+/// the certified points found stay in `set`). `None` when the set's range is not finite.
+pub(crate) fn refined_maximum(
+    set: &mut CertifiedSet<7, 8>,
+    w: &[f64; 7],
+    refinements: usize,
+) -> Option<SetMaximum<7>> {
+    let width = set.query().range(w).wid();
+    if !width.is_finite() {
+        return None;
+    }
+    let settings = SetMaximumSettings {
+        rel_tol: 0.0,
+        abs_tol: 0.005 * width,
+        max_refinements: refinements,
+        ..SetMaximumSettings::default()
+    };
+    let model = LegModel::of_set(set);
+    Some(maximize_over_set(
+        &model,
+        set,
+        &LinearFunction(*w),
+        &settings,
+    ))
 }
 
 impl LegBounds {

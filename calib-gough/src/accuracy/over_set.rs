@@ -5,13 +5,10 @@
 //! for some `θ*` in its certified set: the engine brackets `max |L(X; θ*) - L(X; θ̂)|` over the
 //! workspace and the set.
 
-use super::enclosure::{AccuracyProblem, Instance, PoseBox, PoseVector};
+use super::enclosure::{refined_maximum, AccuracyProblem, Instance, PoseBox, PoseVector};
 use super::model::{leg_reading, LegCurvature, LegReading};
 use crate::LegModel;
-use calib_core::{
-    maximize_over_set, CertifiedSet, Interval, Jet, LinearFunction, Model, Quadratic, SetMaximum,
-    SetMaximumSettings,
-};
+use calib_core::{CertifiedSet, Interval, Jet, Model, Quadratic, SetMaximum};
 use calib_pipeline::accuracy::{bracket_over_set, BracketSettings, Prediction, SetAccuracy};
 
 /// One leg's length at a pose as a prediction, the pose `(p, q)` in the measurement slot; the
@@ -63,24 +60,12 @@ impl Prediction<7, 8, 6, 6, 1> for LegLength<'_> {
     /// Refined where the bound is attained, until within 0.5% of the set's range of `g·θ` or
     /// 16 refinements (none once the set has 96 pieces: each solves a program per piece).
     fn max_over_set(&self, set: &mut CertifiedSet<7, 8>, g: &[f64; 7]) -> Option<SetMaximum<7>> {
-        let width = set.query().range(g).wid();
-        let settings = SetMaximumSettings {
-            rel_tol: 0.0,
-            abs_tol: 0.005 * width,
-            max_refinements: if set.pieces().len() < MAX_PIECES {
-                REFINEMENTS
-            } else {
-                0
-            },
-            ..SetMaximumSettings::default()
+        let refinements = if set.pieces().len() < MAX_PIECES {
+            REFINEMENTS
+        } else {
+            0
         };
-        let model = LegModel::of_set(set);
-        Some(maximize_over_set(
-            &model,
-            set,
-            &LinearFunction(*g),
-            &settings,
-        ))
+        refined_maximum(set, g, refinements)
     }
 
     fn narrow(&self, x: &PoseBox) -> Option<PoseBox> {
