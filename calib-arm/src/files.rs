@@ -190,6 +190,12 @@ pub fn parse_carried(file: &Path, text: &str) -> Result<(Arm, Option<ArmSet>), D
 
 /// The stored set of the robot file's table `table` as a certified set in the padded model
 /// (module [`calib_pipeline::stored_set`]), checked; errors name `table.field`.
+/// Sets of at most this many pieces get the second-order Taylor rows
+/// ([`calib_core::CertifiedSet::add_curvature_rows`]: two Hessian enclosures per configuration
+/// and piece). A set of more pieces comes from `--hull`, whose smaller boxes leave the
+/// relaxation's rows less slack to take back, at a cost that grows with the pieces.
+const CURVATURE_ROW_PIECES: usize = 4;
+
 fn restore_set(
     file: &Path,
     arm: &Arm,
@@ -206,13 +212,16 @@ fn restore_set(
             &[Interval::ZERO; NM],
         )
         .map_err(|(f, m)| DataError::new(file, None, Some(&format!("{table}.{f}")), m))?;
-    let set = ArmSet::new(
+    let mut set = ArmSet::new(
         &Arm7Point,
         &restored.cover,
         &restored.measurements,
         &restored.points,
         usize::MAX,
     );
+    if set.pieces().len() <= CURVATURE_ROW_PIECES {
+        set.add_curvature_rows(&Arm7Point);
+    }
     if set.is_empty() || set.points().is_empty() {
         return Err(DataError::new(
             file,

@@ -7,6 +7,7 @@
 mod support;
 
 pub mod certified_set;
+mod curvature_rows;
 pub mod custom_models;
 mod interval_ops;
 mod maximum;

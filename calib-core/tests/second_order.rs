@@ -32,11 +32,11 @@ pub fn offset_arm<S: Scalar>(x: &[S; 7], m: &[S; 4]) -> [S; 2] {
     ]
 }
 
-const TRUTH: [f64; 7] = [700.0, 500.0, 0.01, -0.02, 30.0, -40.0, 0.005];
+pub(crate) const TRUTH: [f64; 7] = [700.0, 500.0, 0.01, -0.02, 30.0, -40.0, 0.005];
 
 /// The prior: ±2 mm on the lengths and the base, ±0.2° on the offsets, around the truth shifted
 /// by a random fraction of the box.
-fn prior(rng: &mut StdRng) -> [Interval; 7] {
+pub(crate) fn prior(rng: &mut StdRng) -> [Interval; 7] {
     let deg = 0.2f64.to_radians();
     let rad = [2.0, 2.0, deg, deg, 2.0, 2.0, deg];
     core::array::from_fn(|j| {
@@ -48,7 +48,7 @@ fn prior(rng: &mut StdRng) -> [Interval; 7] {
 /// `n` configurations of the arm at `truth`: joint readings within ±`joint` rad of the true
 /// angles and tracked points within ±`pos` mm of the true tip, each reading's box of the same
 /// half-widths around the reading (so the truth fits every box).
-fn measurements(
+pub(crate) fn measurements(
     rng: &mut StdRng,
     truth: &[f64; 7],
     n: usize,

@@ -40,6 +40,7 @@
 //! widest side, both halves contracted by the Newton step, halves proved empty dropped) until the
 //! bracket meets its tolerance or a budget is spent.
 
+use super::curvature_rows::with_curvature_rows;
 use crate::kernel::bisection::split_widest;
 use crate::kernel::contract::{build_relaxation, contract, Workspace};
 use crate::kernel::cover::hull_of;
@@ -200,6 +201,43 @@ impl<const NX: usize, const NM: usize> CertifiedSet<NX, NM> {
                 poly,
                 subset: s,
             });
+        }
+    }
+
+    /// Adds to every piece's polyhedron the second-order Taylor rows of `model` about the
+    /// piece's centre `c`: for each measurement box `M` (midpoint `M̂`) and residual row `r`,
+    /// with `y = x - c` and `Δz = (y, M - M̂)`,
+    ///
+    /// `f_r(x, M) = f_r(c, M̂) + ∇_x f_r·y + ∇_M f_r·(M - M̂) + ½ Δzᵀ H_r(ξ) Δz`,
+    ///
+    /// the Hessian over the box enclosed as `H_r(c, M̂)` plus its third-order change
+    /// ([`crate::Curvature`]), every constant part (the value, the measurement's terms, the
+    /// gradient's enclosure radii, the quadratic form) gathered in an interval `C_r`: a
+    /// consistent `x` satisfies `-sup C_r <= g·y <= -inf C_r`, `g` the gradient's midpoints.
+    /// Valid on the piece's box, so every solution stays; tighter than the relaxation's rows
+    /// where the box is wide and the model curved (a real arm's prior, whose affine forms add
+    /// up every operation's remainder). Each measurement's rows open its group, so that they are
+    /// its own rows for [`CertifiedSet::query_own_rows`]. Two Hessian enclosures per
+    /// measurement and piece; nothing for a model without them ([`VectorModel::curvature`]) or
+    /// a measurement with more than [`crate::MAX_CURVATURE_SYMBOLS`] symbols of nonzero width.
+    pub fn add_curvature_rows<M, const NR: usize>(&mut self, model: &M)
+    where
+        M: VectorModel<NX, NM, NR> + Sync,
+    {
+        let Some(curvature) = model.curvature() else {
+            return;
+        };
+        for i in 0..self.pieces.len() {
+            let kept = self.subset_measurements(self.pieces[i].subset);
+            let piece = &mut self.pieces[i];
+            piece.poly = with_curvature_rows(
+                model,
+                curvature,
+                &piece.bounds,
+                &piece.centre,
+                &kept,
+                &piece.poly,
+            );
         }
     }
 

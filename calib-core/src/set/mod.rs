@@ -5,6 +5,7 @@
 
 pub(crate) mod calibrated_point;
 pub(crate) mod certified_set;
+pub(crate) mod curvature_rows;
 pub(crate) mod least_squares;
 pub(crate) mod maximum;
 pub(crate) mod parallelotope;
