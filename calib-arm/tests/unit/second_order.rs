@@ -147,3 +147,93 @@ fn the_linear_inputs_of_both_arm_models_are_left_out() {
         "{parameters} + {readings}"
     );
 }
+
+#[test]
+fn the_taylor_remainder_holds_every_sampled_remainder_of_the_tool_point() {
+    use calib_pipeline::accuracy::taylor_remainder;
+    use rand::rngs::StdRng;
+    use rand::{Rng, SeedableRng};
+    let arm = calib_arm::builtin_arm();
+    let x0 = padded_box(&arm);
+    let nominal: [f64; NX] = x0.map(|v| v.mid());
+    let spread: [Interval; NX] = core::array::from_fn(|j| x0[j] - Interval::point(nominal[j]));
+    let mut rng = StdRng::seed_from_u64(8);
+    let curvature = Arm7Point
+        .curvature()
+        .expect("the arm's model has its derivatives");
+    for trial in 0..6 {
+        // A joint box of ±5° somewhere in the joint space (the tracked point's slots at 0).
+        let mut m = [Interval::ZERO; NM];
+        for v in m.iter_mut().take(6) {
+            *v = Interval::mid_rad(rng.random_range(-2.5..2.5), 5f64.to_radians());
+        }
+        let k: [Interval; 3] =
+            taylor_remainder(curvature, &nominal, &spread, &m).expect("a remainder");
+        // Random geometries, and the prior's vertices along the Hessian's dominant direction
+        // (signs of its leading eigenvector in the box's scale), where the remainder is largest.
+        let u_mid: [f64; NM] = m.map(|b| b.mid());
+        let free: Vec<usize> = (0..NX).filter(|&j| spread[j].mag() > 0.0).collect();
+        let h = Arm7Point
+            .second_derivatives(&nominal, &u_mid, &free)
+            .expect("a Hessian");
+        let n = free.len();
+        let mut vertices = Vec::new();
+        for r in 0..3 {
+            let a = |i: usize, j: usize| {
+                h[r * n * n + i * n + j].mid() * spread[free[i]].mag() * spread[free[j]].mag()
+            };
+            let mut v = vec![1.0; n];
+            for _ in 0..50 {
+                let w: Vec<f64> = (0..n)
+                    .map(|i| (0..n).map(|j| a(i, j) * v[j]).sum())
+                    .collect();
+                let norm = w.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-300);
+                v = w.iter().map(|x| x / norm).collect();
+            }
+            for sign in [1.0, -1.0] {
+                let mut theta = nominal;
+                for (i, &j) in free.iter().enumerate() {
+                    theta[j] += sign * v[i].signum() * spread[j].mag();
+                }
+                vertices.push(theta.map(|t| t.clamp(-1e300, 1e300)));
+            }
+        }
+        let mut largest = [0.0f64; 3];
+        for s in 0..200 + vertices.len() {
+            let theta: [f64; NX] = match vertices.get(s) {
+                Some(v) => core::array::from_fn(|j| v[j].clamp(x0[j].inf(), x0[j].sup())),
+                None => x0.map(|b| rng.random_range(b.inf()..=b.sup())),
+            };
+            let u: [f64; NM] = if s < vertices.len() {
+                u_mid
+            } else {
+                m.map(|b| rng.random_range(b.inf()..=b.sup()))
+            };
+            let (at, base) = (
+                Arm7Point.evaluate_rows(&theta, &u),
+                Arm7Point.evaluate_rows(&nominal, &u),
+            );
+            for r in 0..3 {
+                let linear: f64 = (0..NX)
+                    .map(|j| base[r].dx[j] * (theta[j] - nominal[j]))
+                    .sum();
+                let rest = at[r].value - base[r].value - linear;
+                let slack = 1e-9 * (at[r].value.abs() + 1.0);
+                largest[r] = largest[r].max(rest.abs());
+                assert!(
+                    k[r].inf() - slack <= rest && rest <= k[r].sup() + slack,
+                    "trial {trial}, row {r}: remainder {rest} outside {:?}",
+                    k[r]
+                );
+            }
+        }
+        for r in 0..3 {
+            assert!(
+                largest[r] >= 0.1 * k[r].mag(),
+                "trial {trial}, row {r}: remainders reach {} of a bound {:?}",
+                largest[r],
+                k[r]
+            );
+        }
+    }
+}

@@ -20,8 +20,10 @@
 mod arcs;
 mod over_set;
 mod sphere;
+mod taylor;
 
 pub use over_set::{bracket_over_inputs, bracket_over_set, SetAccuracy};
+pub use taylor::taylor_remainder;
 
 #[doc(hidden)]
 pub use arcs::arc_vertices;
@@ -91,9 +93,11 @@ pub trait Prediction<
     /// An enclosure of `g`'s curvature in `θ`, when the robot has one: per coordinate, an
     /// interval holding `g_r(u; θ) - g_r(u; θ̂) - ∇_θ g_r(u; θ̂)·(θ - θ̂)` for every `θ - θ̂` in
     /// `spread` and `u` in `u`. With it the columns `∂g/∂θ` are taken at `θ̂` and this enclosure
-    /// is added (a one-sided one helps one side); without it (the default) they are taken over
-    /// the set's outer box, whose spread times the set's reach is then the curvature term —
-    /// about twice the second-order Taylor term.
+    /// is added (a one-sided one helps one side). Without it (the default) the engine takes,
+    /// on boxes of inputs wider than a configuration's reading, the Taylor remainder from the
+    /// model's second and third derivatives when it has them ([`taylor_remainder`]); otherwise
+    /// the columns are taken over the set's outer box, whose spread times the set's reach is
+    /// then the curvature term — about twice the second-order Taylor term.
     fn curvature(&self, spread: &[Interval; NX], u: &[Interval; NU]) -> Option<[Interval; R]> {
         let _ = (spread, u);
         None

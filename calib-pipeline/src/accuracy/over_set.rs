@@ -35,6 +35,7 @@
 
 use super::arcs::{Arcs, WIDEST_ARC};
 use super::sphere::{add_up, cover_bound, farthest_corner, frame, norm, COVER_DIRECTIONS};
+use super::taylor::taylor_remainder;
 use super::{slot, Attained, Bracket, BracketSettings, Instance, Predicted, Prediction};
 use calib_core::{
     maximize, maximize_over_list, CertifiedSet, Evaluation, Interval, Jet, MaximumSettings,
@@ -297,7 +298,6 @@ where
         let spread: [Interval; NX] =
             core::array::from_fn(|j| self.hull[j] - Interval::point(self.nominal[j]));
         let curvature = self
-            .prediction
             .curvature(&spread, &widened)
             .filter(|c| c.iter().all(|v| v.is_bounded() && !v.is_empty()));
         let arcs = match &self.parallelotope {
@@ -312,10 +312,16 @@ where
             .map(Box::new),
             _ => None,
         };
-        // On thin inputs without a curvature enclosure the columns would be taken over the
-        // set's box either way, and their variation with the inputs is negligible: the interval
-        // slopes serve, without the costly second-order models.
-        let thin = widest <= THIN_INPUTS && curvature.is_none();
+        // On thin inputs the columns' variation with the inputs is negligible: the interval
+        // slopes serve, without the costly second-order models — over the set's box, or with a
+        // curvature enclosure at `θ̂`.
+        let thin = widest <= THIN_INPUTS;
+        let at_nominal = (thin && curvature.is_some()).then(|| {
+            self.prediction.model().evaluate_rows_interval(
+                &self.nominal.map(Interval::point),
+                &slot(&widened, Interval::ZERO),
+            )
+        });
         let columns = if widest <= P::SECOND_ORDER_WIDTH && !thin {
             let at = match curvature {
                 Some(_) => self.nominal.map(Interval::point),
@@ -327,6 +333,7 @@ where
         };
         Some(Terms {
             rows,
+            at_nominal,
             input_term,
             columns,
             curvature,
@@ -334,18 +341,37 @@ where
         })
     }
 
+    /// The prediction's curvature enclosure over `spread` and the inputs `widened`: the robot's
+    /// own ([`Prediction::curvature`]), else, on inputs wider than [`THIN_INPUTS`], the Taylor
+    /// remainder from its model's second and third derivatives where it has them
+    /// ([`taylor_remainder`]: tens of milliseconds for an arm, which a box of the branch and
+    /// bound affords and a list of thousands of configurations does not).
+    fn curvature(
+        &self,
+        spread: &[Interval; NX],
+        widened: &[Interval; NU],
+    ) -> Option<[Interval; R]> {
+        self.prediction.curvature(spread, widened).or_else(|| {
+            let widest = widened.iter().map(|v| v.wid()).fold(0.0, f64::max);
+            if widest <= THIN_INPUTS {
+                return None;
+            }
+            let model = self.prediction.model().curvature()?;
+            taylor_remainder(model, &self.nominal, spread, &slot(widened, Interval::ZERO))
+        })
+    }
+
     /// The component of the error along `w` over the box `terms` were made for.
     fn along(&self, terms: &Terms<NX, NP, NU, R>, w: &[f64; R]) -> Component<NX> {
-        let (slopes, shift) = match (&terms.columns, terms.curvature) {
-            (Some(c), Some(k)) => (
+        let along_curvature =
+            |k: [Interval; R]| (0..R).fold(Interval::ZERO, |s, r| s + Interval::point(w[r]) * k[r]);
+        let (slopes, shift) = match (&terms.columns, terms.curvature, &terms.at_nominal) {
+            (Some(c), k, _) => (
                 Slopes::second_order(w, c, &terms.rows, &self.reach),
-                (0..R).fold(Interval::ZERO, |s, r| s + Interval::point(w[r]) * k[r]),
+                k.map_or(Interval::ZERO, along_curvature),
             ),
-            (Some(c), None) => (
-                Slopes::second_order(w, c, &terms.rows, &self.reach),
-                Interval::ZERO,
-            ),
-            (None, _) => (Slopes::interval(w, &terms.rows), Interval::ZERO),
+            (None, Some(k), Some(at)) => (Slopes::interval(w, at), along_curvature(k)),
+            (None, _, _) => (Slopes::interval(w, &terms.rows), Interval::ZERO),
         };
         let inputs = (0..R).fold(Interval::ZERO, |s, r| {
             s + Interval::point(w[r].abs()) * Interval::point(terms.input_term[r])
@@ -558,7 +584,7 @@ where
     ) {
         let spread: [Interval; NX] =
             core::array::from_fn(|j| self.hull[j] - Interval::point(self.nominal[j]));
-        let Some(k) = self.prediction.curvature(&spread, widened) else {
+        let Some(k) = self.curvature(&spread, widened) else {
             return;
         };
         let at = self
@@ -1046,6 +1072,8 @@ fn ranges_of<const NX: usize, const R: usize>(
 struct Terms<const NX: usize, const NP: usize, const NU: usize, const R: usize> {
     /// The prediction's rows with their derivatives over the box and the set's outer box.
     rows: [Evaluation<Interval, NX, NP>; R],
+    /// On thin inputs with a curvature enclosure, the rows over the box at `θ̂`.
+    at_nominal: Option<[Evaluation<Interval, NX, NP>; R]>,
     /// Per coordinate, the inputs' own errors' term (`Σ_i |H_ri| ε_i`, rounded up).
     input_term: [f64; R],
     /// The columns `∂g/∂θ_j` as second-order models in the inputs (narrow boxes).
