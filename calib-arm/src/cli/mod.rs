@@ -103,7 +103,7 @@ enum Command {
     ///   arm accuracy --robot calibrated.toml --before robot.toml \
     ///                --measurements held_out.csv --uncertainty uncertainty.toml
     /// (--rows and the column options as for certify; or --task task.csv, columns q1..qN in
-    /// degrees). On the real UR10's 1,435 held-out rows: at most 5.5 mm after calibration, at
+    /// degrees). On the real UR10's 1,435 held-out rows: at most 5.3 mm after calibration, at
     /// least 21.2 mm before.
     #[command(verbatim_doc_comment)]
     Accuracy(accuracy::Args),
