@@ -100,6 +100,7 @@ pub use set::certified_set::{
     maximize_over_set, CertifiedPoint, CertifiedSet, LinearFunction, LinearMax, SetMaximum,
     SetMaximumSettings, SetObjective, SetPiece, SetQuery, SlotQueries, DEFAULT_MAX_PIECES,
 };
+pub use set::curvature_rows::HessianOverBox;
 pub use set::least_squares::{least_squares_in_set, SetFit, CROSS_VALIDATION_FOLDS, PRIOR_WEIGHTS};
 pub use set::maximum::{
     bracket_ratio, maximize, maximize_over_list, Maximum, MaximumSettings, Objective, Ranked,

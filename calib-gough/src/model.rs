@@ -25,7 +25,7 @@
 //! every kernel call have one type whatever the data kind.
 
 use crate::measurement::{Configuration, Orientation};
-use calib_core::{interval_model, CertifiedSet, Evaluation, Interval, Model, Scalar};
+use calib_core::{interval_model, CertifiedSet, Evaluation, Interval, Jet2, Model, Scalar};
 
 /// Names of the seven leg parameters, in the order of `x`.
 pub const PARAMETER_NAMES: [&str; 7] = ["ax", "ay", "az", "bx", "by", "bz", "l"];
@@ -134,6 +134,43 @@ impl LegModel {
             LegModel::AxisAngle => &[0, 1, 2, 3, 4, 5, 6, 7],
             LegModel::Rodrigues => &[0, 1, 2, 3, 4, 5, 7],
         }
+    }
+}
+
+/// Second-order jets over the leg residual's 15 symbols (7 parameters, 8 measured quantities).
+type LegJet2 = Jet2<Interval, 15, 120>;
+
+impl LegModel {
+    /// Enclosures of the residual's second derivatives `∂²f/∂z_a∂z_b` over the boxes `x`, `m`
+    /// for the `symbols` given (`j < 7` parameter `j`, `7 + i` measured quantity `i`), row-major:
+    /// the residual evaluated once over second-order jets of intervals (for the certified set's
+    /// Taylor rows, [`CertifiedSet::add_second_order_rows`]).
+    pub fn hessian_over(
+        self,
+        x: &[Interval; 7],
+        m: &[Interval; 8],
+        symbols: &[usize],
+    ) -> Option<Vec<Interval>> {
+        if symbols.len() > 15 {
+            return None;
+        }
+        let jet = |v: Interval, k: usize| match symbols.iter().position(|&s| s == k) {
+            Some(a) => LegJet2::variable(v, a),
+            None => LegJet2::constant(v),
+        };
+        let xs: [LegJet2; 7] = core::array::from_fn(|j| jet(x[j], j));
+        let ms: [LegJet2; 8] = core::array::from_fn(|i| jet(m[i], 7 + i));
+        let f = match self {
+            LegModel::AxisAngle => gough_leg(&xs, &ms),
+            LegModel::Rodrigues => gough_leg_rodrigues(&xs, &ms),
+        };
+        let n = symbols.len();
+        Some(
+            (0..n)
+                .flat_map(|a| (0..n).map(move |b| (a, b)))
+                .map(|(a, b)| f.second(a, b))
+                .collect(),
+        )
     }
 }
 

@@ -40,7 +40,7 @@
 //! widest side, both halves contracted by the Newton step, halves proved empty dropped) until the
 //! bracket meets its tolerance or a budget is spent.
 
-use super::curvature_rows::with_curvature_rows;
+use super::curvature_rows::{with_curvature_rows, HessianOverBox, Hessians};
 use crate::kernel::bisection::split_widest;
 use crate::kernel::contract::{build_relaxation, contract, Workspace};
 use crate::kernel::cover::hull_of;
@@ -227,12 +227,33 @@ impl<const NX: usize, const NM: usize> CertifiedSet<NX, NM> {
         let Some(curvature) = model.curvature() else {
             return;
         };
+        self.add_rows(model, Hessians::Curvature(curvature));
+    }
+
+    /// [`CertifiedSet::add_curvature_rows`] with the Hessians over each piece's box from the
+    /// robot's own enclosure `hessian` (for a model without `#[interval_model(curvature)]`: a
+    /// scalar residual evaluated over second-order jets, say).
+    pub fn add_second_order_rows<M, const NR: usize>(
+        &mut self,
+        model: &M,
+        hessian: &HessianOverBox<NX, NM>,
+    ) where
+        M: VectorModel<NX, NM, NR> + Sync,
+    {
+        self.add_rows(model, Hessians::OverBox(hessian));
+    }
+
+    /// The Taylor rows from `hessians` on every piece.
+    fn add_rows<M, const NR: usize>(&mut self, model: &M, hessians: Hessians<'_, NX, NM, NR>)
+    where
+        M: VectorModel<NX, NM, NR> + Sync,
+    {
         for i in 0..self.pieces.len() {
             let kept = self.subset_measurements(self.pieces[i].subset);
             let piece = &mut self.pieces[i];
             piece.poly = with_curvature_rows(
                 model,
-                curvature,
+                hessians,
                 &piece.bounds,
                 &piece.centre,
                 &kept,

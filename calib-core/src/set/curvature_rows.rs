@@ -34,6 +34,53 @@ use crate::lp::Polyhedron;
 use crate::model::curvature::{Curvature, MAX_CURVATURE_SYMBOLS};
 use crate::{Interval, VectorModel};
 
+/// A robot's own enclosure of its residual rows' Hessians over boxes of parameters and
+/// measured quantities: per row, the `n × n` enclosures (row-major) of `∂²f_r/∂z_a∂z_b` over the
+/// boxes for the `n` symbols given (`j < NX` parameter `j`, `NX + i` measured quantity `i`), or
+/// `None`.
+pub type HessianOverBox<const NX: usize, const NM: usize> =
+    dyn Fn(&[Interval; NX], &[Interval; NM], &[usize]) -> Option<Vec<Interval>> + Sync;
+
+/// Where a row's Hessian over the box comes from.
+#[derive(Clone, Copy)]
+pub(crate) enum Hessians<'a, const NX: usize, const NM: usize, const NR: usize> {
+    /// The model's derivatives (`#[interval_model(curvature)]`): at the centre, plus the
+    /// third-order change over the box.
+    Curvature(&'a dyn Curvature<NX, NM, NR>),
+    /// The robot's own enclosure over the box.
+    OverBox(&'a HessianOverBox<NX, NM>),
+}
+
+impl<const NX: usize, const NM: usize, const NR: usize> Hessians<'_, NX, NM, NR> {
+    /// Whether symbol `s` can curve a row (only the model's derivatives know it is not).
+    fn curved(&self, s: usize) -> bool {
+        match self {
+            Hessians::Curvature(c) => c.curved(s),
+            Hessians::OverBox(_) => true,
+        }
+    }
+
+    /// Per row, the `n × n` enclosures of the Hessian over the boxes `x`, `m` (about `centre`,
+    /// `m_mid` for the model's derivatives).
+    fn over(
+        &self,
+        x: &[Interval; NX],
+        m: &[Interval; NM],
+        centre: &[f64; NX],
+        m_mid: &[f64; NM],
+        symbols: &[usize],
+    ) -> Option<Vec<Interval>> {
+        match self {
+            Hessians::Curvature(c) => {
+                let h0 = c.second_derivatives(centre, m_mid, symbols)?;
+                let t = c.third_derivatives_along(x, m, centre, m_mid, symbols)?;
+                (h0.len() == t.len()).then(|| h0.iter().zip(&t).map(|(a, b)| *a + *b).collect())
+            }
+            Hessians::OverBox(h) => h(x, m, symbols),
+        }
+    }
+}
+
 /// `poly` (the relaxation's rows over the box `x`, in `y = x - centre`) with the second-order
 /// Taylor rows (module documentation) of `model` against `measurements` added: each
 /// measurement's rows open its group (group `k` for measurement `k`), so that they are the
@@ -42,7 +89,7 @@ use crate::{Interval, VectorModel};
 /// nonzero width, or whose enclosures fail, adds no rows.
 pub(crate) fn with_curvature_rows<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
-    curvature: &dyn Curvature<NX, NM, NR>,
+    hessians: Hessians<'_, NX, NM, NR>,
     x: &[Interval; NX],
     centre: &[f64; NX],
     measurements: &[[Interval; NM]],
@@ -54,7 +101,7 @@ where
     use rayon::prelude::*;
     let taylor: Vec<Vec<([f64; NX], f64, f64)>> = measurements
         .par_iter()
-        .map(|m| taylor_rows(model, curvature, x, centre, m).unwrap_or_default())
+        .map(|m| taylor_rows(model, hessians, x, centre, m).unwrap_or_default())
         .collect();
     let mut out = Polyhedron::default();
     out.reset(poly.lo(), poly.hi());
@@ -103,7 +150,7 @@ fn group(k: usize) -> u32 {
 #[allow(clippy::type_complexity)]
 fn taylor_rows<M, const NX: usize, const NM: usize, const NR: usize>(
     model: &M,
-    curvature: &dyn Curvature<NX, NM, NR>,
+    hessians: Hessians<'_, NX, NM, NR>,
     x: &[Interval; NX],
     centre: &[f64; NX],
     m: &[Interval; NM],
@@ -116,7 +163,7 @@ where
     let symbols: Vec<usize> = (0..NX)
         .filter(|&j| x[j].wid() > 0.0)
         .chain((0..NM).filter(|&i| m[i].wid() > 0.0).map(|i| NX + i))
-        .filter(|&s| curvature.curved(s))
+        .filter(|&s| hessians.curved(s))
         .collect();
     if symbols.len() > MAX_CURVATURE_SYMBOLS {
         return None;
@@ -124,14 +171,14 @@ where
     let at_centre =
         model.evaluate_rows_interval(&centre.map(Interval::point), &m_mid.map(Interval::point));
     let n = symbols.len();
-    let (h0, t) = if n == 0 {
-        (Vec::new(), Vec::new())
+    let h = if n == 0 {
+        Vec::new()
     } else {
-        (
-            curvature.second_derivatives(centre, &m_mid, &symbols)?,
-            curvature.third_derivatives_along(x, m, centre, &m_mid, &symbols)?,
-        )
+        hessians.over(x, m, centre, &m_mid, &symbols)?
     };
+    if h.len() != NR * n * n {
+        return None;
+    }
     let dz: Vec<Interval> = symbols
         .iter()
         .map(|&s| {
@@ -145,16 +192,15 @@ where
     let half = Interval::point(0.5);
     let mut out = Vec::with_capacity(NR);
     for (r, e) in at_centre.iter().enumerate() {
-        // ½ Δzᵀ (H + T) Δz.
+        // ½ Δzᵀ H Δz.
         let mut q = Interval::ZERO;
         for a in 0..n {
             for b in 0..n {
-                let k = r * n * n + a * n + b;
-                let h = h0[k] + t[k];
+                let hab = h[r * n * n + a * n + b];
                 q += if a == b {
-                    h * dz[a].sqr()
+                    hab * dz[a].sqr()
                 } else {
-                    h * dz[a] * dz[b]
+                    hab * dz[a] * dz[b]
                 };
             }
         }

@@ -116,6 +116,7 @@ impl LegSet {
             &points,
             FINE_PIECES,
         );
+        set.add_second_order_rows(&model, &move |x, m, s| model.hessian_over(x, m, s));
         let mut rng = rand::rngs::StdRng::seed_from_u64(0xca7a);
         let t = domain[3].sup();
         let mut directions = Vec::with_capacity(2 * CATALOGUE_POSES);

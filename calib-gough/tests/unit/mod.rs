@@ -8,6 +8,7 @@ mod error;
 mod error_scale;
 mod files;
 mod lsq;
+mod model;
 mod plot;
 mod report;
 mod verdict;
