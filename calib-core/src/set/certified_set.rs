@@ -57,6 +57,8 @@ pub struct SetPiece<const NX: usize> {
     /// In `y = x - centre`, over the box `bounds - centre` (rounded outward).
     poly: Polyhedron,
     subset: usize,
+    /// Whether `poly` holds the second-order Taylor rows ([`CertifiedSet::add_curvature_rows`]).
+    second_order: bool,
 }
 
 impl<const NX: usize> SetPiece<NX> {
@@ -200,12 +202,13 @@ impl<const NX: usize, const NM: usize> CertifiedSet<NX, NM> {
                 centre: centre.map(|v| v.mid()),
                 poly,
                 subset: s,
+                second_order: false,
             });
         }
     }
 
-    /// Adds to every piece's polyhedron the second-order Taylor rows of `model` about the
-    /// piece's centre `c`: for each measurement box `M` (midpoint `M̂`) and residual row `r`,
+    /// Adds to every piece's polyhedron that has none yet (pieces refined since the last call
+    /// get theirs) the second-order Taylor rows of `model` about the piece's centre `c`: for each measurement box `M` (midpoint `M̂`) and residual row `r`,
     /// with `y = x - c` and `Δz = (y, M - M̂)`,
     ///
     /// `f_r(x, M) = f_r(c, M̂) + ∇_x f_r·y + ∇_M f_r·(M - M̂) + ½ Δzᵀ H_r(ξ) Δz`,
@@ -243,14 +246,18 @@ impl<const NX: usize, const NM: usize> CertifiedSet<NX, NM> {
         self.add_rows(model, Hessians::OverBox(hessian));
     }
 
-    /// The Taylor rows from `hessians` on every piece.
+    /// The Taylor rows from `hessians` on every piece that has none yet.
     fn add_rows<M, const NR: usize>(&mut self, model: &M, hessians: Hessians<'_, NX, NM, NR>)
     where
         M: VectorModel<NX, NM, NR> + Sync,
     {
         for i in 0..self.pieces.len() {
+            if self.pieces[i].second_order {
+                continue;
+            }
             let kept = self.subset_measurements(self.pieces[i].subset);
             let piece = &mut self.pieces[i];
+            piece.second_order = true;
             piece.poly = with_curvature_rows(
                 model,
                 hessians,

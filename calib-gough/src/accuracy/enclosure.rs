@@ -179,6 +179,9 @@ impl LegSet {
             let budget = REFINEMENTS_PER_DIRECTION.min(pieces - set.pieces().len());
             refined_maximum(&mut set, w, budget);
         }
+        // The refined pieces' own Taylor rows (the others keep theirs).
+        let model = LegModel::of_set(&set);
+        set.add_second_order_rows(&model, &move |x, m, s| model.hessian_over(x, m, s));
         LegSet {
             catalogue: set.points().iter().map(|p| p.x).collect(),
             set,
