@@ -188,14 +188,14 @@ pub fn parse_carried(file: &Path, text: &str) -> Result<(Arm, Option<ArmSet>), D
     Ok((arm, Some(set)))
 }
 
-/// The stored set of the robot file's table `table` as a certified set in the padded model
-/// (module [`calib_pipeline::stored_set`]), checked; errors name `table.field`.
 /// Sets of at most this many pieces get the second-order Taylor rows
 /// ([`calib_core::CertifiedSet::add_curvature_rows`]: two Hessian enclosures per configuration
 /// and piece). A set of more pieces comes from `--hull`, whose smaller boxes leave the
 /// relaxation's rows less slack to take back, at a cost that grows with the pieces.
 const CURVATURE_ROW_PIECES: usize = 4;
 
+/// The stored set of the robot file's table `table` as a certified set in the padded model
+/// (module [`calib_pipeline::stored_set`]), checked; errors name `table.field`.
 fn restore_set(
     file: &Path,
     arm: &Arm,

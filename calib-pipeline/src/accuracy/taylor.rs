@@ -15,8 +15,8 @@
 use calib_core::{Curvature, Interval};
 
 /// The Taylor remainder's enclosure per coordinate (module documentation) of `model` about
-/// `nominal` over `spread` (intervals holding `θ - θ̂` over the set) and the measurement slot's
-/// box `m` (the inputs, then zeros). `None` with more symbols of nonzero width than
+/// `nominal` over `spread` (intervals holding `θ - θ̂` over the set, widened to hold 0) and the
+/// measurement slot's box `m` (the inputs, then zeros). `None` with more symbols of nonzero width than
 /// [`calib_core::MAX_CURVATURE_SYMBOLS`], or when an enclosure failed.
 pub fn taylor_remainder<const NX: usize, const NP: usize, const R: usize>(
     model: &dyn Curvature<NX, NP, R>,
@@ -24,6 +24,8 @@ pub fn taylor_remainder<const NX: usize, const NP: usize, const R: usize>(
     spread: &[Interval; NX],
     m: &[Interval; NP],
 ) -> Option<[Interval; R]> {
+    // Taylor's segment from θ̂ must lie in the box the derivatives are enclosed over.
+    let spread = spread.map(|v| v.hull(Interval::ZERO));
     let params: Vec<usize> = (0..NX)
         .filter(|&j| spread[j].mag() > 0.0 && model.curved(j))
         .collect();
