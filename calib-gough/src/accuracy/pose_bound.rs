@@ -18,9 +18,11 @@
 //! errors — for every solution connected to `X`, singular or not.
 //!
 //! **Per box of poses, in one step.** [`super::pose_chart`] closes such a region in the chart
-//! that follows the pose, `δ = M(X) y` with `M(X)` the first-order inverse of the legs' Jacobian
-//! at each pose: its remainder is second order in the box's width and the move, so the bound
-//! tends to the truth as the box shrinks.
+//! that follows the pose, `δ = M(X) y` with `M(X)` the inverse of the legs' Jacobian at each
+//! pose, wherever that Jacobian is proved nonsingular across the box: its remainder is first
+//! order in the move and the geometry's spread, the chart's enclosure second order in the box's
+//! width. Each box's halves start from its legs' bounds `U`, and compute their own only where
+//! those do not already meet the target.
 //!
 //! **Over the workspace**, a best-first branch and bound splits the boxes of poses with the
 //! largest bound relative to the errors attained; a box whose region cannot be closed (the move
@@ -38,10 +40,8 @@ use super::enclosure::{AccuracyProblem, PoseBox};
 use super::pose_chart::PoseChart;
 use calib_core::split_widest;
 use calib_core::Ranked;
-use calib_core::{interval_model, Interval, Model, Scalar};
-use nalgebra::Matrix6;
+use calib_core::{interval_model, Interval, Scalar};
 use rayon::prelude::*;
-use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 /// The change of a leg's length when the platform moves from `X = (p, q)` by `δ = (d, w)` to
@@ -125,44 +125,6 @@ pub struct PoseErrorBounds {
     pub seconds: f64,
 }
 
-/// The legs' Jacobian `J = ∇_δ G` at `δ = 0`, at the centre of the box of poses `x` and the
-/// nominal geometry (floating point: any matrix serves as a chart once its inverse is proved).
-pub fn centre_jacobian(problem: &AccuracyProblem, x: &PoseBox) -> Matrix6<f64> {
-    let xc = x.map(|v| v.mid());
-    let mut j = Matrix6::zeros();
-    for i in 0..6 {
-        let n = problem.nominal(i);
-        let m: [f64; 12] = core::array::from_fn(|k| if k < 6 { xc[k] } else { n[k - 6] });
-        let row = ReachedChange.jacobian_x(&[0.0; 6], &m);
-        for k in 0..6 {
-            j[(i, k)] = row[k];
-        }
-    }
-    j
-}
-
-/// The floating-point inverse `M` of `j`, when `‖I - j M‖∞ < 1` proves it (hence `j`)
-/// nonsingular: `δ = M y` then maps a region `D` onto a neighbourhood of `δ = 0` and `D`'s
-/// boundary onto its boundary.
-pub fn proved_inverse(j: &Matrix6<f64>) -> Option<Matrix6<f64>> {
-    let inv = j.try_inverse()?;
-    let residual_norm = (0..6)
-        .map(|r| {
-            (0..6)
-                .map(|c| {
-                    let p = (0..6).fold(Interval::point(0.0), |s, k| {
-                        s + Interval::point(j[(r, k)]) * Interval::point(inv[(k, c)])
-                    });
-                    (Interval::point(if r == c { 1.0 } else { 0.0 }) - p).mag()
-                })
-                .fold(Interval::point(0.0), |s, v| s + Interval::point(v))
-                .sup()
-        })
-        .fold(0.0, f64::max);
-    // NaN fails too.
-    (residual_norm.partial_cmp(&1.0) == Some(Ordering::Less)).then_some(inv)
-}
-
 /// `U_i = max |ΔL_i| + ε` over the box of poses `x`, rounded up: every leg's change along the
 /// path stays within `[-U_i, U_i]` (module documentation). `None` when one is not finite.
 pub fn leg_change_bounds(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> Option<[f64; 6]> {
@@ -177,21 +139,6 @@ pub fn leg_change_bounds(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> Op
         *b = u.max(1e-12);
     }
     Some(bound)
-}
-
-/// Per leg, the inputs `m = (X, a, b)` of [`reached_change`]: the pose `pose` and the leg's
-/// geometry box, each coordinate of which `geometry` turns into a `T`.
-pub fn leg_inputs<T: Copy>(
-    problem: &AccuracyProblem,
-    pose: &[T; 6],
-    mut geometry: impl FnMut(Interval) -> T,
-) -> Vec<[T; 12]> {
-    (0..6)
-        .map(|i| {
-            let t = problem.theta(i);
-            core::array::from_fn(|k| if k < 6 { pose[k] } else { geometry(t[k - 6]) })
-        })
-        .collect()
 }
 
 /// `|d|²` and `|w|²` of a move `δ = (d, w)` whose components are bounded in magnitude by `comp`.
@@ -224,6 +171,12 @@ pub fn key(value: [f64; 2], target: [f64; 2]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The legs' change bounds `U_i` over a box of poses (rounded up).
+type ChangeBounds = [f64; 6];
+
+/// A box of poses' outcome and the legs' change bounds it used (when computed).
+type Evaluated = (BoxBound, Option<ChangeBounds>);
+
 /// The outcome for one box of poses.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum BoxBound {
@@ -235,20 +188,49 @@ enum BoxBound {
     Unproved,
 }
 
-/// The bounds over one box of poses: by the chart that follows the pose, when its region closes.
-fn bound_pose_box(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> BoxBound {
+/// The bounds over one box of poses, by the chart that follows the pose when its region
+/// closes, and the legs' change bounds `U` used. `inherited` are a parent box's (upper bounds
+/// over this box too): when they already meet `target` the box's own, which cost a few linear
+/// programs per leg, are not computed.
+fn bound_pose_box(
+    problem: &AccuracyProblem,
+    x: &PoseBox,
+    eps: f64,
+    inherited: Option<ChangeBounds>,
+    target: [f64; 2],
+) -> Evaluated {
     if !problem.may_be_feasible(x) {
-        return BoxBound::Empty;
+        return (BoxBound::Empty, None);
     }
-    PoseChart::new(problem, x, eps)
-        .and_then(|c| c.bound())
-        .map_or(BoxBound::Unproved, BoxBound::Bound)
+    // The poses of the workspace in the box lie in its part within the tilt.
+    let Some(x) = problem.within_tilt(x) else {
+        return (BoxBound::Empty, None);
+    };
+    let chart = |u: [f64; 6]| PoseChart::with_leg_bounds(problem, &x, u).and_then(|c| c.bound());
+    if let Some(u) = inherited {
+        if let Some(b) = chart(u).filter(|b| key(*b, target) <= 1.0) {
+            return (BoxBound::Bound(b), Some(u));
+        }
+    }
+    let Some(own) = leg_change_bounds(problem, &x, eps) else {
+        return (BoxBound::Unproved, inherited);
+    };
+    let u = match inherited {
+        Some(p) => core::array::from_fn(|i| own[i].min(p[i])),
+        None => own,
+    };
+    (
+        chart(u).map_or(BoxBound::Unproved, BoxBound::Bound),
+        Some(u),
+    )
 }
 
 /// A box of poses in the queue of [`pose_error_bounds`] and its bounds.
 struct Queued {
     x: PoseBox,
     bound: BoxBound,
+    /// The legs' change bounds over the box, when computed (its halves inherit them).
+    legs: Option<ChangeBounds>,
 }
 
 /// The share of `domain`'s volume in `x` (a coordinate where `domain` is a point counts as
@@ -279,7 +261,8 @@ pub fn pose_error_bounds(
     let start = std::time::Instant::now();
     let search = PoseSearch::new(problem, eps, lower, settings);
     let mut queue = PoseQueue::default();
-    queue.record(search.domain, search.evaluate(&search.domain), &search);
+    let (bound, legs) = search.evaluate(&search.domain, None);
+    queue.record(search.domain, bound, legs, &search);
     let batch = 2 * rayon::current_num_threads().max(1);
     while queue.pose_boxes < settings.max_pose_boxes
         && start.elapsed().as_secs_f64() < settings.max_seconds
@@ -290,12 +273,12 @@ pub fn pose_error_bounds(
         if tasks.is_empty() || queue.unproved_at.is_some() {
             break;
         }
-        let results: Vec<(PoseBox, BoxBound)> = tasks
+        let results: Vec<(PoseBox, Evaluated)> = tasks
             .into_par_iter()
-            .map(|x| (x, search.evaluate(&x)))
+            .map(|(x, legs)| (x, search.evaluate(&x, legs)))
             .collect();
-        for (x, b) in results {
-            queue.record(x, b, &search);
+        for (x, (b, legs)) in results {
+            queue.record(x, b, legs, &search);
         }
     }
     queue.into_bounds(&search.domain, start)
@@ -338,9 +321,10 @@ impl<'a> PoseSearch<'a> {
         }
     }
 
-    /// The bounds over the box of poses `x`.
-    fn evaluate(&self, x: &PoseBox) -> BoxBound {
-        bound_pose_box(self.problem, x, self.eps)
+    /// The bounds over the box of poses `x` and the legs' change bounds used, from the parent's
+    /// `inherited` when they suffice.
+    fn evaluate(&self, x: &PoseBox, inherited: Option<ChangeBounds>) -> Evaluated {
+        bound_pose_box(self.problem, x, self.eps, inherited, self.target)
     }
 }
 
@@ -361,7 +345,13 @@ struct PoseQueue {
 
 impl PoseQueue {
     /// Counts an evaluated box and queues it (an unproved one first of all).
-    fn record(&mut self, x: PoseBox, bound: BoxBound, search: &PoseSearch<'_>) {
+    fn record(
+        &mut self,
+        x: PoseBox,
+        bound: BoxBound,
+        legs: Option<ChangeBounds>,
+        search: &PoseSearch<'_>,
+    ) {
         self.pose_boxes += 1;
         let key = match bound {
             BoxBound::Empty => {
@@ -373,14 +363,18 @@ impl PoseQueue {
         };
         self.heap.push(Ranked {
             key,
-            item: Queued { x, bound },
+            item: Queued { x, bound, legs },
         });
     }
 
     /// Up to `batch` boxes to evaluate: the halves of the boxes with the largest keys above 1.
     /// A box that cannot be split (or, unproved, is as fine as the search goes) stays in the
     /// queue and ends the batch; an unproved one is named.
-    fn next_tasks(&mut self, batch: usize, search: &PoseSearch<'_>) -> Vec<PoseBox> {
+    fn next_tasks(
+        &mut self,
+        batch: usize,
+        search: &PoseSearch<'_>,
+    ) -> Vec<(PoseBox, Option<ChangeBounds>)> {
         let (domain, finest_pose) = (&search.domain, search.settings.finest_pose);
         let mut tasks = Vec::new();
         while tasks.len() < batch {
@@ -393,8 +387,8 @@ impl PoseQueue {
             let fine = (0..6).all(|c| q.x[c].wid() <= finest_pose * domain[c].wid());
             match split_widest(&q.x, domain) {
                 Some((l, r)) if !(fine && q.bound == BoxBound::Unproved) => {
-                    tasks.push(l);
-                    tasks.push(r);
+                    tasks.push((l, q.legs));
+                    tasks.push((r, q.legs));
                 }
                 _ => {
                     if q.bound == BoxBound::Unproved {

@@ -1,62 +1,79 @@
-//! A chart that follows the commanded pose: the platform's pose errors over a box of poses in one
-//! step, when the legs' Jacobian changes little across the box and the move.
+//! A chart that follows the commanded pose exactly: the platform's pose errors over a box of
+//! poses in one step, wherever the legs' Jacobian is proved nonsingular across the box.
 //!
-//! A chart `δ = M y` fixed for the whole box of poses (`M ≈ J⁻¹` at its centre) would not do:
-//! over a box of width `w` the legs' Jacobian `J(X)` changes by `O(w)`, and in a fixed chart so
-//! does every leg's change, `G_i(X, M y) - y_i ≈ ((J(X) - J_c) M y)_i`, which the condition
-//! number of `J` amplifies. Regions then close only on small boxes of poses.
+//! **The chart.** At each pose `X` of the box, `δ = M(X) y` with `M(X) = J(X)⁻¹` exactly, where
+//! `J(X) = ∇_δ G(X, 0, θ̂)` is the legs' Jacobian at the nominal geometry. `J(X)` is enclosed as
+//! affine forms whose noise symbols are the pose's coordinates ([`calib_core::Affine`] through
+//! [`calib_core::Jet`]); with `C ≈ J(X_c)⁻¹` (floating point), `S(X) = C J(X) - I` has entries
+//! bounded in magnitude by `A`. When a scaled norm of `A` is below 1 ([`scaled_norm`]), `J(X)` is
+//! nonsingular at every pose of the box, `|M(X)| <= B` entrywise (the Neumann series' bound, then
+//! `B = |C| + A B`), and `M(X) = C - S C + S² M`: the affine form of `C - S C`, first order in the
+//! pose, with the remainder `|S² M| <= A² B` (second order). The legs' Jacobian mixes centimetres
+//! and the Rodrigues vector: across half of `sample21`'s default workspace the plain norm of `A`
+//! is 34 where the scaled one is 0.93, so only the scaled one proves anything there.
 //!
-//! Here the chart moves with the pose: `M(X) = M_c - M_c (J(X) - J_c) M_c`, the first-order
-//! inverse of `J(X)`, enclosed as affine forms whose noise symbols are the pose's coordinates
-//! ([`calib_core::Affine`]; `J(X)` from `∇_δ G` at `δ = 0` with the nominal geometry, through
-//! [`calib_core::Jet`]). `M(X)` is nonsingular for every pose of the box when
-//! `‖M_c (J(X) - J_c)‖∞ < 1`, so `D(X) = M(X) · [-R, R]` is a parallelepiped around `δ = 0`
-//! whose boundary is the image of the box's faces.
+//! **The remainder.** Because `J(X) M(X) = I` at every pose, along the segment from `0` to
+//! `δ = M(X) y`, `G_i - y_i = (∫₀¹ ∇_δ G_i(X, τ δ, θ*) dτ - ∇_δ G_i(X, 0, θ̂)) · δ`: the change of
+//! the gradient with the move (second derivatives in `δ`, averaged over `τ` to half their reach)
+//! and with the geometry (`∂²G/∂δ∂θ` times `θ* - θ̂`), both from one Hessian of `G` over the box
+//! of poses, the widest region's moves and the leg's box ([`calib_core::Jet2`]). So `|G_i - y_i|
+//! <= ρ_i = Σ_{c,d} |½ Mᵀ H_i M|_cd h_c h_d + Σ_r g_i,r z_r` over `|y| <= h`: the move's part as a
+//! quadratic form in the legs' coordinates (the components of `δ = M y` keep their correlation,
+//! which a bound per component, through `z` the region's reach, loses: the platform moves
+//! sideways far more easily than it tilts a leg), the geometry's through `z`. First order in the
+//! geometry's spread, second in the move, whatever the width of the box of poses (the chart is
+//! exact; the box only widens the enclosures).
 //!
-//! **The remainder.** `G_i(X, 0, θ*) = 0`, so along the segment from `0` to `δ = M(X) y`,
-//! `G_i - y_i = (∫₀¹ ∇_δ G_i(X, M(X) τ y, θ*) dτ · M(X) - e_i) · y`. The integrand is evaluated
-//! with the same noise symbols for the pose in `∇_δ G_i` and in `M(X)`, and with noise symbols
-//! for `τ y` (so that `ξ = M(X) τ y` keeps the parallelepiped's shape: its box would triple the
-//! remainder). The first-order parts in the pose cancel (`J(X) M(X) = I + O(w²)`); the terms in
-//! `τ y`, the move's curvature, average to half their reach over `τ` (for a fixed `y`, `τ y`
-//! runs from 0 to `y`). So `|G_i - y_i| <= Σ_c |S_ic| h_c =: ρ_i` over `|y_c| <= h_c` is second
-//! order in the box's width and the move.
-//!
-//! **Closing and bounding.** With `R_i = f U_i` and `ρ_i(R) < R_i - U_i` for every leg, every
-//! move on face `i` of `D(X)` has `|G_i| >= R_i - ρ_i > U_i`: no move on the boundary lies in
-//! `F` (see [`super::pose_bound`]), for every pose of the box and every geometry at once, so the
-//! reached move lies in `D(X) ∩ F ⊆ {M(X) y : |y_i| <= U_i + ρ_i}`. The position and
-//! orientation errors are norms of `M(X) y`, bilinear in the pose's noise symbols and `y`:
-//! convex in each, so their largest values are at one of the 64 × 64 vertex pairs, with the
-//! forms' error terms taken outward.
+//! **Closing and bounding.** The region `D(X) = M(X) · [-R, R]` closes when `U_i + ρ_i(R) <
+//! R_i` for every leg: every move on face `i` then has `|G_i| >= R_i - ρ_i > U_i`, so no move on
+//! the boundary lies in `F` (see [`super::pose_bound`]), for every pose of the box and every
+//! geometry at once, and the reached move lies in `D(X) ∩ F ⊆ {M(X) y : |y_i| <= U_i + ρ_i}`.
+//! The least such `R` is sought by `R ← (U + ρ(R))(1 + g)` from `R = U (1 + g)`, each leg its
+//! own width. The position and orientation errors are norms of `M(X) y`, bilinear in the pose's
+//! noise symbols and `y`: convex in each, so their largest values are at one of the 64 × 64
+//! vertex pairs, with the remainder of `M(X)` taken outward.
 
 use super::enclosure::{AccuracyProblem, PoseBox};
-use super::pose_bound::{
-    centre_jacobian, errors_from_squares, leg_change_bounds, leg_inputs, proved_inverse,
-    reached_change, squared_norms,
-};
-use calib_core::{Affine, Interval, Jet};
+use super::pose_bound::{errors_from_squares, leg_change_bounds, reached_change, squared_norms};
+use calib_core::{Affine, Interval, Jet, Jet2};
 
-/// Affine forms over the box of poses (noise symbols `0..6`) and, in the remainder, the box of
-/// moves (`6..12`).
-type Form = Affine<12>;
+/// Second-order jets in twelve symbols.
+type Hessian = Jet2<Interval, 12, 78>;
+/// Affine forms in the pose's noise symbols.
+type Form = Affine<6>;
+/// A 6 × 6 matrix of floating-point numbers.
+type Matrix = [[f64; 6]; 6];
 
-/// The region half-widths tried, in units of `U` (the narrowest that closes is kept).
-const FACTORS: [f64; 5] = [1.05, 1.1, 1.25, 1.5, 2.0];
+/// The widest region tried, in units of `U`: the remainder's Hessian is taken over its moves.
+const WIDEST: f64 = 3.0;
+/// The margin by which each round's region exceeds the previous one's `U + ρ`.
+const GROWTH: f64 = 0.03;
+/// Rounds of the search for the least region that closes.
+const REGION_ROUNDS: usize = 16;
 /// Rounds of the enclosure of `D(X) ∩ F` by `|y_i| <= U_i + ρ_i(h)`.
-const SHRINK_ROUNDS: usize = 3;
+const SHRINK_ROUNDS: usize = 4;
+/// Rounds of `B ← min(B, |C| + A B)` after the Neumann series' bound.
+const INVERSE_ROUNDS: usize = 4;
 /// The relative margin added to every vertex sum of products (floating point, far above the
 /// `γ_n` bound of six products of six terms).
 const ERROR_MARGIN: f64 = 1e-12;
 
 /// The chart of one box of poses.
 pub struct PoseChart {
-    /// `M(X)`.
-    pub m: [[Form; 6]; 6],
+    /// `M(X) ∈ centre + Σ_k slope_k ε_k ± slack` for the pose's noise symbols `ε_k ∈ [-1, 1]`
+    /// (`X_k = mid(x_k) + rad(x_k) ε_k`).
+    pub centre: Matrix,
+    /// The change of `M(X)` along each pose coordinate over its half-width.
+    pub slope: [Matrix; 6],
+    /// The entries' remainder (second order in the box's width) and roundings.
+    pub slack: Matrix,
     /// `U_i`, rounded up.
     pub bound: [f64; 6],
-    /// Per leg, the box of poses as forms and the geometry's box (without correlation).
-    inputs: Vec<[Form; 12]>,
+    /// The box of poses.
+    pose: PoseBox,
+    /// Per leg, the box of the geometry `(a, b)` joined with the nominal values, and its spread
+    /// `mag(Θ - θ̂)`.
+    geometry: Vec<([Interval; 6], [f64; 6])>,
 }
 
 /// `a + b` rounded up (`+∞` when either is not finite).
@@ -77,134 +94,306 @@ pub fn mul_up(a: f64, b: f64) -> f64 {
     }
 }
 
-/// `max |S|` over the pose's noise symbols of the slope `S = ∫₀¹ s(X, τ y) dτ`, where the form
-/// `s` encloses `s(X, τ y)` with noise symbols `0..6` for the pose and `6..12` for `τ y` over
-/// `[-h, h]`: for a fixed `y`, `τ y` runs along the segment from 0 to `y`, so its symbols'
-/// average over `τ` is `y / 2h` and their terms count half, `|c + Σ_k a_k ε_k| + ½ Σ_c |a_c| +
-/// e`, rounded up (`+∞` when not finite).
-fn averaged_mag(s: &Form) -> f64 {
-    let a = s.coefficients();
-    let pose = a[..6]
-        .iter()
-        .fold(s.centre().abs(), |t, v| add_up(t, v.abs()));
-    let moves = a[6..].iter().fold(0.0, |t, v| add_up(t, v.abs()));
-    add_up(add_up(pose, mul_up(0.5, moves)), s.error())
+/// An upper bound `σ` of the spectral radius of every matrix whose entries are bounded in
+/// magnitude by the nonnegative `mag`, and the positive weights `v` that prove it:
+/// `σ = max_r (Σ_c mag_rc v_c) / v_r`, rounded up (`‖D⁻¹ A D‖∞` with `D = diag(v)`: any positive
+/// `v` proves it; shifted power iteration picks `v` near the Perron vector, where `σ` is nearly
+/// `ρ(mag)`). `+∞` when not finite.
+pub fn scaled_norm(mag: &Matrix) -> (f64, [f64; 6]) {
+    let mut v = [1.0f64; 6];
+    if !mag.iter().flatten().all(|x| x.is_finite() && *x >= 0.0) {
+        return (f64::INFINITY, v);
+    }
+    // Power iteration on `mag + t I`, `t` half the last estimate of the radius: the shift keeps
+    // it converging where `mag` alone cycles (a matrix that maps one scale onto another).
+    let mut t = 0.0;
+    for _ in 0..40 {
+        let w: [f64; 6] =
+            core::array::from_fn(|r| (0..6).map(|c| mag[r][c] * v[c]).sum::<f64>() + t * v[r]);
+        let top = w.iter().fold(0.0f64, |a, b| a.max(*b));
+        if !(top > 0.0 && top.is_finite()) {
+            break;
+        }
+        let estimate = (0..6).map(|r| w[r] / v[r]).fold(0.0, f64::max) - t;
+        // A floor keeps every weight positive (a zero row would otherwise zero its weight).
+        v = w.map(|x| (x / top).max(1e-6));
+        t = 0.5 * estimate.max(0.0);
+    }
+    let sigma = (0..6)
+        .map(|r| {
+            let s = (0..6).fold(0.0, |s, c| add_up(s, mul_up(mag[r][c], v[c])));
+            (Interval::point(s) / Interval::point(v[r])).sup()
+        })
+        .fold(0.0, f64::max);
+    (sigma, v)
+}
+
+/// The product of two nonnegative matrices, rounded up.
+fn product_up(a: &Matrix, b: &Matrix) -> Matrix {
+    core::array::from_fn(|r| {
+        core::array::from_fn(|c| (0..6).fold(0.0, |s, k| add_up(s, mul_up(a[r][k], b[k][c]))))
+    })
+}
+
+/// The pose, the move and the geometry of leg `i` as the inputs of [`reached_change`].
+fn inputs<T: Copy>(pose: &[T; 6], geometry: &[T; 6]) -> [T; 12] {
+    core::array::from_fn(|k| if k < 6 { pose[k] } else { geometry[k - 6] })
 }
 
 impl PoseChart {
-    /// The chart of the box of poses `x` with actuator errors `± eps`; `None` when `J_c` is
-    /// singular, `M(X)` is not proved nonsingular over the box, or a leg's bound is not finite.
+    /// The chart of the box of poses `x` with actuator errors `± eps`; `None` when the legs'
+    /// Jacobian is not proved nonsingular over the box or a leg's bound is not finite.
     pub fn new(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> Option<PoseChart> {
-        if problem.legs() != 6 {
-            return None;
-        }
         let bound = leg_change_bounds(problem, x, eps)?;
-        let jc = centre_jacobian(problem, x);
-        let mc = proved_inverse(&jc)?;
-        let pose: [Form; 6] = core::array::from_fn(|k| Form::input(x[k], k));
-        let cst = |v: f64| Form::from_interval(Interval::point(v));
-        // J(X): ∇_δ G at δ = 0 with the nominal geometry, the pose as forms.
-        let jx: [[Form; 6]; 6] = core::array::from_fn(|i| {
-            let n = problem.nominal(i);
-            let delta: [Jet<Form, 6>; 6] = core::array::from_fn(|r| Jet::variable(cst(0.0), r));
-            let inputs: [Jet<Form, 6>; 12] = core::array::from_fn(|k| {
-                Jet::constant(if k < 6 { pose[k] } else { cst(n[k - 6]) })
-            });
-            reached_change(&delta, &inputs).grad
-        });
-        // E(X) = J(X) - J_c and M_c E(X).
-        let e: [[Form; 6]; 6] =
-            core::array::from_fn(|i| core::array::from_fn(|k| jx[i][k] - cst(jc[(i, k)])));
-        let me: [[Form; 6]; 6] = core::array::from_fn(|r| {
-            core::array::from_fn(|c| (0..6).fold(cst(0.0), |s, k| s + cst(mc[(r, k)]) * e[k][c]))
-        });
-        let norm = (0..6)
-            .map(|r| (0..6).fold(0.0, |s, c| add_up(s, me[r][c].range().mag())))
-            .fold(0.0, f64::max);
-        // M(X) = (I - M_c E(X)) M_c is nonsingular when ‖M_c E(X)‖∞ < 1 (NaN fails too).
-        if norm.partial_cmp(&1.0) != Some(core::cmp::Ordering::Less) {
-            return None;
-        }
-        let m: [[Form; 6]; 6] = core::array::from_fn(|r| {
-            core::array::from_fn(|c| {
-                (0..6).fold(cst(mc[(r, c)]), |s, k| s - me[r][k] * cst(mc[(k, c)]))
-            })
-        });
-        let inputs = leg_inputs(problem, &pose, Form::from_interval);
-        Some(PoseChart { m, bound, inputs })
+        PoseChart::with_leg_bounds(problem, x, bound)
     }
 
-    /// `ρ_i` over `|y_c| <= h_c` (module documentation); `+∞` where an enclosure failed.
-    pub fn remainder(&self, h: &[f64; 6]) -> [f64; 6] {
-        // The segment's points ξ = M(X) (τ y), τ y in the box [-h, h]: noise symbols 6..12
-        // for τ y, so that ξ keeps the parallelepiped's shape (its box would not).
-        let ty: [Form; 6] =
-            core::array::from_fn(|c| Form::input(Interval::new(-h[c], h[c]), 6 + c));
-        let zero = Form::from_interval(Interval::ZERO);
-        let delta: [Jet<Form, 6>; 6] = core::array::from_fn(|r| {
-            Jet::variable((0..6).fold(zero, |s, c| s + self.m[r][c] * ty[c]), r)
+    /// [`PoseChart::new`] with the legs' change bounds `U` given (any upper bounds of `U_i` over
+    /// the box: a parent box's serve its halves).
+    pub fn with_leg_bounds(
+        problem: &AccuracyProblem,
+        x: &PoseBox,
+        bound: [f64; 6],
+    ) -> Option<PoseChart> {
+        if problem.legs() != 6 || !bound.iter().all(|u| u.is_finite() && *u > 0.0) {
+            return None;
+        }
+        // J(X) as affine forms in the pose's noise symbols, at the nominal geometry.
+        let pose: [Form; 6] = core::array::from_fn(|k| Form::input(x[k], k));
+        let constant = |v: f64| Form::from_interval(Interval::point(v));
+        let jacobian: [[Form; 6]; 6] = core::array::from_fn(|i| {
+            let n = problem.nominal(i);
+            let delta: [Jet<Form, 6>; 6] =
+                core::array::from_fn(|r| Jet::variable(constant(0.0), r));
+            let geometry: [Jet<Form, 6>; 6] =
+                core::array::from_fn(|k| Jet::constant(constant(n[k])));
+            reached_change(&delta, &inputs(&pose.map(Jet::constant), &geometry)).grad
         });
-        core::array::from_fn(|i| {
-            let inputs = self.inputs[i].map(Jet::constant);
-            let grad = reached_change(&delta, &inputs).grad;
-            (0..6).fold(0.0, |s, c| {
-                let id = Form::from_interval(Interval::point(if c == i { 1.0 } else { 0.0 }));
-                let slope = (0..6).fold(-id, |s, k| s + grad[k] * self.m[k][c]);
-                add_up(s, mul_up(averaged_mag(&slope), h[c]))
+        let c = nalgebra::Matrix6::from_fn(|r, k| jacobian[r][k].centre()).try_inverse()?;
+        let c: Matrix = core::array::from_fn(|r| core::array::from_fn(|k| c[(r, k)]));
+        // S(X) = C J(X) - I and its magnitudes A.
+        let s: [[Form; 6]; 6] = core::array::from_fn(|r| {
+            core::array::from_fn(|col| {
+                let start = constant(if r == col { -1.0 } else { 0.0 });
+                (0..6).fold(start, |acc, k| acc + constant(c[r][k]) * jacobian[k][col])
             })
+        });
+        let a: Matrix = s.map(|row| row.map(|f| f.range().mag()));
+        let (sigma, v) = scaled_norm(&a);
+        // NaN fails too.
+        if sigma.partial_cmp(&1.0) != Some(core::cmp::Ordering::Less) {
+            return None;
+        }
+        let c_magnitude = c.map(|row| row.map(f64::abs));
+        let magnitude = inverse_magnitude(&c_magnitude, &a, sigma, &v);
+        // M(X) = C - S C + S² M, the last term within A² B.
+        let second = product_up(&product_up(&a, &a), &magnitude);
+        let mut centre = [[0.0; 6]; 6];
+        let mut slope = [[[0.0; 6]; 6]; 6];
+        let mut slack = [[0.0; 6]; 6];
+        for r in 0..6 {
+            for col in 0..6 {
+                let m = (0..6).fold(constant(c[r][col]), |acc, k| {
+                    acc - s[r][k] * constant(c[k][col])
+                });
+                centre[r][col] = m.centre();
+                for (k, sk) in slope.iter_mut().enumerate() {
+                    sk[r][col] = m.coefficients()[k];
+                }
+                slack[r][col] = add_up(m.error(), second[r][col]);
+            }
+        }
+        let geometry = (0..6)
+            .map(|i| {
+                let t = problem.theta(i);
+                let n = problem.nominal(i);
+                let joined: [Interval; 6] =
+                    core::array::from_fn(|k| t[k].hull(Interval::point(n[k])));
+                let spread = core::array::from_fn(|k| (joined[k] - Interval::point(n[k])).mag());
+                (joined, spread)
+            })
+            .collect();
+        Some(PoseChart {
+            centre,
+            slope,
+            slack,
+            bound,
+            pose: *x,
+            geometry,
         })
+    }
+
+    /// Per leg, the remainder's parts from one Hessian of `G_i` over the box of poses, every move
+    /// `|δ_j| <= z_j` and the leg's box joined with the nominal geometry; `None` when one is not
+    /// finite.
+    fn curvature(&self, z: &[f64; 6]) -> Option<Vec<Curvature>> {
+        let pose = self.pose.map(Hessian::constant);
+        // M(X) entrywise: centre ± (Σ_k |slope_k| + slack).
+        let m: [[Interval; 6]; 6] = core::array::from_fn(|r| {
+            core::array::from_fn(|c| {
+                let w = (0..6).fold(self.slack[r][c], |s, k| {
+                    add_up(s, self.slope[k][r][c].abs())
+                });
+                Interval::point(self.centre[r][c]) + Interval::new(-w, w)
+            })
+        });
+        let out: Vec<Curvature> = self
+            .geometry
+            .iter()
+            .map(|(joined, spread)| {
+                let delta: [Hessian; 6] =
+                    core::array::from_fn(|j| Hessian::variable(Interval::new(-z[j], z[j]), j));
+                let theta: [Hessian; 6] =
+                    core::array::from_fn(|k| Hessian::variable(joined[k], 6 + k));
+                let h = reached_change(&delta, &inputs(&pose, &theta));
+                // ½ Mᵀ H M, H = ∂²G_i/∂δ².
+                let hm: [[Interval; 6]; 6] = core::array::from_fn(|r| {
+                    core::array::from_fn(|c| {
+                        (0..6).fold(Interval::ZERO, |s, j| s + h.second(r, j) * m[j][c])
+                    })
+                });
+                let quadratic = core::array::from_fn(|c| {
+                    core::array::from_fn(|d| {
+                        let q = (0..6).fold(Interval::ZERO, |s, r| s + m[r][c] * hm[r][d]);
+                        (Interval::point(0.5) * q).mag()
+                    })
+                });
+                let geometry = core::array::from_fn(|c| {
+                    (0..6).fold(0.0, |s, k| {
+                        add_up(s, mul_up(h.second(c, 6 + k).mag(), spread[k]))
+                    })
+                });
+                Curvature {
+                    quadratic,
+                    geometry,
+                }
+            })
+            .collect();
+        out.iter()
+            .all(|c| {
+                c.quadratic.iter().flatten().all(|v| v.is_finite())
+                    && c.geometry.iter().all(|v| v.is_finite())
+            })
+            .then_some(out)
+    }
+
+    /// `ρ_i = Σ_{c,d} Q_i,cd h_c h_d + Σ_r g_i,r z_r` over `|y| <= h`, the moves' components
+    /// within `z` (module documentation), from `curvature` taken over moves at least as large.
+    fn remainder(curvature: &[Curvature], z: &[f64; 6], h: &[f64; 6]) -> [f64; 6] {
+        core::array::from_fn(|i| {
+            let q = &curvature[i].quadratic;
+            let moves = (0..6).fold(0.0, |s, c| {
+                (0..6).fold(s, |s, d| add_up(s, mul_up(mul_up(q[c][d], h[c]), h[d])))
+            });
+            let geometry = &curvature[i].geometry;
+            (0..6).fold(moves, |s, r| add_up(s, mul_up(geometry[r], z[r])))
+        })
+    }
+
+    /// `M(X)` at the 64 vertices of the pose's noise symbols, and per component the slack of
+    /// every entry of its row (the remainder and a rounding margin) to be added outward.
+    fn vertices(&self) -> (Vec<Matrix>, Matrix) {
+        let slack: Matrix = core::array::from_fn(|r| {
+            core::array::from_fn(|c| {
+                let size = (0..6).fold(self.centre[r][c].abs(), |a, k| {
+                    a + self.slope[k][r][c].abs()
+                });
+                add_up(self.slack[r][c], size * ERROR_MARGIN)
+            })
+        });
+        let vertices = (0..64u32)
+            .map(|noise| {
+                let sign = |k: usize| if noise >> k & 1 == 1 { 1.0 } else { -1.0 };
+                core::array::from_fn(|r| {
+                    core::array::from_fn(|c| {
+                        (0..6).fold(self.centre[r][c], |s, k| s + sign(k) * self.slope[k][r][c])
+                    })
+                })
+            })
+            .collect();
+        (vertices, slack)
+    }
+
+    /// Upper bounds of `|δ_r|` over the moves `δ = M(X) y`, `|y_c| <= h_c`, for every pose of
+    /// the box: `max_ε Σ_c |M(ε)_rc| h_c + Σ_c slack_rc h_c` (linear in the pose's noise
+    /// symbols, so largest at a vertex).
+    fn reach(vertices: &[Matrix], slack: &Matrix, h: &[f64; 6]) -> [f64; 6] {
+        core::array::from_fn(|r| {
+            let outward = (0..6).fold(0.0, |s, c| add_up(s, mul_up(slack[r][c], h[c])));
+            let largest = vertices
+                .iter()
+                .map(|m| (0..6).fold(0.0, |s, c| add_up(s, mul_up(m[r][c].abs(), h[c]))))
+                .fold(0.0, f64::max);
+            add_up(largest, outward)
+        })
+    }
+
+    /// `ρ_i` over `|y_c| <= h_c` (module documentation), for `h <= 3 U`; `None` beyond, or when
+    /// an enclosure failed.
+    pub fn remainder_over(&self, h: &[f64; 6]) -> Option<[f64; 6]> {
+        if !(0..6).all(|i| h[i] <= WIDEST * self.bound[i]) {
+            return None;
+        }
+        let (vertices, slack) = self.vertices();
+        let curvature = self.curvature(&Self::reach(
+            &vertices,
+            &slack,
+            &self.bound.map(|v| WIDEST * v),
+        ))?;
+        Some(Self::remainder(
+            &curvature,
+            &Self::reach(&vertices, &slack, h),
+            h,
+        ))
     }
 
     /// Upper bounds of the position (cm) and orientation (degrees) errors over every pose of the
     /// box, every geometry and every actuator error, or `None` when no region closes.
     pub fn bound(&self) -> Option<[f64; 2]> {
         let u = self.bound;
-        let (mut h, mut rest) = FACTORS.iter().find_map(|f| {
-            let r = u.map(|v| f * v);
-            let rest = self.remainder(&r);
-            (0..6)
-                .all(|i| add_up(u[i], rest[i]) < r[i])
-                .then_some((r, rest))
-        })?;
-        // The closing region's remainder starts the shrinking (each round's box holds D(X) ∩ F).
-        for round in 0..SHRINK_ROUNDS {
-            if round > 0 {
-                rest = self.remainder(&h);
+        let (vertices, slack) = self.vertices();
+        let curvature = self.curvature(&Self::reach(&vertices, &slack, &u.map(|v| WIDEST * v)))?;
+        let rest =
+            |h: &[f64; 6]| Self::remainder(&curvature, &Self::reach(&vertices, &slack, h), h);
+        // The least region that closes: R ← (U + ρ(R)) (1 + GROWTH) from R = U (1 + GROWTH)
+        // rises towards the least fixed point, where U + ρ(R) < R; beyond WIDEST the curvature
+        // does not hold.
+        let mut r = u.map(|v| mul_up(v, 1.0 + GROWTH));
+        let mut closed = None;
+        for _ in 0..REGION_ROUNDS {
+            if !(0..6).all(|i| r[i] <= WIDEST * u[i]) {
+                break;
             }
+            let rest = rest(&r);
+            let next: [f64; 6] = core::array::from_fn(|i| add_up(u[i], rest[i]));
+            if (0..6).all(|i| next[i] < r[i]) {
+                closed = Some(r);
+                break;
+            }
+            r = next.map(|v| mul_up(v, 1.0 + GROWTH));
+        }
+        let mut h = closed?;
+        for _ in 0..SHRINK_ROUNDS {
+            let rest = rest(&h);
             h = core::array::from_fn(|i| add_up(u[i], rest[i]).min(h[i]));
         }
-        Some(self.vertex_value(&h))
+        Some(Self::vertex_value(&vertices, &slack, &h))
     }
 
     /// The largest `|d|` and orientation angle of `δ = M(X) y` over the pose's noise symbols and
-    /// `|y_c| <= h_c`: bilinear, so at one of the 64 × 64 vertex pairs; each component's error
-    /// terms `Σ_c e_rc h_c` and a rounding margin are added outward, and the norms rounded up.
-    fn vertex_value(&self, h: &[f64; 6]) -> [f64; 2] {
-        let slack: [f64; 6] = core::array::from_fn(|r| {
-            (0..6).fold(0.0, |s, c| {
-                let f = &self.m[r][c];
-                let a = f.coefficients();
-                let size = a.iter().fold(f.centre().abs(), |a, v| a + v.abs());
-                // Symbols other than the pose's (none in M(X), but kept outward if any).
-                let other = a[6..].iter().fold(f.error(), |s, v| add_up(s, v.abs()));
-                add_up(s, mul_up(add_up(other, size * ERROR_MARGIN), h[c]))
-            })
-        });
+    /// `|y_c| <= h_c`: bilinear, so at one of the 64 × 64 vertex pairs; each component's slack
+    /// `Σ_c slack_rc h_c` is added outward, and the norms rounded up.
+    fn vertex_value(vertices: &[Matrix], slack: &Matrix, h: &[f64; 6]) -> [f64; 2] {
+        let outward: [f64; 6] =
+            core::array::from_fn(|r| (0..6).fold(0.0, |s, c| add_up(s, mul_up(slack[r][c], h[c]))));
         let mut best = [0.0f64; 2];
-        for noise in 0..64u32 {
-            let sign = |k: usize| if noise >> k & 1 == 1 { 1.0 } else { -1.0 };
-            let m: [[f64; 6]; 6] = core::array::from_fn(|r| {
-                core::array::from_fn(|c| {
-                    let f = &self.m[r][c];
-                    (0..6).fold(f.centre(), |s, k| s + sign(k) * f.coefficients()[k])
-                })
-            });
+        for m in vertices {
             for corner in 0..64u32 {
                 let y: [f64; 6] =
                     core::array::from_fn(|c| if corner >> c & 1 == 1 { h[c] } else { -h[c] });
                 let comp: [f64; 6] = core::array::from_fn(|r| {
                     let v: f64 = (0..6).map(|c| m[r][c] * y[c]).sum();
-                    add_up(v.abs(), slack[r])
+                    add_up(v.abs(), outward[r])
                 });
                 let sq = squared_norms(&comp);
                 best = [best[0].max(sq[0]), best[1].max(sq[1])];
@@ -212,4 +401,40 @@ impl PoseChart {
         }
         errors_from_squares(best)
     }
+}
+
+/// One leg's part of the remainder (module documentation).
+struct Curvature {
+    /// `|½ Mᵀ H M|` entrywise, `H = ∂²G_i/∂δ²` over the moves: the move's curvature in the
+    /// legs' coordinates `y`, where the components of `δ = M y` keep their correlation.
+    quadratic: Matrix,
+    /// `Σ_k |∂²G_i/∂δ_r∂θ_k| mag(θ_k - θ̂_k)` per move component: the gradient's change over the
+    /// leg's box.
+    geometry: [f64; 6],
+}
+
+/// `B >= |(I + S)⁻¹ C|` entrywise for every `|S| <= a` with `‖D⁻¹ a D‖∞ <= σ < 1` (`D =
+/// diag(v)`): first the Neumann series' bound `B_rc = v_r max_s (|C|_sc / v_s) / (1 - σ)`, then
+/// rounds of `B ← min(B, |C| + a B)`, each again a bound (`|M| <= |C| + |S| |M|`).
+fn inverse_magnitude(c: &Matrix, a: &Matrix, sigma: f64, v: &[f64; 6]) -> Matrix {
+    let gap = (Interval::point(1.0) - Interval::point(sigma)).inf();
+    let column: [f64; 6] = core::array::from_fn(|col| {
+        (0..6)
+            .map(|s| (Interval::point(c[s][col]) / Interval::point(v[s])).sup())
+            .fold(0.0, f64::max)
+    });
+    let mut b: Matrix = core::array::from_fn(|r| {
+        core::array::from_fn(|col| {
+            (Interval::point(mul_up(v[r], column[col])) / Interval::point(gap)).sup()
+        })
+    });
+    for _ in 0..INVERSE_ROUNDS {
+        let ab = product_up(a, &b);
+        for r in 0..6 {
+            for col in 0..6 {
+                b[r][col] = b[r][col].min(add_up(c[r][col], ab[r][col]));
+            }
+        }
+    }
+    b
 }
