@@ -174,8 +174,12 @@ pub fn key(value: [f64; 2], target: [f64; 2]) -> f64 {
 /// The legs' change bounds `U_i` over a box of poses (rounded up).
 type ChangeBounds = [f64; 6];
 
-/// A box of poses' outcome and the legs' change bounds it used (when computed).
-type Evaluated = (BoxBound, Option<ChangeBounds>);
+/// A box of poses' outcome, the legs' change bounds it used and whether they are its own (else
+/// its parent's).
+type Evaluated = (BoxBound, Option<ChangeBounds>, bool);
+
+/// A box of poses to evaluate, its parent's legs' change bounds, and whether to compute its own.
+type Task = (PoseBox, Option<ChangeBounds>, bool);
 
 /// The outcome for one box of poses.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -190,39 +194,38 @@ enum BoxBound {
 
 /// The bounds over one box of poses, by the chart that follows the pose when its region
 /// closes, and the legs' change bounds `U` used. `inherited` are a parent box's (upper bounds
-/// over this box too): when they already meet `target` the box's own, which cost a few linear
-/// programs per leg, are not computed.
+/// over this box too); unless `own` asks for the box's own (a few linear programs per leg), they
+/// are all that is used: most boxes of a search are never split, so their own are never needed.
 fn bound_pose_box(
     problem: &AccuracyProblem,
     x: &PoseBox,
     eps: f64,
     inherited: Option<ChangeBounds>,
-    target: [f64; 2],
+    own: bool,
 ) -> Evaluated {
     if !problem.may_be_feasible(x) {
-        return (BoxBound::Empty, None);
+        return (BoxBound::Empty, None, true);
     }
     // The poses of the workspace in the box lie in its part within the tilt.
     let Some(x) = problem.within_tilt(x) else {
-        return (BoxBound::Empty, None);
+        return (BoxBound::Empty, None, true);
     };
-    let chart = |u: [f64; 6]| PoseChart::with_leg_bounds(problem, &x, u).and_then(|c| c.bound());
-    if let Some(u) = inherited {
-        if let Some(b) = chart(u).filter(|b| key(*b, target) <= 1.0) {
-            return (BoxBound::Bound(b), Some(u));
-        }
+    let chart = |u: [f64; 6]| {
+        PoseChart::with_leg_bounds(problem, &x, u)
+            .and_then(|c| c.bound())
+            .map_or(BoxBound::Unproved, BoxBound::Bound)
+    };
+    if let (Some(u), false) = (inherited, own) {
+        return (chart(u), Some(u), false);
     }
-    let Some(own) = leg_change_bounds(problem, &x, eps) else {
-        return (BoxBound::Unproved, inherited);
+    let Some(computed) = leg_change_bounds(problem, &x, eps) else {
+        return (BoxBound::Unproved, inherited, true);
     };
     let u = match inherited {
-        Some(p) => core::array::from_fn(|i| own[i].min(p[i])),
-        None => own,
+        Some(p) => core::array::from_fn(|i| computed[i].min(p[i])),
+        None => computed,
     };
-    (
-        chart(u).map_or(BoxBound::Unproved, BoxBound::Bound),
-        Some(u),
-    )
+    (chart(u), Some(u), true)
 }
 
 /// A box of poses in the queue of [`pose_error_bounds`] and its bounds.
@@ -231,6 +234,8 @@ struct Queued {
     bound: BoxBound,
     /// The legs' change bounds over the box, when computed (its halves inherit them).
     legs: Option<ChangeBounds>,
+    /// Whether `legs` are the box's own (else its parent's: computed before it is split).
+    own: bool,
 }
 
 /// The share of `domain`'s volume in `x` (a coordinate where `domain` is a point counts as
@@ -261,8 +266,8 @@ pub fn pose_error_bounds(
     let start = std::time::Instant::now();
     let search = PoseSearch::new(problem, eps, lower, settings);
     let mut queue = PoseQueue::default();
-    let (bound, legs) = search.evaluate(&search.domain, None);
-    queue.record(search.domain, bound, legs, &search);
+    let evaluated = search.evaluate(&search.domain, None, true);
+    queue.record(search.domain, evaluated, &search);
     let batch = 2 * rayon::current_num_threads().max(1);
     while queue.pose_boxes < settings.max_pose_boxes
         && start.elapsed().as_secs_f64() < settings.max_seconds
@@ -275,10 +280,10 @@ pub fn pose_error_bounds(
         }
         let results: Vec<(PoseBox, Evaluated)> = tasks
             .into_par_iter()
-            .map(|(x, legs)| (x, search.evaluate(&x, legs)))
+            .map(|(x, legs, own)| (x, search.evaluate(&x, legs, own)))
             .collect();
-        for (x, (b, legs)) in results {
-            queue.record(x, b, legs, &search);
+        for (x, evaluated) in results {
+            queue.record(x, evaluated, &search);
         }
     }
     queue.into_bounds(&search.domain, start)
@@ -321,10 +326,10 @@ impl<'a> PoseSearch<'a> {
         }
     }
 
-    /// The bounds over the box of poses `x` and the legs' change bounds used, from the parent's
-    /// `inherited` when they suffice.
-    fn evaluate(&self, x: &PoseBox, inherited: Option<ChangeBounds>) -> Evaluated {
-        bound_pose_box(self.problem, x, self.eps, inherited, self.target)
+    /// The bounds over the box of poses `x` and the legs' change bounds used: the parent's
+    /// `inherited`, or (`own`) the box's own.
+    fn evaluate(&self, x: &PoseBox, inherited: Option<ChangeBounds>, own: bool) -> Evaluated {
+        bound_pose_box(self.problem, x, self.eps, inherited, own)
     }
 }
 
@@ -345,13 +350,7 @@ struct PoseQueue {
 
 impl PoseQueue {
     /// Counts an evaluated box and queues it (an unproved one first of all).
-    fn record(
-        &mut self,
-        x: PoseBox,
-        bound: BoxBound,
-        legs: Option<ChangeBounds>,
-        search: &PoseSearch<'_>,
-    ) {
+    fn record(&mut self, x: PoseBox, (bound, legs, own): Evaluated, search: &PoseSearch<'_>) {
         self.pose_boxes += 1;
         let key = match bound {
             BoxBound::Empty => {
@@ -363,18 +362,19 @@ impl PoseQueue {
         };
         self.heap.push(Ranked {
             key,
-            item: Queued { x, bound, legs },
+            item: Queued {
+                x,
+                bound,
+                legs,
+                own,
+            },
         });
     }
 
-    /// Up to `batch` boxes to evaluate: the halves of the boxes with the largest keys above 1.
-    /// A box that cannot be split (or, unproved, is as fine as the search goes) stays in the
+    /// Up to `batch` boxes to evaluate: the halves of the boxes with the largest keys above 1
+    /// (or a box itself, with its own legs' bounds, when its key came from its parent's). A box that cannot be split (or, unproved, is as fine as the search goes) stays in the
     /// queue and ends the batch; an unproved one is named.
-    fn next_tasks(
-        &mut self,
-        batch: usize,
-        search: &PoseSearch<'_>,
-    ) -> Vec<(PoseBox, Option<ChangeBounds>)> {
+    fn next_tasks(&mut self, batch: usize, search: &PoseSearch<'_>) -> Vec<Task> {
         let (domain, finest_pose) = (&search.domain, search.settings.finest_pose);
         let mut tasks = Vec::new();
         while tasks.len() < batch {
@@ -384,11 +384,16 @@ impl PoseQueue {
                 break;
             }
             let q = &top.item;
+            if !q.own {
+                // Its parent's bounds gave this key: its own may already settle it.
+                tasks.push((q.x, q.legs, true));
+                continue;
+            }
             let fine = (0..6).all(|c| q.x[c].wid() <= finest_pose * domain[c].wid());
             match split_widest(&q.x, domain) {
                 Some((l, r)) if !(fine && q.bound == BoxBound::Unproved) => {
-                    tasks.push((l, q.legs));
-                    tasks.push((r, q.legs));
+                    tasks.push((l, q.legs, false));
+                    tasks.push((r, q.legs, false));
                 }
                 _ => {
                     if q.bound == BoxBound::Unproved {
