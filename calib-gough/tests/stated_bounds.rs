@@ -1,6 +1,7 @@
 //! Every geometry handed out fits the axis–angle measurements as the user stated them (issue 51):
 //! the witness and the inner bounds' points of `gough certify`, the geometry `--write-calibrated`
-//! writes and its set's points, and the geometries `gough accuracy` attains its lower bounds at.
+//! writes and its set's points, and the geometries `gough accuracy` attains its lower bounds at;
+//! and those geometries' leg changes stay within the platform pose bounds' `[-U⁻, U⁺]`.
 //!
 //! The check is independent of the generated evaluators (and of `calib_gough::geometry`): the
 //! rotation by the unit quaternion `(cos θ/2, sin θ/2 · u/|u|)`, evaluated in interval
@@ -350,5 +351,77 @@ fn proofs_against_the_rodrigues_hull_hand_out_misfits_proofs_as_stated_do_not() 
     assert!(
         hull_misfits > 0,
         "all {hull_points} geometries proved against the hull fit as stated"
+    );
+}
+
+/// The platform pose bounds' leg changes over `sample21`'s certified sets, where a leg's error
+/// reaches further on one side of zero than on the other: at poses sampled in small boxes of the
+/// measured workspace, the change `L_i(X; θ̂) + e - L_i(X; θ*)` of every geometry of the sets'
+/// catalogues (each proved consistent), with actuator errors at both ends, lies within
+/// `[-U⁻_i, U⁺_i]` of `leg_change_bounds`, each side its own (recomputed by `leg_reading`).
+#[test]
+fn sample21_leg_change_bounds_hold_each_side_over_the_certified_sets() {
+    use calib_gough::accuracy::pose_bound::leg_change_bounds;
+    let (robot, u, data) = sample21();
+    let results = certify_legs(
+        &robot,
+        &data.configs,
+        &u,
+        &CertifyOptions::default(),
+        &|| {},
+    )
+    .unwrap();
+    let calibrated = calibrated_robot(&robot, &results, &data.configs, &u, None).unwrap();
+    let problem = AccuracyProblem::over_sets(
+        &calibrated.legs,
+        &calibrated.sets,
+        &measured_workspace(&data.configs),
+    );
+    let domain = problem.domain();
+    let eps = 0.0005;
+    let mut rng = StdRng::seed_from_u64(5);
+    let (mut checked, mut lopsided) = (0, 0);
+    for _ in 0..12 {
+        let x: [Interval; 6] = core::array::from_fn(|k| {
+            let w = domain[k].wid() * 0.02;
+            let lo = domain[k].inf() + rng.random_range(0.0..1.0) * (domain[k].wid() - w);
+            Interval::new(lo, lo + w)
+        });
+        let Some(bounds) = leg_change_bounds(&problem, &x, eps) else {
+            continue;
+        };
+        for _ in 0..5 {
+            let pose: [f64; 6] =
+                core::array::from_fn(|k| rng.random_range(x[k].inf()..=x[k].sup()));
+            let (p, axis, angle_deg) = axis_angle(&pose);
+            let pose = Pose { p, axis, angle_deg };
+            for (i, &[below, above]) in bounds.iter().enumerate() {
+                if (below - above).abs() > 0.05 * below.max(above) {
+                    lopsided += 1;
+                }
+                let controller = leg_reading(&calibrated.legs[i].nominal, &pose);
+                for theta in problem.leg_set(i).expect("over the set").catalogue() {
+                    let truth = Leg {
+                        a: [theta[0], theta[1], theta[2]],
+                        b: [theta[3], theta[4], theta[5]],
+                        l: theta[6],
+                    };
+                    let real = leg_reading(&truth, &pose);
+                    for e in [-eps, eps] {
+                        let change = controller + e - real;
+                        let tol = 1e-12;
+                        assert!(
+                            -below - tol <= change && change <= above + tol,
+                            "leg {i}: change {change} outside [-{below}, {above}]"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        checked > 1000 && lopsided > 10,
+        "{checked} changes, {lopsided} lopsided legs"
     );
 }

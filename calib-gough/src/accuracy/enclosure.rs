@@ -581,6 +581,33 @@ impl AccuracyProblem {
             let e = self.set_error(i, x, set, enough);
             return Interval::new(0.0, e.mag());
         }
+        let (u, d) = self.box_ends(i, x);
+        Interval::new(u.inf().max(d.inf()).max(0.0), u.sup().max(d.sup()).max(0.0))
+    }
+
+    /// Upper bounds of how far leg `i`'s length error reaches below and above zero over the
+    /// poses of `x` and every geometry of its set (or box): `[max(-ΔL_i), max(ΔL_i)]`, each at
+    /// least 0; `None` when an enclosure failed.
+    pub fn leg_error_reach(&self, i: usize, x: &PoseBox) -> Option<[f64; 2]> {
+        let leg = &self.legs[i];
+        let (below, above) = match &leg.set {
+            Some(set) => {
+                let e = self.set_error(i, x, set, 0.0);
+                (-e.inf(), e.sup())
+            }
+            None => {
+                let (u, d) = self.box_ends(i, x);
+                (d.sup(), u.sup())
+            }
+        };
+        // NaN fails (f64::max would turn it into 0).
+        (below.is_finite() && above.is_finite()).then(|| [below.max(0.0), above.max(0.0)])
+    }
+
+    /// Enclosures of `max ΔL_i` and `max -ΔL_i` over the poses of `x` and leg `i`'s box, from the
+    /// ends of its box where the gradient's signs are known (see [`AccuracyProblem::leg_bounds`]).
+    fn box_ends(&self, i: usize, x: &PoseBox) -> (Interval, Interval) {
+        let leg = &self.legs[i];
         let e = LegLengthError.evaluate_interval(&leg.theta, &self.inputs(i, x));
         let end = |up: bool| -> [Interval; 7] {
             core::array::from_fn(|j| {
@@ -598,9 +625,10 @@ impl AccuracyProblem {
                 outer.hull(leg.vertex[usize::from(rising)][j])
             })
         };
-        let u = self.mean_value(i, x, &end(true));
-        let d = -self.mean_value(i, x, &end(false));
-        Interval::new(u.inf().max(d.inf()).max(0.0), u.sup().max(d.sup()).max(0.0))
+        (
+            self.mean_value(i, x, &end(true)),
+            -self.mean_value(i, x, &end(false)),
+        )
     }
 
     /// The vertex of leg `i`'s box where `ΔL_i` at `x` is largest (`up`) or smallest, by the

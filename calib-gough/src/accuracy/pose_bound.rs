@@ -7,9 +7,9 @@
 //!
 //! `G_i(X, δ, θ*) = L_i(X + δ; θ*) - L_i(X; θ*) = t (L_i(X; θ̂) + e_i - L_i(X; θ*))`
 //!
-//! lies in `[-U_i, U_i]` with `U_i = max |ΔL_i| + ε` over the box of poses — the leg-length error
-//! the certificate already bounds. So the path stays in the set `F` of moves `δ` with
-//! `|G_i| <= U_i` for some `X` of the box and `θ*` of `Θ`.
+//! lies in `[-U⁻_i, U⁺_i]` with `U⁻_i = max ΔL_i + ε`, `U⁺_i = max -ΔL_i + ε` over the box of poses —
+//! the leg-length error the certificate already bounds, on each side of zero. So the path stays in
+//! the set `F` of moves `δ` with `-U⁻_i <= G_i <= U⁺_i` for some `X` of the box and `θ*` of `Θ`.
 //!
 //! **The region argument.** Take a region `D` of moves, a neighbourhood of `δ = 0`. If no move on
 //! its boundary lies in `F` (for any pose of the box and any geometry), the connected path, which
@@ -125,18 +125,22 @@ pub struct PoseErrorBounds {
     pub seconds: f64,
 }
 
-/// `U_i = max |ΔL_i| + ε` over the box of poses `x`, rounded up: every leg's change along the
-/// path stays within `[-U_i, U_i]` (module documentation). `None` when one is not finite.
-pub fn leg_change_bounds(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> Option<[f64; 6]> {
+/// Per leg, `[U⁻_i, U⁺_i]`: along the path, `G_i = t (L_i(X; θ̂) + e_i - L_i(X; θ*)) = t (e_i -
+/// ΔL_i)` stays within `[-U⁻_i, U⁺_i]` with `U⁻_i = max ΔL_i + ε`, `U⁺_i = max -ΔL_i + ε` over
+/// the box of poses (rounded up; see the module documentation). `None` when one is not finite.
+pub fn leg_change_bounds(problem: &AccuracyProblem, x: &PoseBox, eps: f64) -> Option<ChangeBounds> {
     let eps = Interval::point(eps.max(0.0).next_up());
-    let mut bound = [0.0; 6];
+    let mut bound = [[0.0; 2]; 6];
     for (i, b) in bound.iter_mut().enumerate() {
-        let u = (Interval::point(problem.leg_bounds(i, x).sup()) + eps).sup();
-        if !u.is_finite() {
-            return None;
+        let [below, above] = problem.leg_error_reach(i, x)?;
+        for (side, reach) in b.iter_mut().zip([above, below]) {
+            let v = (Interval::point(reach) + eps).sup();
+            if !v.is_finite() {
+                return None;
+            }
+            // A larger bound is still one; a positive one keeps 0 inside D.
+            *side = v.max(1e-12);
         }
-        // A larger U is still a bound; a positive one keeps 0 inside D.
-        *b = u.max(1e-12);
     }
     Some(bound)
 }
@@ -171,8 +175,8 @@ pub fn key(value: [f64; 2], target: [f64; 2]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The legs' change bounds `U_i` over a box of poses (rounded up).
-type ChangeBounds = [f64; 6];
+/// The legs' change bounds over a box of poses: leg `i`'s change lies in `[-b[i][0], b[i][1]]`.
+pub type ChangeBounds = [[f64; 2]; 6];
 
 /// A box of poses' outcome, the legs' change bounds it used and whether they are its own (else
 /// its parent's).
@@ -210,7 +214,7 @@ fn bound_pose_box(
     let Some(x) = problem.within_tilt(x) else {
         return (BoxBound::Empty, None, true);
     };
-    let chart = |u: [f64; 6]| {
+    let chart = |u: ChangeBounds| {
         PoseChart::with_leg_bounds(problem, &x, u)
             .and_then(|c| c.bound())
             .map_or(BoxBound::Unproved, BoxBound::Bound)
@@ -218,14 +222,22 @@ fn bound_pose_box(
     if let (Some(u), false) = (inherited, own) {
         return (chart(u), Some(u), false);
     }
+    // The parent's bounds when the box's own cannot be had or close no region (a chart's
+    // closing is not monotone in U: the others' moves weigh on a leg's narrower region).
+    let fallback = |own: BoxBound| match (own, inherited) {
+        (BoxBound::Unproved, Some(p)) => chart(p),
+        (own, _) => own,
+    };
     let Some(computed) = leg_change_bounds(problem, &x, eps) else {
-        return (BoxBound::Unproved, inherited, true);
+        return (fallback(BoxBound::Unproved), inherited, true);
     };
     let u = match inherited {
-        Some(p) => core::array::from_fn(|i| computed[i].min(p[i])),
+        Some(p) => {
+            core::array::from_fn(|i| [computed[i][0].min(p[i][0]), computed[i][1].min(p[i][1])])
+        }
         None => computed,
     };
-    (chart(u), Some(u), true)
+    (fallback(chart(u)), Some(u), true)
 }
 
 /// A box of poses in the queue of [`pose_error_bounds`] and its bounds.
@@ -278,6 +290,7 @@ pub fn pose_error_bounds(
         if tasks.is_empty() || queue.unproved_at.is_some() {
             break;
         }
+        let reevaluated = tasks.iter().filter(|t| t.1.is_some() && t.2).count();
         let results: Vec<(PoseBox, Evaluated)> = tasks
             .into_par_iter()
             .map(|(x, legs, own)| (x, search.evaluate(&x, legs, own)))
@@ -285,6 +298,8 @@ pub fn pose_error_bounds(
         for (x, evaluated) in results {
             queue.record(x, evaluated, &search);
         }
+        // A box evaluated again with its own legs' bounds is not a new box.
+        queue.pose_boxes -= reevaluated;
     }
     queue.into_bounds(&search.domain, start)
 }

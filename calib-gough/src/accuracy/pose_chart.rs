@@ -24,17 +24,21 @@
 //! geometry's spread, second in the move, whatever the width of the box of poses (the chart is
 //! exact; the box only widens the enclosures).
 //!
-//! **Closing and bounding.** The region `D(X) = M(X) · [-R, R]` closes when `U_i + ρ_i(R) <
-//! R_i` for every leg: every move on face `i` then has `|G_i| >= R_i - ρ_i > U_i`, so no move on
-//! the boundary lies in `F` (see [`super::pose_bound`]), for every pose of the box and every
-//! geometry at once, and the reached move lies in `D(X) ∩ F ⊆ {M(X) y : |y_i| <= U_i + ρ_i}`.
-//! The least such `R` is sought by `R ← (U + ρ(R))(1 + g)` from `R = U (1 + g)`, each leg its
-//! own width. The position and orientation errors are norms of `M(X) y`, bilinear in the pose's
+//! **Closing and bounding.** Leg `i`'s change along the path lies in `[-U⁻_i, U⁺_i]` (see
+//! [`super::pose_bound`]). The region `D(X) = {M(X) y : -R⁻ <= y <= R⁺}` closes when `U^±_i +
+//! ρ_i < R^±_i` for every leg and side, `ρ` over the box `|y| <= max(R⁻, R⁺)`: every move on the
+//! face `y_i = R⁺_i` then has `G_i >= R⁺_i - ρ_i > U⁺_i`, on `y_i = -R⁻_i` `G_i < -U⁻_i`, so no
+//! move on the boundary lies in `F`, for every pose of the box and every geometry at once, and
+//! the reached move lies in `D(X) ∩ F ⊆ {M(X) y : -U⁻ - ρ <= y <= U⁺ + ρ}`. The least such
+//! region is sought by `R ← (U + ρ(R))(1 + g)` from `R = U (1 + g)`, each leg and side its own
+//! width. The position and orientation errors are norms of `M(X) y`, bilinear in the pose's
 //! noise symbols and `y`: convex in each, so their largest values are at one of the 64 × 64
 //! vertex pairs, with the remainder of `M(X)` taken outward.
 
 use super::enclosure::{AccuracyProblem, PoseBox};
-use super::pose_bound::{errors_from_squares, leg_change_bounds, reached_change, squared_norms};
+use super::pose_bound::{
+    errors_from_squares, leg_change_bounds, reached_change, squared_norms, ChangeBounds,
+};
 use calib_core::{Affine, Interval, Jet, Jet2};
 
 /// Second-order jets in twelve symbols.
@@ -67,8 +71,8 @@ pub struct PoseChart {
     pub slope: [Matrix; 6],
     /// The entries' remainder (second order in the box's width) and roundings.
     pub slack: Matrix,
-    /// `U_i`, rounded up.
-    pub bound: [f64; 6],
+    /// `[U⁻_i, U⁺_i]`: leg `i`'s change along the path lies in `[-U⁻_i, U⁺_i]`.
+    pub bound: ChangeBounds,
     /// The box of poses.
     pose: PoseBox,
     /// Per leg, the box of the geometry `(a, b)` joined with the nominal values, and its spread
@@ -89,6 +93,15 @@ pub fn add_up(a: f64, b: f64) -> f64 {
 pub fn mul_up(a: f64, b: f64) -> f64 {
     if a.is_finite() && b.is_finite() {
         (Interval::point(a) * Interval::point(b)).sup()
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// `a / b` rounded up, for `a >= 0`, `b > 0` (`+∞` when either is not finite).
+fn div_up(a: f64, b: f64) -> f64 {
+    if a.is_finite() && b.is_finite() && b > 0.0 {
+        (Interval::point(a) / Interval::point(b)).sup()
     } else {
         f64::INFINITY
     }
@@ -122,7 +135,7 @@ pub fn scaled_norm(mag: &Matrix) -> (f64, [f64; 6]) {
     let sigma = (0..6)
         .map(|r| {
             let s = (0..6).fold(0.0, |s, c| add_up(s, mul_up(mag[r][c], v[c])));
-            (Interval::point(s) / Interval::point(v[r])).sup()
+            div_up(s, v[r])
         })
         .fold(0.0, f64::max);
     (sigma, v)
@@ -153,9 +166,9 @@ impl PoseChart {
     pub fn with_leg_bounds(
         problem: &AccuracyProblem,
         x: &PoseBox,
-        bound: [f64; 6],
+        bound: ChangeBounds,
     ) -> Option<PoseChart> {
-        if problem.legs() != 6 || !bound.iter().all(|u| u.is_finite() && *u > 0.0) {
+        if problem.legs() != 6 || !bound.iter().flatten().all(|u| u.is_finite() && *u > 0.0) {
             return None;
         }
         // J(X) as affine forms in the pose's noise symbols, at the nominal geometry.
@@ -170,6 +183,9 @@ impl PoseChart {
             reached_change(&delta, &inputs(&pose.map(Jet::constant), &geometry)).grad
         });
         let c = nalgebra::Matrix6::from_fn(|r, k| jacobian[r][k].centre()).try_inverse()?;
+        if !c.iter().all(|v| v.is_finite()) {
+            return None;
+        }
         let c: Matrix = core::array::from_fn(|r| core::array::from_fn(|k| c[(r, k)]));
         // S(X) = C J(X) - I and its magnitudes A.
         let s: [[Form; 6]; 6] = core::array::from_fn(|r| {
@@ -202,6 +218,10 @@ impl PoseChart {
                 }
                 slack[r][col] = add_up(m.error(), second[r][col]);
             }
+        }
+        let finite = |m: &Matrix| m.iter().flatten().all(|v| v.is_finite());
+        if !(finite(&centre) && slope.iter().all(finite)) {
+            return None;
         }
         let geometry = (0..6)
             .map(|i| {
@@ -328,18 +348,25 @@ impl PoseChart {
         })
     }
 
-    /// `ρ_i` over `|y_c| <= h_c` (module documentation), for `h <= 3 U`; `None` beyond, or when
-    /// an enclosure failed.
+    /// `max(U⁻_i, U⁺_i)`, at least a quarter of the largest over the legs: the scale of each
+    /// leg's region (so that a leg known almost exactly still has room for the others' moves).
+    fn wider(&self) -> [f64; 6] {
+        let sides = self.bound.map(|[below, above]| below.max(above));
+        let largest = sides.iter().fold(0.0f64, |a, b| a.max(*b));
+        sides.map(|v| v.max(0.25 * largest))
+    }
+
+    /// `ρ_i` over `|y_c| <= h_c` (module documentation), for `h` within 3 times each leg's
+    /// scale (its change's larger side, or a quarter of the largest); `None` beyond, or when an
+    /// enclosure failed.
     pub fn remainder_over(&self, h: &[f64; 6]) -> Option<[f64; 6]> {
-        if !(0..6).all(|i| h[i] <= WIDEST * self.bound[i]) {
+        let wider = self.wider();
+        if !(0..6).all(|i| h[i] <= WIDEST * wider[i]) {
             return None;
         }
         let (vertices, slack) = self.vertices();
-        let curvature = self.curvature(&Self::reach(
-            &vertices,
-            &slack,
-            &self.bound.map(|v| WIDEST * v),
-        ))?;
+        let curvature =
+            self.curvature(&Self::reach(&vertices, &slack, &wider.map(|v| WIDEST * v)))?;
         Some(Self::remainder(
             &curvature,
             &Self::reach(&vertices, &slack, h),
@@ -351,46 +378,64 @@ impl PoseChart {
     /// box, every geometry and every actuator error, or `None` when no region closes.
     pub fn bound(&self) -> Option<[f64; 2]> {
         let u = self.bound;
+        let wider = self.wider();
         let (vertices, slack) = self.vertices();
-        let curvature = self.curvature(&Self::reach(&vertices, &slack, &u.map(|v| WIDEST * v)))?;
-        let rest =
-            |h: &[f64; 6]| Self::remainder(&curvature, &Self::reach(&vertices, &slack, h), h);
-        // The least region that closes: R ← (U + ρ(R)) (1 + GROWTH) from R = U (1 + GROWTH)
-        // rises towards the least fixed point, where U + ρ(R) < R; beyond WIDEST the curvature
-        // does not hold.
-        let mut r = u.map(|v| mul_up(v, 1.0 + GROWTH));
+        let curvature =
+            self.curvature(&Self::reach(&vertices, &slack, &wider.map(|v| WIDEST * v)))?;
+        // ρ over a region [-r⁻, r⁺] (within the box of its larger sides).
+        let rest = |r: &ChangeBounds| {
+            let hull = r.map(|[below, above]| below.max(above));
+            Self::remainder(&curvature, &Self::reach(&vertices, &slack, &hull), &hull)
+        };
+        // The least region that closes: R ← (U + ρ(R)) (1 + GROWTH) from R = U (1 + GROWTH), on
+        // each side of each leg, rises towards the least fixed point, where U + ρ(R) < R; beyond
+        // WIDEST the curvature does not hold.
+        let grow = |r: &ChangeBounds| r.map(|sides| sides.map(|v| mul_up(v, 1.0 + GROWTH)));
+        let mut r = grow(&u);
         let mut closed = None;
         for _ in 0..REGION_ROUNDS {
-            if !(0..6).all(|i| r[i] <= WIDEST * u[i]) {
+            if !(0..6).all(|i| r[i].iter().all(|v| *v <= WIDEST * wider[i])) {
                 break;
             }
             let rest = rest(&r);
-            let next: [f64; 6] = core::array::from_fn(|i| add_up(u[i], rest[i]));
-            if (0..6).all(|i| next[i] < r[i]) {
+            let next: ChangeBounds =
+                core::array::from_fn(|i| u[i].map(|side| add_up(side, rest[i])));
+            if (0..6).all(|i| next[i][0] < r[i][0] && next[i][1] < r[i][1]) {
                 closed = Some(r);
                 break;
             }
-            r = next.map(|v| mul_up(v, 1.0 + GROWTH));
+            r = grow(&next);
         }
         let mut h = closed?;
         for _ in 0..SHRINK_ROUNDS {
             let rest = rest(&h);
-            h = core::array::from_fn(|i| add_up(u[i], rest[i]).min(h[i]));
+            h = core::array::from_fn(|i| {
+                core::array::from_fn(|k| add_up(u[i][k], rest[i]).min(h[i][k]))
+            });
         }
-        Some(Self::vertex_value(&vertices, &slack, &h))
+        // An overflow bounds nothing.
+        Some(Self::vertex_value(&vertices, &slack, &h)).filter(|b| b.iter().all(|v| v.is_finite()))
     }
 
     /// The largest `|d|` and orientation angle of `δ = M(X) y` over the pose's noise symbols and
-    /// `|y_c| <= h_c`: bilinear, so at one of the 64 × 64 vertex pairs; each component's slack
-    /// `Σ_c slack_rc h_c` is added outward, and the norms rounded up.
-    fn vertex_value(vertices: &[Matrix], slack: &Matrix, h: &[f64; 6]) -> [f64; 2] {
-        let outward: [f64; 6] =
-            core::array::from_fn(|r| (0..6).fold(0.0, |s, c| add_up(s, mul_up(slack[r][c], h[c]))));
+    /// `-h⁻_c <= y_c <= h⁺_c`: bilinear, so at one of the 64 × 64 vertex pairs; each component's
+    /// slack `Σ_c slack_rc max(h⁻_c, h⁺_c)` is added outward, and the norms rounded up.
+    fn vertex_value(vertices: &[Matrix], slack: &Matrix, h: &ChangeBounds) -> [f64; 2] {
+        let outward: [f64; 6] = core::array::from_fn(|r| {
+            (0..6).fold(0.0, |s, c| {
+                add_up(s, mul_up(slack[r][c], h[c][0].max(h[c][1])))
+            })
+        });
         let mut best = [0.0f64; 2];
         for m in vertices {
             for corner in 0..64u32 {
-                let y: [f64; 6] =
-                    core::array::from_fn(|c| if corner >> c & 1 == 1 { h[c] } else { -h[c] });
+                let y: [f64; 6] = core::array::from_fn(|c| {
+                    if corner >> c & 1 == 1 {
+                        h[c][1]
+                    } else {
+                        -h[c][0]
+                    }
+                });
                 let comp: [f64; 6] = core::array::from_fn(|r| {
                     let v: f64 = (0..6).map(|c| m[r][c] * y[c]).sum();
                     add_up(v.abs(), outward[r])
@@ -418,15 +463,10 @@ struct Curvature {
 /// rounds of `B ← min(B, |C| + a B)`, each again a bound (`|M| <= |C| + |S| |M|`).
 fn inverse_magnitude(c: &Matrix, a: &Matrix, sigma: f64, v: &[f64; 6]) -> Matrix {
     let gap = (Interval::point(1.0) - Interval::point(sigma)).inf();
-    let column: [f64; 6] = core::array::from_fn(|col| {
-        (0..6)
-            .map(|s| (Interval::point(c[s][col]) / Interval::point(v[s])).sup())
-            .fold(0.0, f64::max)
-    });
+    let column: [f64; 6] =
+        core::array::from_fn(|col| (0..6).map(|s| div_up(c[s][col], v[s])).fold(0.0, f64::max));
     let mut b: Matrix = core::array::from_fn(|r| {
-        core::array::from_fn(|col| {
-            (Interval::point(mul_up(v[r], column[col])) / Interval::point(gap)).sup()
-        })
+        core::array::from_fn(|col| div_up(mul_up(v[r], column[col]), gap))
     });
     for _ in 0..INVERSE_ROUNDS {
         let ab = product_up(a, &b);

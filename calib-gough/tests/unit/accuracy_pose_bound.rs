@@ -89,7 +89,7 @@ fn the_pose_chart_holds_its_inverse_remainder_and_reached_moves() {
         };
         // Small moves too, where the geometry's part of the remainder dominates the moves'.
         let f = 10f64.powf(rng.random_range(-2.0..0.45));
-        let h = chart.bound.map(|u| f * u);
+        let h = chart.bound.map(|[below, above]| f * below.max(above));
         let rest = chart.remainder_over(&h).expect("a remainder within 3 U");
         let bound = chart.bound();
         if bound.is_some() && x[0].wid() > 0.5 {
@@ -145,15 +145,15 @@ fn the_pose_chart_holds_its_inverse_remainder_and_reached_moves() {
                 checked += 1;
             }
             let Some([pos, ori]) = bound else { continue };
-            // A reached move: leg changes s, Newton along t s from δ = 0.
+            // A reached move: leg changes s within [-U⁻, U⁺], Newton along t s from δ = 0.
             let s: [f64; 6] = core::array::from_fn(|i| {
-                chart.bound[i]
-                    * if rng.random_bool(0.5) { 1.0 } else { -1.0 }
-                    * if rng.random_bool(0.8) {
-                        1.0
-                    } else {
-                        rng.random_range(0.0..1.0)
-                    }
+                let [below, above] = chart.bound[i];
+                let side = if rng.random_bool(0.5) { above } else { -below };
+                side * if rng.random_bool(0.8) {
+                    1.0
+                } else {
+                    rng.random_range(0.0..1.0)
+                }
             });
             let mut delta = [0.0; 6];
             let mut ok = true;
