@@ -20,7 +20,7 @@
 
 use calib_core::{hull, CertifiedSet, Interval, Settings};
 use calib_gough::accuracy::{axis_angle, AccuracyProblem, REFINED_SET_PIECES};
-use calib_gough::calibrated::{calibrated_robot, measured_workspace, Task};
+use calib_gough::calibrated::{calibrated_robot, measured_workspace, CalibratedRobot, Task};
 use calib_gough::certification::{certify_legs, CertifyOptions};
 use calib_gough::files::{read_measurements, read_robot, read_uncertainty, LegSpec, Measurements};
 use calib_gough::geometry::rodrigues_box;
@@ -181,12 +181,9 @@ fn sample21_every_geometry_handed_out_fits_the_stated_bounds() {
     assert!(bad.is_empty(), "{} misfits: {:#?}", bad.len(), bad);
 }
 
-/// `gough accuracy --refine-set`: the geometries the refined sets hand out fit the stated bounds,
-/// and the refined sets' leg-length bounds over small boxes of poses hold the error of every
-/// certified geometry (both catalogues, each proved consistent) at poses sampled in the box —
-/// recomputed by `leg_reading` — while lower in sum than the bounds over the sets as stored.
-#[test]
-fn sample21_refined_sets_hand_out_fitting_geometries_and_bound_them_tighter() {
+/// `sample21` certified with the default options and its calibrated robot (the file
+/// `--write-calibrated` writes, with its sets).
+fn sample21_calibrated() -> (Vec<LegSpec>, Uncertainty, Measurements, CalibratedRobot) {
     let (robot, u, data) = sample21();
     let results = certify_legs(
         &robot,
@@ -197,6 +194,16 @@ fn sample21_refined_sets_hand_out_fitting_geometries_and_bound_them_tighter() {
     )
     .unwrap();
     let calibrated = calibrated_robot(&robot, &results, &data.configs, &u, None).unwrap();
+    (robot, u, data, calibrated)
+}
+
+/// `gough accuracy --refine-set`: the geometries the refined sets hand out fit the stated bounds,
+/// and the refined sets' leg-length bounds over small boxes of poses hold the error of every
+/// certified geometry (both catalogues, each proved consistent) at poses sampled in the box —
+/// recomputed by `leg_reading` — while lower in sum than the bounds over the sets as stored.
+#[test]
+fn sample21_refined_sets_hand_out_fitting_geometries_and_bound_them_tighter() {
+    let (robot, u, data, calibrated) = sample21_calibrated();
     let workspace = measured_workspace(&data.configs);
     let plain = AccuracyProblem::over_sets(&calibrated.legs, &calibrated.sets, &workspace);
     let mut refined = plain.clone();
@@ -362,16 +369,7 @@ fn proofs_against_the_rodrigues_hull_hand_out_misfits_proofs_as_stated_do_not() 
 #[test]
 fn sample21_leg_change_bounds_hold_each_side_over_the_certified_sets() {
     use calib_gough::accuracy::pose_bound::leg_change_bounds;
-    let (robot, u, data) = sample21();
-    let results = certify_legs(
-        &robot,
-        &data.configs,
-        &u,
-        &CertifyOptions::default(),
-        &|| {},
-    )
-    .unwrap();
-    let calibrated = calibrated_robot(&robot, &results, &data.configs, &u, None).unwrap();
+    let (_, _, data, calibrated) = sample21_calibrated();
     let problem = AccuracyProblem::over_sets(
         &calibrated.legs,
         &calibrated.sets,
